@@ -1,0 +1,54 @@
+# Helpers to verilate RTL blocks for tests and tools.
+#
+# sm_verilated(TARGET <exe> TOP <module> [PARAMS NAME=VALUE ...] [TRACE] [THREADS n])
+#   Verilates rtl/<module>.v (submodules are found in rtl/ and the generated folder)
+#   into the executable target. The target gets SM_VTOP / SM_VTOP_H naming the model
+#   class and header, and SM_P_<NAME>=<VALUE> for every parameter.
+set(SM_VERILATOR_ARGS --x-assign fast --x-initial fast -O3 --assert -Wno-fatal
+    -y ${SM_RTL_DIR} -y ${SM_GEN_DIR} -I${SM_GEN_DIR})
+function(sm_verilated)
+  cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS" "PARAMS" ${ARGN})
+  set(args ${SM_VERILATOR_ARGS})
+  set(defs SM_VTOP=V${V_TARGET} SM_VTOP_H="V${V_TARGET}.h")
+  foreach(p ${V_PARAMS})
+    list(APPEND args -G${p})
+    string(REPLACE "=" ";" kv ${p})
+    list(GET kv 0 k)
+    list(GET kv 1 v)
+    list(APPEND defs SM_P_${k}=${v})
+  endforeach()
+  set(extra)
+  if(V_TRACE)
+    list(APPEND extra TRACE)
+  endif()
+  if(V_THREADS)
+    list(APPEND extra THREADS ${V_THREADS})
+  endif()
+  verilate(${V_TARGET} SOURCES ${SM_RTL_DIR}/${V_TOP}.v TOP_MODULE ${V_TOP}
+           PREFIX V${V_TARGET} VERILATOR_ARGS ${args} ${extra})
+  target_compile_definitions(${V_TARGET} PRIVATE ${defs})
+endfunction()
+
+# sm_rtl_test(NAME <test> TOP <module> SOURCES <tb.cpp ...> [PARAMS ...] [LABELS ...]
+#             [ARGS ...] [TRACE] [TIMEOUT s])
+#   One Verilated block test at one parameter point, registered with ctest.
+function(sm_rtl_test)
+  cmake_parse_arguments(T "TRACE" "NAME;TOP;TIMEOUT" "SOURCES;PARAMS;LABELS;ARGS" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_include_directories(${T_NAME} PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
+                                               ${CMAKE_SOURCE_DIR}/sim ${SM_GEN_DIR})
+  target_link_libraries(${T_NAME} PRIVATE sm_model fmt::fmt)
+  set(tr)
+  if(T_TRACE)
+    set(tr TRACE)
+  endif()
+  sm_verilated(TARGET ${T_NAME} TOP ${T_TOP} PARAMS ${T_PARAMS} ${tr})
+  add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})
+  if(NOT T_LABELS)
+    set(T_LABELS rtl)
+  endif()
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 600)
+  endif()
+  set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT})
+endfunction()

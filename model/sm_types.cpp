@@ -1,0 +1,59 @@
+#include "sm_types.hpp"
+
+#include <fmt/format.h>
+
+namespace sm {
+
+namespace {
+int clog2(long v) {  // ceil(log2(v)), as Verilog's $clog2
+  int n = 0;
+  while ((1L << n) < v) ++n;
+  return n;
+}
+}  // namespace
+
+int HwConfig::cost_bits() const { return clog2((census_bits() >> cost_shift) + 1); }
+
+void HwConfig::validate() const {
+  auto bad = [](const std::string& m) { throw std::invalid_argument(m); };
+  if (max_width < 16 || max_width > 4095) bad(fmt::format("max_width {} outside 16..4095", max_width));
+  if (max_height < 16 || max_height > 4095)
+    bad(fmt::format("max_height {} outside 16..4095", max_height));
+  if (disp < 4 || disp > 254 || disp % 2) bad(fmt::format("disp {} must be even, 4..254", disp));
+  if (census < 3 || census > 15 || census % 2 == 0)
+    bad(fmt::format("census {} must be odd, 3..15", census));
+  if (sw < 3 || sw > 7 || sw % 2 == 0) bad(fmt::format("sw {} must be odd, 3..7", sw));
+  if (rect_radius < 1 || rect_radius > 31) bad(fmt::format("rect_radius {} outside 1..31", rect_radius));
+  if (cost_shift < 0 || cost_shift > 4) bad(fmt::format("cost_shift {} outside 0..4", cost_shift));
+  if (max_objects < 1 || max_objects > 64) bad(fmt::format("max_objects {} outside 1..64", max_objects));
+  if (label_slots < max_objects || label_slots > 1024)
+    bad(fmt::format("label_slots {} outside max_objects..1024", label_slots));
+}
+
+RectGrid RectGrid::identity(int width, int height) {
+  RectGrid g;
+  g.gw = points_w(width);
+  g.gh = points_h(height);
+  g.sx.resize(static_cast<size_t>(g.gw) * g.gh);
+  g.sy.resize(g.sx.size());
+  for (int gy = 0; gy < g.gh; ++gy)
+    for (int gx = 0; gx < g.gw; ++gx) {
+      g.sx[static_cast<size_t>(gy) * g.gw + gx] = static_cast<int16_t>((gx * kGridStep) << kMapFrac);
+      g.sy[static_cast<size_t>(gy) * g.gw + gx] = static_cast<int16_t>((gy * kGridStep) << kMapFrac);
+    }
+  return g;
+}
+
+Regs Regs::defaults(const HwConfig& hw) {
+  Regs r;
+  r.width = hw.max_width;
+  r.height = hw.max_height;
+  r.sw_table.fill(0);
+  const uint8_t codes[8] = {3, 3, 2, 2, 1, 1, 1, 1};
+  for (int k = 0; k < 8; ++k) r.sw_table[k] = codes[k];
+  r.grid_l = RectGrid::identity(r.width, r.height);
+  r.grid_r = r.grid_l;
+  return r;
+}
+
+}  // namespace sm

@@ -1,0 +1,118 @@
+// Shared types of the reference model. Every stage of the RTL has one function in
+// the model (see docs/algorithm.md); these are the containers they exchange and the
+// two parameter sets: HwConfig (compile-time parameters of the RTL) and Regs
+// (run-time registers written over AXI4-Lite).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sm {
+
+// A W x H plane of one integer type, row-major.
+template <typename T>
+struct Plane {
+  int w = 0;
+  int h = 0;
+  std::vector<T> px;
+  Plane() = default;
+  Plane(int w_, int h_, T fill = T{}) : w(w_), h(h_), px(static_cast<size_t>(w_) * h_, fill) {}
+  T& at(int x, int y) { return px[static_cast<size_t>(y) * w + x]; }
+  const T& at(int x, int y) const { return px[static_cast<size_t>(y) * w + x]; }
+  bool operator==(const Plane& o) const { return w == o.w && h == o.h && px == o.px; }
+  bool operator!=(const Plane& o) const { return !(*this == o); }
+};
+
+using Image8 = Plane<uint8_t>;
+
+// Census vector of up to 256 bits (15x15 window -> 224 bits). Bit k is the k-th
+// neighbour in raster order of the window with the centre skipped (docs/algorithm.md).
+using CensusVec = std::array<uint64_t, 4>;
+using CensusImage = Plane<CensusVec>;
+
+// A W x H x D volume, d fastest: index (y * w + x) * d_levels + d.
+template <typename T>
+struct Volume {
+  int w = 0;
+  int h = 0;
+  int d = 0;
+  std::vector<T> v;
+  Volume() = default;
+  Volume(int w_, int h_, int d_, T fill = T{})
+      : w(w_), h(h_), d(d_), v(static_cast<size_t>(w_) * h_ * d_, fill) {}
+  T& at(int x, int y, int k) { return v[(static_cast<size_t>(y) * w + x) * d + k]; }
+  const T& at(int x, int y, int k) const { return v[(static_cast<size_t>(y) * w + x) * d + k]; }
+  T* pix(int x, int y) { return &v[(static_cast<size_t>(y) * w + x) * d]; }
+  const T* pix(int x, int y) const { return &v[(static_cast<size_t>(y) * w + x) * d]; }
+  bool operator==(const Volume& o) const { return w == o.w && h == o.h && d == o.d && v == o.v; }
+};
+
+using CostVolume = Volume<uint8_t>;
+
+// Disparity pixel as it travels on the disparity stream: bit 15 = valid, low bits =
+// disparity (0..DISP-1). Same encoding as m_axis_tdata of the IP.
+using DispPix = uint16_t;
+constexpr DispPix kDispValid = 0x8000;
+using DispImage = Plane<DispPix>;
+inline DispPix make_disp(unsigned d, bool valid) {
+  return static_cast<DispPix>((valid ? kDispValid : 0) | (d & 0x7fff));
+}
+inline unsigned disp_value(DispPix p) { return p & 0x7fffu; }
+inline bool disp_valid(DispPix p) { return (p & kDispValid) != 0; }
+
+// Compile-time parameters of the RTL (Verilog parameters of sm_top).
+struct HwConfig {
+  int max_width = 320;    // MAX_WIDTH: widest active line
+  int max_height = 240;   // MAX_HEIGHT: tallest active frame
+  int disp = 128;         // DISP: disparity levels 0..DISP-1
+  int census = 15;        // CENSUS: census window side (odd, 3..15)
+  int sw = 5;             // SW: support-weight window side (odd, 3..7)
+  int rect_radius = 15;   // RECT_RADIUS: rows above/below the output row the
+                          // rectifier can read (line buffer holds 2R+2 rows)
+  int cost_shift = 2;     // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
+  int max_objects = 8;    // MAX_OBJECTS (K): objects reported per frame
+  int label_slots = 64;   // LABEL_SLOTS: equivalence-table entries of the labeller
+  int census_bits() const { return census * census - 1; }
+  int cost_bits() const;  // width of the aggregated cost (see algorithm.md)
+  void validate() const;  // throws std::invalid_argument on an illegal combination
+};
+
+// Rectification map as a coarse grid of source coordinates (docs/algorithm.md, stage 2).
+constexpr int kGridShift = 4;        // grid spacing 16 output pixels
+constexpr int kGridStep = 1 << kGridShift;
+constexpr int kMapFrac = 5;          // grid coordinates are Q.5 (1/32 px)
+constexpr int kInterpFrac = 4;       // bilinear weights are 1/16
+struct RectGrid {
+  int gw = 0;  // grid points per row: ceil(W/16) + 1
+  int gh = 0;  // grid rows: ceil(H/16) + 1
+  std::vector<int16_t> sx;  // source x, Q.5, gw*gh entries, row-major
+  std::vector<int16_t> sy;  // source y, Q.5
+  static RectGrid identity(int width, int height);
+  static int points_w(int width) { return (width + kGridStep - 1) / kGridStep + 1; }
+  static int points_h(int height) { return (height + kGridStep - 1) / kGridStep + 1; }
+};
+
+// Run-time registers (AXI4-Lite), with the paper's defaults.
+struct Regs {
+  int width = 320;           // active width, 16..MAX_WIDTH
+  int height = 240;          // active height, 16..MAX_HEIGHT
+  uint16_t gain_l = 256;     // brightness gain, Q2.8 (10 bits)
+  uint16_t gain_r = 256;
+  int16_t offset_l = 0;      // brightness offset, -256..255 (9 bits signed)
+  int16_t offset_r = 0;
+  bool rect_enable = true;   // false: the rectifier passes pixels through
+  RectGrid grid_l;           // empty = identity for the active size
+  RectGrid grid_r;
+  uint8_t occ = 24;          // DP occlusion penalty (8 bits)
+  std::array<uint8_t, 32> sw_table{};  // 2-bit weight codes by |dI| >> 3 (set by defaults())
+  uint8_t filter_enable = 7; // bit n enables post-processing filter n+1
+  uint8_t obj_near = 32;     // objects: disparity >= obj_near is "near"
+  uint8_t obj_tol = 2;       // objects: neighbours merge when |d1 - d2| <= obj_tol
+  uint16_t obj_min_pixels = 64;  // objects smaller than this are not reported
+  static Regs defaults(const HwConfig& hw);
+};
+
+}  // namespace sm
