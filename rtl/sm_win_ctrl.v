@@ -22,6 +22,7 @@ module sm_win_ctrl #(
     input  wire                    ce,
     input  wire [XW-1:0]           width,     // active width, must exceed D_COLS
     input  wire [4:0]              s_side,    // sideband of the entering beat
+    output wire [XW-1:0]           s_x,       // column of the entering beat
     output wire [4:0]              c_side,    // sideband of the centre beat
     output wire [XW-1:0]           c_x,       // column of the centre beat
     output wire [R_UP+R_DN:0]      row_ok,    // bit R_UP+j: centre row + j is in the frame
@@ -46,6 +47,7 @@ module sm_win_ctrl #(
   wire          in_sol = s_side[2];
   wire [3:0]    in_tag = {s_side[4:3], s_side[1], s_side[0]};
   wire [XW-1:0] col = in_sol ? {XW{1'b0}} : col_q + 1'b1;
+  assign s_x = col;
 
   // Tags of the rows as seen with the entering beat: index 0 is the live row.
   wire [3:0] row_tag [0:NT-1];
