@@ -64,7 +64,11 @@ module sm_win_ctrl #(
 
   // The centre is D_COLS beats back in the current row, or at the end of the row
   // before when the current row has not reached D_COLS yet.
+  // Parameters overridden by a parent arrive as 32-bit integers; the truncation to the
+  // column width is intended (D_COLS < MAX_WIDTH is checked above).
+  /* verilator lint_off WIDTH */
   localparam [XW-1:0] DC = D_COLS;
+  /* verilator lint_on WIDTH */
   wire          borrow;
   generate
     if (D_COLS == 0) begin : g_no_borrow
@@ -78,7 +82,8 @@ module sm_win_ctrl #(
   endgenerate
   wire [3:0]    ctag = borrow ? row_tag[D_ROWS+1] : row_tag[D_ROWS];
 
-  assign c_side = {ctag[3:2], ctag[1] && (c_x == {XW{1'b0}}), (c_x == {XW{1'b0}}), ctag[0]};
+  // Sideband order as in the spec: {ftag, sol, sof, real}.
+  assign c_side = {ctag[3:2], (c_x == {XW{1'b0}}), ctag[1] && (c_x == {XW{1'b0}}), ctag[0]};
 
   genvar j;
   generate
@@ -92,10 +97,14 @@ module sm_win_ctrl #(
     for (j = 0; j <= R_L + R_R; j = j + 1) begin : g_col_ok
       // column c_x + (j - R_L) must lie in 0..width-1
       if (j < R_L) begin : g_left
+        /* verilator lint_off WIDTH */  // intended truncation of the 32-bit offset
         localparam [XW-1:0] OFF = R_L - j;
+        /* verilator lint_on WIDTH */
         assign col_ok[j] = (c_x >= OFF);
       end else begin : g_right
+        /* verilator lint_off WIDTH */  // intended truncation of the 32-bit offset
         localparam [XW:0] OFF = j - R_L;
+        /* verilator lint_on WIDTH */
         assign col_ok[j] = ({1'b0, c_x} + OFF < {1'b0, width});
       end
     end

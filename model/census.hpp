@@ -1,0 +1,23 @@
+// Census transform and Hamming matching cost (docs/algorithm.md, sections 3-4).
+#pragma once
+
+#include "sm_types.hpp"
+
+namespace sm {
+
+// Census vector of every pixel of `in` with a hw.census x hw.census window: bit k is
+// I(neighbour k) < I(centre), neighbours in raster order with the centre skipped;
+// neighbours outside the image give 0. Bits above hw.census_bits() are 0.
+CensusImage census_transform(const Image8& in, const HwConfig& hw);
+
+// H(x, y, d) = popcount(cl(x, y) ^ cr(x - d, y)) for d = 0..hw.disp-1, or
+// hw.census_bits() when x - d < 0. Throws std::invalid_argument on a size mismatch.
+CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw);
+
+// popcount(a ^ b) over the four words.
+inline int census_distance(const CensusVec& a, const CensusVec& b) {
+  return __builtin_popcountll(a[0] ^ b[0]) + __builtin_popcountll(a[1] ^ b[1]) +
+         __builtin_popcountll(a[2] ^ b[2]) + __builtin_popcountll(a[3] ^ b[3]);
+}
+
+}  // namespace sm

@@ -1,0 +1,42 @@
+// Trellis dynamic programming (docs/algorithm.md, section 6): the bit-exact model of
+// sm_dp. One line at a time, on the centre-referenced grid of sites i = xl + xr.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sm_types.hpp"
+
+namespace sm {
+
+// ACC_W = clog2(MAX_WIDTH*(2^CW - 1) + 2*MAX_WIDTH*255 + 1) + 1, BIG = 2^(ACC_W-1).
+int dp_acc_bits(const HwConfig& hw);
+
+// Everything the trellis of one line produces, for tests and tools.
+struct DpLine {
+  uint32_t end_cost = 0;          // U(2N, 0): cost of the optimal path
+  std::vector<int> path;          // level of the traced path at every site 0..2N
+  std::vector<int> match;         // disp(xl) of matched pixels, -1 when left-occluded
+  std::vector<DispPix> disp;      // after the left-occlusion fill (valid bit set)
+};
+
+// Reusable work buffers of trellis_line, so a frame allocates once.
+struct DpScratch {
+  std::vector<uint32_t> u0, u1;   // U of the previous / current site, DISP entries
+  std::vector<uint8_t> dec;       // 2-bit choice of every occlusion node, (2N+1) * DISP
+};
+
+// One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=
+// hw.max_width. Matched nodes with xl >= n use cost 0 (the hardware sees the next
+// line there; such nodes never reach the end node, see algorithm.md).
+void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
+                  DpLine& out);
+
+// Left-occlusion fill of one line (match[x] = -1 for unmatched pixels), valid bit set.
+void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp);
+
+// The whole stage: every line of the aggregated cost volume (agg.d == hw.disp) with
+// one occlusion penalty. Throws std::invalid_argument on a size mismatch.
+DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw);
+
+}  // namespace sm

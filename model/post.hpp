@@ -1,0 +1,61 @@
+// Post-processing of the disparity stream (docs/algorithm.md, sections 7-8): the
+// streak filters and the object separation (streaming connected-component labelling).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sm_types.hpp"
+
+namespace sm {
+
+// ---- section 7: filters ------------------------------------------------------------
+
+// Median over a (2*ry+1) x (2*rx+1) window of the sort keys (valid ? d + 1 : 0, with d
+// the low clog2(DISP) bits). Window pixels outside the image take the centre's key.
+// Result: key 0 -> 0x0000 (invalid), key k -> valid disparity k - 1.
+DispImage post_median(const DispImage& in, const HwConfig& hw, int ry, int rx);
+// The same window with the element of rank `rank` (0 = smallest key) instead of the
+// middle one: rank 0 is a grey-level erosion, the median is rank N/2.
+DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int rank);
+
+// The three filters of the post-processing chain, in chain order (chosen by measurement,
+// see docs/algorithm.md section 7); sizes are rows x columns.
+DispImage post_vmedian(const DispImage& in, const HwConfig& hw);   // filter 1: 5 x 1
+DispImage post_median3(const DispImage& in, const HwConfig& hw);   // filter 2: 3 x 3
+DispImage post_median53(const DispImage& in, const HwConfig& hw);  // filter 3: 5 x 3
+
+// Filter n runs when bit n-1 of regs.filter_enable is set; a disabled filter passes its
+// input unchanged. `steps` (optional) receives the image after each of the three steps.
+DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,
+                       std::vector<DispImage>* steps = nullptr);
+
+// ---- section 8: objects ------------------------------------------------------------
+
+struct Object {
+  uint16_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // bounding box, inclusive
+  uint32_t count = 0;                       // pixels
+  uint32_t sum_disp = 0;                    // sum of their disparities
+  uint8_t mean_disp = 0;                    // floor(sum_disp / count)
+  uint8_t max_disp = 0;                     // nearest disparity
+  bool operator==(const Object& o) const {
+    return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1 && count == o.count &&
+           sum_disp == o.sum_disp && mean_disp == o.mean_disp && max_disp == o.max_disp;
+  }
+};
+
+struct ObjectList {
+  std::vector<Object> objects;    // at most hw.max_objects, raster order of first pixel
+  bool too_many_objects = false;  // more components of >= obj_min_pixels than listed
+  bool table_full = false;        // a new component found no free label: its pixels dropped
+};
+
+// One-pass labelling of the near pixels (valid, d >= regs.obj_near), 4-connected,
+// neighbours merging when |d1 - d2| <= regs.obj_tol, with hw.label_slots labels per frame.
+ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw);
+
+// The AXI4-Stream packet of one object list (section 8): a header word, then five words
+// per object. `lost` = the packet of an earlier list was dropped since the last one sent.
+std::vector<uint32_t> object_packet(const ObjectList& list, bool lost);
+
+}  // namespace sm

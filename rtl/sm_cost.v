@@ -1,0 +1,99 @@
+`default_nettype none
+// Matching cost: Hamming distance of the left census vector with the right vectors
+// of the DISP previous beats (docs/algorithm.md, section 4). The right vectors of the
+// last DISP-1 beats sit in a delay line; since rows are exactly width beats, the
+// beat d back in the same row is the right pixel x - d. A thermometer of the column
+// (reset by sol) marks the levels with x - d < 0, which get CB.
+//
+// Latency 3 ce: popcount leaves, popcount result, output (with the x - d < 0 rule).
+module sm_cost #(
+    parameter MAX_WIDTH = 320,  // widest active line
+    parameter DISP      = 128,  // disparity levels 0..DISP-1
+    parameter CENSUS    = 15    // census window side (odd, 3..15)
+) (
+    input  wire               clk,
+    input  wire               rst_n,
+    input  wire               ce,
+    input  wire [XW-1:0]      width,   // unused: the cost needs only the row starts
+    input  wire [4:0]         s_side,
+    input  wire [CB-1:0]      s_cl,    // left census vector
+    input  wire [CB-1:0]      s_cr,    // right census vector
+    input  wire [7:0]         s_left,  // left centre pixel, passed through
+    output reg  [4:0]         m_side,
+    output reg  [DISP*HW-1:0] m_cost,  // level d at [d*HW +: HW]
+    output reg  [7:0]         m_left
+);
+  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam CB = CENSUS * CENSUS - 1;
+  localparam HW = $clog2(CB + 1);
+  // cost of a level whose right pixel is left of the image; CB fits HW bits by definition
+  /* verilator lint_off WIDTH */
+  localparam [HW-1:0] CB_V = CB;
+  /* verilator lint_on WIDTH */
+
+  generate
+    if (CENSUS < 3 || CENSUS > 15 || CENSUS % 2 == 0) begin : g_bad_census
+      initial $error("sm_cost: CENSUS (%0d) must be odd, 3..15", CENSUS);
+    end
+    if (DISP < 2 || DISP > 256) begin : g_bad_disp
+      initial $error("sm_cost: DISP (%0d) must be 2..256", DISP);
+    end
+  endgenerate
+  wire unused_width = &width;
+
+  // Right vectors of the DISP-1 previous beats: crd_q[d-1] is beat n - d.
+  reg [CB-1:0] crd_q [0:DISP-2];
+  integer k;
+  always @(posedge clk) begin
+    if (ce) begin
+      crd_q[0] <= s_cr;
+      for (k = 1; k < DISP - 1; k = k + 1) crd_q[k] <= crd_q[k-1];
+    end
+  end
+
+  // ok[d] = (x >= d) for the entering beat: all ones shifted in since the row start.
+  reg  [DISP-1:0] ok_q;
+  wire [DISP-1:0] ok = s_side[2] ? {{(DISP - 1) {1'b0}}, 1'b1} : {ok_q[DISP-2:0], 1'b1};
+  wire unused_ok_top = ok_q[DISP-1];  // shifted out
+
+  // Popcount of every level, latency 2.
+  wire [HW-1:0] pc [0:DISP-1];
+  genvar d;
+  generate
+    for (d = 0; d < DISP; d = d + 1) begin : g_lvl
+      wire [CB-1:0] crx = (d == 0) ? s_cr : crd_q[(d == 0) ? 0 : d - 1];
+      sm_popcount #(.N(CB)) u_pc (.clk(clk), .ce(ce), .a(s_cl), .b(crx), .cnt(pc[d]));
+    end
+  endgenerate
+
+  // Control and pass-through data along the popcount's two stages.
+  reg [DISP-1:0] ok_q2, ok_q3;
+  reg [4:0]      side_q2, side_q3;
+  reg [7:0]      left_q2, left_q3;
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      ok_q    <= {DISP{1'b0}};
+      side_q2 <= 5'd0;
+      side_q3 <= 5'd0;
+      m_side  <= 5'd0;
+    end else if (ce) begin
+      ok_q    <= ok;
+      side_q2 <= s_side;
+      side_q3 <= side_q2;
+      m_side  <= side_q3;
+    end
+  end
+
+  integer e;
+  always @(posedge clk) begin
+    if (ce) begin
+      ok_q2   <= ok;
+      ok_q3   <= ok_q2;
+      left_q2 <= s_left;
+      left_q3 <= left_q2;
+      m_left  <= left_q3;
+      for (e = 0; e < DISP; e = e + 1) m_cost[e*HW +: HW] <= ok_q3[e] ? pc[e] : CB_V;
+    end
+  end
+endmodule
+`default_nettype wire

@@ -1,0 +1,90 @@
+`default_nettype none
+// One level d of the trellis systolic array (docs/algorithm.md, section 6). Per DP
+// clock t it advances U(., d) by the two sites 2t+1 and 2t+2: one matched add and one
+// min3, in the order the parity of d dictates. It talks only to levels d-1 and d+1:
+//   odd d : site 2t+1 is an occlusion node (min3 over U(2t, d-1..d+1), the even
+//           neighbours' registered state), site 2t+2 is matched (+ cost);
+//   even d: site 2t+1 is matched (+ cost), site 2t+2 is an occlusion node (min3 over
+//           U(2t+1, d-1..d+1), the odd neighbours' mid-clock value).
+// So a PE exports on nb what its neighbours need: U(2t+1) if odd, U(2t) if even.
+// The cost input is skewed by a private shift register (no reset, SRL-friendly).
+module sm_dp_pe #(
+    parameter CW     = 6,   // aggregated cost width
+    parameter ACC_W  = 19,  // accumulator width (algorithm.md: BIG = 2^(ACC_W-1))
+    parameter ODD    = 0,   // 1: level d is odd
+    parameter HAS_LO = 1,   // 1: level d-1 exists (d >= 1)
+    parameter HAS_HI = 1,   // 1: level d+1 exists (d <= DISP-2)
+    parameter IS_D0  = 0,   // 1: d == 0, the line starts here with U = 0 (others BIG)
+    parameter DELAY  = 0    // cost skew in beats: S - ceil(d/2)
+) (
+    input  wire             clk,
+    input  wire             ce,
+    input  wire             init,    // this clock ends a line: load U(0, d) instead
+    input  wire [7:0]       occ,
+    input  wire [CW-1:0]    cost,    // A(x, d) of the beat entering now (unskewed)
+    input  wire [ACC_W-1:0] nb_lo,   // nb of level d-1 (ignored when !HAS_LO)
+    input  wire [ACC_W-1:0] nb_hi,   // nb of level d+1 (ignored when !HAS_HI)
+    output wire [ACC_W-1:0] nb,      // what levels d-1 and d+1 need this clock
+    output wire [1:0]       dec      // choice of this clock's occlusion node
+);
+  localparam [ACC_W-1:0] BIG = {1'b1, {(ACC_W - 1) {1'b0}}};
+  localparam [ACC_W-1:0] U0  = (IS_D0 != 0) ? {ACC_W{1'b0}} : BIG;
+
+  generate
+    if (ACC_W <= 8 || CW < 1 || CW >= ACC_W) begin : g_bad_w
+      initial $error("sm_dp_pe: need 8 < ACC_W (%0d) and 1 <= CW (%0d) < ACC_W", ACC_W, CW);
+    end
+    if (DELAY < 0) begin : g_bad_delay
+      initial $error("sm_dp_pe: negative DELAY %0d", DELAY);
+    end
+  endgenerate
+
+  // ---- cost skew ---------------------------------------------------------------
+  wire [CW-1:0] a;
+  generate
+    if (DELAY == 0) begin : g_nodelay
+      assign a = cost;
+    end else begin : g_delay
+      reg [CW-1:0] sr_q[0:DELAY-1];
+      integer k;
+      always @(posedge clk) begin
+        if (ce) begin
+          sr_q[0] <= cost;
+          for (k = 1; k < DELAY; k = k + 1) sr_q[k] <= sr_q[k-1];
+        end
+      end
+      assign a = sr_q[DELAY-1];
+    end
+  endgenerate
+
+  // ---- the two sites -----------------------------------------------------------
+  reg  [ACC_W-1:0] u_q;  // U(2t, d)
+  wire [ACC_W-1:0] self_in;  // choice 0 of the occlusion node
+  wire [ACC_W-1:0] c1 = nb_lo + {{(ACC_W - 8) {1'b0}}, occ};
+  wire [ACC_W-1:0] c2 = nb_hi + {{(ACC_W - 8) {1'b0}}, occ};
+  // min3 with the spec's tie order: 0, then 1, then 2 (later ones must be strictly less)
+  wire             take1 = (HAS_LO != 0) && (c1 < self_in);
+  wire [ACC_W-1:0] m01 = take1 ? c1 : self_in;
+  wire             take2 = (HAS_HI != 0) && (c2 < m01);
+  wire [ACC_W-1:0] occ_u = take2 ? c2 : m01;
+  assign dec = take2 ? 2'd2 : take1 ? 2'd1 : 2'd0;
+
+  wire [ACC_W-1:0] u_next;
+  generate
+    if (ODD != 0) begin : g_odd
+      assign self_in = u_q;                                  // site 2t+1: occlusion
+      assign u_next  = occ_u + {{(ACC_W - CW) {1'b0}}, a};   // site 2t+2: matched
+      assign nb      = occ_u;                                // U(2t+1, d)
+    end else begin : g_even
+      assign self_in = u_q + {{(ACC_W - CW) {1'b0}}, a};     // site 2t+1: matched
+      assign u_next  = occ_u;                                // site 2t+2: occlusion
+      assign nb      = u_q;                                  // U(2t, d)
+    end
+  endgenerate
+
+  // Datapath register: no reset; the line start loads U(0, d) every line.
+  always @(posedge clk) begin
+    if (ce) u_q <= init ? U0 : u_next;
+  end
+endmodule
+`default_nettype wire

@@ -1,0 +1,148 @@
+`default_nettype none
+// Backward pass and left-occlusion fill of the trellis DP (docs/algorithm.md,
+// section 6). While the array runs the forward pass of line k+1, this block walks the
+// decision words of line k from the end node (2W, 0) back to site 0, two sites per
+// clock, and pushes every match it meets as {x, d, fill} onto a stack in block RAM;
+// the matches come out in descending x, so "fill" = min(d, d of the match to the
+// right) is known at push time. During the following line time the stack is popped
+// in ascending x while the pixels are emitted in raster order: a pixel that is the
+// head's x gets the head's d; any other pixel gets the fill of the last match to its
+// left, or the leftmost match's d (the head) before the first match, or 0 when the
+// line had no match. The stack is double buffered (push line k+1, pop line k).
+module sm_dp_trace #(
+    parameter MAX_WIDTH = 320,  // widest active line
+    parameter DISP      = 128   // disparity levels
+) (
+    input  wire              clk,
+    input  wire              rst_n,
+    input  wire              ce,
+    input  wire [2*DISP-1:0] dec_word,   // decisions of site pair t_dec (dec[t][d] at 2d)
+    input  wire [AW-1:0]     t_dec,      // t of dec_word
+    input  wire              step_last,  // this ce is the last backward step of a line
+    input  wire              rd_start,   // this ce fetches the head of the finished line
+    input  wire [XW-1:0]     x_out,      // pixel emitted (registered) by this ce
+    output reg  [DW-1:0]     disp_q      // disparity of pixel x_out, after the ce
+);
+  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam AW = $clog2(MAX_WIDTH);
+  localparam DW = $clog2(DISP);
+  localparam SW = AW + 2 * DW;  // stack word {x, d, fill}
+
+  generate
+    if (DISP < 4 || DISP % 2 != 0) begin : g_bad_disp
+      initial $error("sm_dp_trace: DISP (%0d) must be even and >= 4", DISP);
+    end
+  endgenerate
+
+  // ---- backward walk -----------------------------------------------------------
+  reg  [DW-1:0] d_q;  // level at site 2*t_dec+2 (the end node's 0 at a line start)
+
+  // the level reached by following choice c from level d
+  function [DW-1:0] follow(input [DW-1:0] d, input [1:0] c);
+    follow = (c == 2'd1) ? d - 1'b1 : (c == 2'd2) ? d + 1'b1 : d;
+  endfunction
+
+  // Site 2t+2 is an occlusion node for even d, site 2t+1 for odd d; both take their
+  // choice from the same word. A match happens at 2t+2 (odd d) or, after choice 0, at
+  // 2t+1 (even d); either way its x is t + ceil(d/2) and at most one per clock.
+  wire [1:0]    ch_a  = dec_word[2*d_q +: 2];
+  wire          odd   = d_q[0];
+  wire          match = odd || (ch_a == 2'd0);
+  wire [DW-1:0] d1    = odd ? d_q : follow(d_q, ch_a);
+  wire [1:0]    ch_b  = dec_word[2*d1 +: 2];
+  wire [DW-1:0] d2    = match && !odd ? d1 : follow(d1, ch_b);
+  wire [DW:0]   ceil_d = ({1'b0, d_q} + 1'b1) >> 1;
+  /* verilator lint_off WIDTH */  // x = t + ceil(d/2) < MAX_WIDTH on a traced path: AW bits
+  wire [AW-1:0] mx    = t_dec + ceil_d;
+  /* verilator lint_on WIDTH */
+
+  reg           wbank_q;  // stack half being pushed; the other one is popped
+  reg  [XW-1:0] cnt_q;    // matches pushed so far in this line
+  reg  [XW-1:0] m_q;      // matches of the line being popped
+  reg           first_q;  // no match pushed yet in this line
+  reg  [DW-1:0] last_q;   // d of the previous push (the match to the right)
+  wire [DW-1:0] fill = (first_q || d_q < last_q) ? d_q : last_q;
+
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      d_q     <= {DW{1'b0}};
+      wbank_q <= 1'b0;
+      cnt_q   <= {XW{1'b0}};
+      m_q     <= {XW{1'b0}};
+      first_q <= 1'b1;
+      last_q  <= {DW{1'b0}};
+    end else if (ce) begin
+      if (match) last_q <= d_q;
+      if (step_last) begin
+        d_q     <= {DW{1'b0}};
+        wbank_q <= ~wbank_q;
+        cnt_q   <= {XW{1'b0}};
+        m_q     <= cnt_q + {{(XW - 1) {1'b0}}, match};
+        first_q <= 1'b1;
+      end else begin
+        d_q     <= d2;
+        cnt_q   <= cnt_q + {{(XW - 1) {1'b0}}, match};
+        first_q <= first_q && !match;
+      end
+    end
+  end
+
+  // ---- the stack ---------------------------------------------------------------
+  wire [SW-1:0] head;
+  reg  [AW-1:0] ptr_q;  // stack index of the head
+  reg  [AW-1:0] raddr;
+  wire          rbank = ~wbank_q;
+
+  sm_dp_ram #(
+      .DATA_W(SW),
+      .ADDR_W(AW + 1)
+  ) u_stack (
+      .clk  (clk),
+      .we   (ce && match),
+      .waddr({wbank_q, cnt_q[AW-1:0]}),
+      .wdata({mx, d_q, fill}),
+      .re   (ce),
+      .raddr({rbank, raddr}),
+      .rdata(head)
+  );
+
+  // ---- raster read-out with the fill -------------------------------------------
+  reg  [XW-1:0] rem_q;   // matches left including the head
+  reg           any_q;   // a match of this line has been emitted
+  reg  [DW-1:0] fill_q;  // fill of the last emitted match
+  wire [AW-1:0] hx = head[SW-1 -: AW];
+  wire [DW-1:0] hd = head[2*DW-1 -: DW];
+  wire [DW-1:0] hf = head[DW-1:0];
+  wire          have = (rem_q != {XW{1'b0}});
+  wire [XW:0]   hx_w = {{(XW + 1 - AW) {1'b0}}, hx};  // XW may equal AW
+  wire          consume = have && (hx_w == {1'b0, x_out});
+  wire [DW-1:0] out_d = consume ? hd : any_q ? fill_q : have ? hd : {DW{1'b0}};
+
+  always @(*) begin
+    if (rd_start) raddr = m_q[AW-1:0] - 1'b1;
+    else if (consume) raddr = ptr_q - 1'b1;
+    else raddr = ptr_q;
+  end
+
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      ptr_q  <= {AW{1'b0}};
+      rem_q  <= {XW{1'b0}};
+      any_q  <= 1'b0;
+      fill_q <= {DW{1'b0}};
+      disp_q <= {DW{1'b0}};
+    end else if (ce) begin
+      disp_q <= out_d;
+      ptr_q  <= raddr;
+      if (rd_start) begin
+        rem_q <= m_q;
+        any_q <= 1'b0;
+      end else if (consume) begin
+        rem_q  <= rem_q - 1'b1;
+        any_q  <= 1'b1;
+        fill_q <= hf;
+      end
+    end
+  end
+endmodule
+`default_nettype wire

@@ -1,0 +1,455 @@
+`default_nettype none
+// Object separation (docs/algorithm.md, section 8): one-pass streaming labelling of the
+// near pixels of the disparity stream with a flat equivalence table, per-label
+// statistics, and at the end of each frame a scan that lists up to MAX_OBJECTS objects.
+//
+// Stream side (advances on ce): stage 1 registers the entering beat and reads the row
+// buffer (labels of the row above); stage 2 labels the pixel, merges, and updates the
+// statistics in the same ce, so a run of one label needs no forwarding. The statistics
+// are double-banked by frame: the scan of frame f (on clk, not ce) reads one bank while
+// frame f+1 is labelled into the other; it needs at most LABEL_SLOTS + MAX_OBJECTS *
+// (DW + 1) + 2 clocks, less than the 256 beats of the smallest frame (checked below).
+module sm_objects #(
+    parameter MAX_WIDTH   = 320,  // widest active line
+    parameter MAX_HEIGHT  = 240,  // tallest active frame
+    parameter DISP        = 128,  // disparity levels 0..DISP-1
+    parameter MAX_OBJECTS = 8,    // objects listed per frame (K)
+    parameter LABEL_SLOTS = 64    // labels per frame = entries of the equivalence table
+) (
+    input  wire          clk,
+    input  wire          rst_n,
+    input  wire          ce,
+    input  wire [XW-1:0] width,       // active width
+    input  wire [YW-1:0] height,      // active height: the frame ends at (W-1, H-1)
+    input  wire [7:0]    near_thr,    // near: valid and d >= near_thr
+    input  wire [7:0]    tol,         // neighbours merge when |d1 - d2| <= tol
+    input  wire [15:0]   min_pixels,  // smaller components are not listed
+    input  wire [4:0]    s_side,
+    input  wire [15:0]   s_disp,      // bit 15 valid, low bits disparity
+    // the list of the last complete frame (for the register file)
+    output reg           list_ready,  // one clk when a new list is published
+    output reg  [7:0]    obj_count,   // objects in the list
+    output reg           too_many,    // more qualifying components than MAX_OBJECTS
+    output reg           table_full,  // a component found no free label: its pixels dropped
+    output reg           pkt_lost,    // a list was published while its predecessor's
+                                      // packet was still being sent; cleared by the next
+                                      // packet that starts
+    input  wire [IW-1:0] rd_index,    // object to read (0..obj_count-1)
+    output wire [15:0]   rd_x0,
+    output wire [15:0]   rd_y0,
+    output wire [15:0]   rd_x1,
+    output wire [15:0]   rd_y1,
+    output wire [31:0]   rd_count,
+    output wire [31:0]   rd_sum,
+    output wire [7:0]    rd_mean,
+    output wire [7:0]    rd_max,
+    // one AXI4-Stream packet per list: header + 5 words per object
+    output wire [31:0]   m_axis_obj_tdata,
+    output wire          m_axis_obj_tvalid,
+    input  wire          m_axis_obj_tready,
+    output wire          m_axis_obj_tlast
+);
+  localparam XW   = $clog2(MAX_WIDTH + 1);
+  localparam YW   = $clog2(MAX_HEIGHT + 1);
+  localparam DW   = $clog2(DISP);
+  localparam LW   = (LABEL_SLOTS > 1) ? $clog2(LABEL_SLOTS) : 1;  // label
+  localparam NW   = $clog2(LABEL_SLOTS + 1);                      // label counter
+  localparam CNTW = $clog2(MAX_WIDTH * MAX_HEIGHT + 1);           // pixel count
+  localparam SUMW = CNTW + DW;                                    // disparity sum
+  localparam IW   = (MAX_OBJECTS > 1) ? $clog2(MAX_OBJECTS) : 1;  // object index
+  localparam OW   = $clog2(MAX_OBJECTS + 1);                      // object counter
+  localparam RBW  = 1 + DW + LW;                                  // row buffer word
+  localparam OBW  = 160;                                          // packed list entry
+  localparam SCAN_CLKS = LABEL_SLOTS + MAX_OBJECTS * (DW + 1) + 2;
+
+  generate
+    if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
+      initial $error("sm_objects: DISP (%0d) must be even, 4..254", DISP);
+    end
+    if (MAX_OBJECTS < 1 || MAX_OBJECTS > 64 || LABEL_SLOTS < MAX_OBJECTS) begin : g_bad_k
+      initial $error("sm_objects: need 1 <= MAX_OBJECTS (%0d) <= 64 and <= LABEL_SLOTS (%0d)",
+                     MAX_OBJECTS, LABEL_SLOTS);
+    end
+    if (SCAN_CLKS > 256 || SUMW > 32 || MAX_WIDTH > 65535 || MAX_HEIGHT > 65535) begin : g_bad_scan
+      initial $error("sm_objects: the end-of-frame scan (%0d clocks) must fit a 16x16 frame",
+                     SCAN_CLKS);
+    end
+  endgenerate
+
+  // ---- stage 1: entering beat, row buffer read ---------------------------------------
+  wire [XW-1:0] s_x;
+  wire [4:0]    c_side;
+  wire [XW-1:0] c_x;
+  wire [1:0]    row_ok;  // bit 0: the row above is in the frame
+  wire [1:0]    col_ok;  // bit 0: the column left is in the frame
+  sm_win_ctrl #(
+      .MAX_WIDTH(MAX_WIDTH), .D_ROWS(0), .D_COLS(0), .R_UP(1), .R_DN(0), .R_L(1), .R_R(0)
+  ) u_ctrl (
+      .clk(clk), .rst_n(rst_n), .ce(ce), .width(width), .s_side(s_side),
+      .s_x(s_x), .c_side(c_side), .c_x(c_x), .row_ok(row_ok), .col_ok(col_ok)
+  );
+  wire unused_ok = row_ok[1] & col_ok[1];
+
+  reg  [YW-1:0] y_q;  // row of the last entering real beat
+  wire [YW-1:0] c_y = c_side[1] ? {YW{1'b0}} : (c_side[2] ? y_q + 1'b1 : y_q);
+  wire          c_eof = c_side[0] && (c_x == width - 1'b1) && (c_y == height - 1'b1);
+
+  // Row buffer: {near, d, label} of the row above, one word per column (block RAM).
+  reg [RBW-1:0] rb [0:MAX_WIDTH-1];
+  reg [RBW-1:0] rb_q;
+  reg [XW-1:0]  x_q;
+  reg [DW:0]    pix_q;      // {valid, d}
+  reg           up_in_q;    // row above is in the frame
+  reg           left_in_q;  // column left is in the frame
+  reg           eof_q;
+  reg [4:0]     side_q;
+
+  // per-frame parameters, taken with the frame's first pixel
+  reg [7:0]     thr_q, tol_q;
+  reg [15:0]    minpix_q;
+
+  // ---- stage 2: label -------------------------------------------------------------
+  wire          real_q = side_q[0];
+  wire          fresh = side_q[0] & side_q[1];  // first pixel: tables start empty
+  reg           bank_q;
+  reg  [NW-1:0] next_q;                         // labels allocated in this frame
+  reg           tf_q;                           // table full seen in this frame
+  reg           l_near_q;
+  reg  [DW-1:0] l_d_q;
+  reg  [LW-1:0] l_lab_q;
+  reg  [LW-1:0] parent [0:LABEL_SLOTS-1];       // flat: every entry names its root
+
+  wire          bank = fresh ? ~bank_q : bank_q;
+  wire [NW-1:0] next_eff = fresh ? {NW{1'b0}} : next_q;
+  wire [DW-1:0] d = pix_q[DW-1:0];
+  wire          near = pix_q[DW] && ({{(8-DW){1'b0}}, d} >= thr_q);
+  wire          u_near = rb_q[RBW-1];
+  wire [DW-1:0] u_d = rb_q[LW +: DW];
+  wire [LW-1:0] u_lab = rb_q[LW-1:0];
+  wire [DW-1:0] du = (d > u_d) ? d - u_d : u_d - d;
+  wire [DW-1:0] dl = (d > l_d_q) ? d - l_d_q : l_d_q - d;
+  wire          up_ok = near && up_in_q && u_near && ({{(8-DW){1'b0}}, du} <= tol_q);
+  wire          left_ok = near && left_in_q && l_near_q && ({{(8-DW){1'b0}}, dl} <= tol_q);
+  /* verilator lint_off WIDTH */  // labels index a table of LABEL_SLOTS (not 2^LW) entries
+  wire [LW-1:0] ur = parent[u_lab];
+  /* verilator lint_on WIDTH */
+  wire [LW-1:0] lr = l_lab_q;
+  wire          merge = up_ok && left_ok && (ur != lr);
+  wire [LW-1:0] m_s = (ur < lr) ? ur : lr;  // survivor: the older label
+  wire [LW-1:0] m_a = (ur < lr) ? lr : ur;  // absorbed
+  /* verilator lint_off WIDTH */
+  wire          room = next_eff < LABEL_SLOTS;
+  /* verilator lint_on WIDTH */
+  wire          alloc = near && !up_ok && !left_ok && room;
+  wire          drop = near && !up_ok && !left_ok && !room;
+  wire          near_eff = near && !drop;
+  wire [LW-1:0] lab = merge ? m_s : up_ok ? ur : left_ok ? lr : next_eff[LW-1:0];
+
+  // statistics, banked by frame parity: address {bank, label}; combinational reads
+  // (distributed RAM) so a label's update is visible to the very next pixel
+  localparam NS = 2 * LABEL_SLOTS;
+  reg [XW-1:0]   st_x0  [0:NS-1];
+  reg [YW-1:0]   st_y0  [0:NS-1];
+  reg [XW-1:0]   st_x1  [0:NS-1];
+  reg [YW-1:0]   st_y1  [0:NS-1];
+  reg [CNTW-1:0] st_cnt [0:NS-1];
+  reg [SUMW-1:0] st_sum [0:NS-1];
+  reg [DW-1:0]   st_max [0:NS-1];
+  reg [NS-1:0]   st_alive;
+
+  // banks at {0, label} and {1, label}: LABEL_SLOTS need not be a power of two, so the
+  // bank bit selects the upper half by offset
+  wire [LW:0] a_lab = bank ? {1'b0, lab} + LABEL_SLOTS[LW:0] : {1'b0, lab};
+  wire [LW:0] a_abs = bank ? {1'b0, m_a} + LABEL_SLOTS[LW:0] : {1'b0, m_a};
+
+  // base statistics the pixel joins: the survivor's (merged with the absorbed one's)
+  wire [XW-1:0]   b_x0  = merge && st_x0[a_abs] < st_x0[a_lab] ? st_x0[a_abs] : st_x0[a_lab];
+  wire [YW-1:0]   b_y0  = merge && st_y0[a_abs] < st_y0[a_lab] ? st_y0[a_abs] : st_y0[a_lab];
+  wire [XW-1:0]   b_x1  = merge && st_x1[a_abs] > st_x1[a_lab] ? st_x1[a_abs] : st_x1[a_lab];
+  wire [YW-1:0]   b_y1  = merge && st_y1[a_abs] > st_y1[a_lab] ? st_y1[a_abs] : st_y1[a_lab];
+  wire [CNTW-1:0] b_cnt = st_cnt[a_lab] + (merge ? st_cnt[a_abs] : {CNTW{1'b0}});
+  wire [SUMW-1:0] b_sum = st_sum[a_lab] + (merge ? st_sum[a_abs] : {SUMW{1'b0}});
+  wire [DW-1:0]   b_max = merge && st_max[a_abs] > st_max[a_lab] ? st_max[a_abs] : st_max[a_lab];
+  wire [XW-1:0]   px = x_q;
+  wire [YW-1:0]   py = y_q;
+  wire [XW-1:0]   n_x0  = alloc || px < b_x0 ? px : b_x0;
+  wire [YW-1:0]   n_y0  = alloc || py < b_y0 ? py : b_y0;
+  wire [XW-1:0]   n_x1  = alloc || px > b_x1 ? px : b_x1;
+  wire [YW-1:0]   n_y1  = alloc || py > b_y1 ? py : b_y1;
+  wire [CNTW-1:0] n_cnt = (alloc ? {CNTW{1'b0}} : b_cnt) + 1'b1;
+  wire [SUMW-1:0] n_sum = (alloc ? {SUMW{1'b0}} : b_sum) + {{(SUMW-DW){1'b0}}, d};
+  wire [DW-1:0]   n_max = alloc || d > b_max ? d : b_max;
+  wire [NW-1:0]   next_new = next_eff + {{(NW-1){1'b0}}, alloc};
+  wire            tf_new = (fresh ? 1'b0 : tf_q) | drop;
+  wire            upd = ce && real_q && near_eff;
+  // only {valid, d} of the stream word and the real/sof/sol bits of the sideband matter
+  wire            unused_in = &{s_disp[14:DW], side_q[4:2]};
+
+  integer i;
+  always @(posedge clk) begin
+    if (ce) begin
+      // stage 1
+      /* verilator lint_off WIDTH */  // column index is 1 bit wider for MAX_WIDTH = 2^n
+      rb_q      <= rb[s_x];
+      /* verilator lint_on WIDTH */
+      x_q       <= c_x;
+      pix_q     <= {s_disp[15], s_disp[DW-1:0]};
+      up_in_q   <= row_ok[0];
+      left_in_q <= col_ok[0];
+      if (c_side[0]) y_q <= c_y;
+      // stage 2: the row above's entry for this column is read; write this row's
+      /* verilator lint_off WIDTH */  // as above
+      rb[x_q]  <= {real_q & near_eff, d, lab};
+      /* verilator lint_on WIDTH */
+      l_near_q <= real_q & near_eff;
+      l_d_q    <= d;
+      l_lab_q  <= lab;
+      if (real_q) begin
+        for (i = 0; i < LABEL_SLOTS; i = i + 1) begin
+          if (fresh) parent[i] <= i[LW-1:0];
+          else if (merge && parent[i] == m_a) parent[i] <= m_s;
+        end
+      end
+    end
+    if (upd) begin
+      st_x0[a_lab]  <= n_x0;
+      st_y0[a_lab]  <= n_y0;
+      st_x1[a_lab]  <= n_x1;
+      st_y1[a_lab]  <= n_y1;
+      st_cnt[a_lab] <= n_cnt;
+      st_sum[a_lab] <= n_sum;
+      st_max[a_lab] <= n_max;
+    end
+  end
+
+  // alive: set when a label is allocated, cleared when it is absorbed (two writes)
+  always @(posedge clk) begin
+    if (upd) begin
+      if (alloc) st_alive[a_lab] <= 1'b1;
+      if (merge) st_alive[a_abs] <= 1'b0;
+    end
+  end
+
+  // stream control state
+  reg           scan_go;  // one clk: the frame's last pixel has been labelled
+  reg           sc_bank;
+  reg  [NW-1:0] sc_n;
+  reg           sc_tf;
+  reg  [15:0]   sc_min;
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      side_q  <= 5'd0;
+      eof_q   <= 1'b0;
+      bank_q  <= 1'b0;
+      next_q  <= {NW{1'b0}};
+      tf_q    <= 1'b0;
+      scan_go <= 1'b0;
+      thr_q   <= 8'd0;
+      tol_q   <= 8'd0;
+      minpix_q <= 16'd0;
+      sc_bank <= 1'b0;
+      sc_n    <= {NW{1'b0}};
+      sc_tf   <= 1'b0;
+      sc_min  <= 16'd0;
+    end else begin
+      scan_go <= 1'b0;
+      if (ce) begin
+        side_q <= c_side;
+        eof_q  <= c_eof;
+        if (c_side[1]) begin
+          thr_q    <= near_thr;
+          tol_q    <= tol;
+          minpix_q <= min_pixels;
+        end
+        if (real_q) begin
+          bank_q <= bank;
+          next_q <= next_new;
+          tf_q   <= tf_new;
+        end
+        if (real_q && eof_q) begin
+          scan_go <= 1'b1;
+          sc_bank <= bank;
+          sc_n    <= next_new;
+          sc_tf   <= tf_new;
+          sc_min  <= minpix_q;
+        end
+      end
+    end
+  end
+
+  // ---- end-of-frame scan (on clk): list the live labels, divide for the mean ---------
+  localparam S_IDLE = 2'd0, S_SCAN = 2'd1, S_DIV = 2'd2, S_PUB = 2'd3;
+  reg  [1:0]      sc_state;
+  reg  [NW-1:0]   sc_i;
+  reg  [OW-1:0]   sc_nobj;
+  reg             sc_many;
+  reg  [SUMW-1:0] dv_rem;
+  reg  [CNTW-1:0] dv_cnt;
+  reg  [DW-1:0]   dv_q;
+  localparam BW = $clog2(DW + 1);
+  /* verilator lint_off WIDTH */  // DW - 1 < 2^BW
+  localparam [BW-1:0] DV_TOP = DW - 1;
+  /* verilator lint_on WIDTH */
+  reg  [BW-1:0]   dv_bit;
+  reg  [OBW-1:0]  work [0:MAX_OBJECTS-1];
+  reg  [OBW-1:0]  pub  [0:MAX_OBJECTS-1];
+  reg  [OBW-1:0]  pkt  [0:MAX_OBJECTS-1];
+
+  wire [LW:0] a_sc = sc_bank ? {1'b0, sc_i[LW-1:0]} + LABEL_SLOTS[LW:0] : {1'b0, sc_i[LW-1:0]};
+  wire        sc_ok = st_alive[a_sc] && ({{(32-CNTW){1'b0}}, st_cnt[a_sc]} >= {16'd0, sc_min});
+  /* verilator lint_off WIDTH */
+  wire        sc_room = sc_nobj < MAX_OBJECTS;
+  /* verilator lint_on WIDTH */
+  wire [SUMW-1:0] dv_try = {{DW{1'b0}}, dv_cnt} << dv_bit;
+  wire [OW-1:0]   pkt_n_w;
+  wire            pkt_busy;
+  wire            pkt_load = (sc_state == S_PUB) && !pkt_busy;
+
+  integer k;
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      sc_state   <= S_IDLE;
+      sc_i       <= {NW{1'b0}};
+      sc_nobj    <= {OW{1'b0}};
+      sc_many    <= 1'b0;
+      list_ready <= 1'b0;
+      obj_count  <= 8'd0;
+      too_many   <= 1'b0;
+      table_full <= 1'b0;
+      dv_bit     <= 0;
+    end else begin
+      list_ready <= 1'b0;
+      case (sc_state)
+        S_IDLE: if (scan_go) begin
+          sc_state <= S_SCAN;
+          sc_i     <= {NW{1'b0}};
+          sc_nobj  <= {OW{1'b0}};
+          sc_many  <= 1'b0;
+        end
+        S_SCAN: begin
+          if (sc_i == sc_n) begin
+            sc_state <= S_PUB;
+          end else begin
+            sc_i <= sc_i + 1'b1;
+            if (sc_ok && sc_room) begin
+              // {max, mean (filled by the division), 16'd0, sum, count, y1, x1, y0, x0}
+              work[sc_nobj[IW-1:0]] <= {{(8-DW){1'b0}}, st_max[a_sc], 8'd0, 16'd0,
+                  {{(32-SUMW){1'b0}}, st_sum[a_sc]}, {{(32-CNTW){1'b0}}, st_cnt[a_sc]},
+                  {{(16-YW){1'b0}}, st_y1[a_sc]}, {{(16-XW){1'b0}}, st_x1[a_sc]},
+                  {{(16-YW){1'b0}}, st_y0[a_sc]}, {{(16-XW){1'b0}}, st_x0[a_sc]}};
+              dv_rem   <= st_sum[a_sc];
+              dv_cnt   <= st_cnt[a_sc];
+              dv_q     <= {DW{1'b0}};
+              dv_bit   <= DV_TOP;
+              sc_state <= S_DIV;
+            end else if (sc_ok) begin
+              sc_many <= 1'b1;
+            end
+          end
+        end
+        S_DIV: begin
+          // restoring division, one quotient bit per clk: mean < DISP needs DW bits
+          if (dv_rem >= dv_try) begin
+            dv_rem <= dv_rem - dv_try;
+          end
+          if (dv_bit == 0) begin
+            work[sc_nobj[IW-1:0]][151:144] <= {{(8-DW){1'b0}}, dv_q} |
+                                              {7'd0, dv_rem >= dv_try};
+            sc_nobj  <= sc_nobj + 1'b1;
+            sc_state <= S_SCAN;
+          end else begin
+            /* verilator lint_off WIDTH */  // bit counter is 1 bit wider for DW = 2^n
+            dv_q[dv_bit] <= dv_rem >= dv_try;
+            /* verilator lint_on WIDTH */
+            dv_bit <= dv_bit - 1'b1;
+          end
+        end
+        default: begin  // S_PUB
+          for (k = 0; k < MAX_OBJECTS; k = k + 1) pub[k] <= work[k];
+          obj_count  <= {{(8-OW){1'b0}}, sc_nobj};
+          too_many   <= sc_many;
+          table_full <= sc_tf;
+          list_ready <= 1'b1;
+          sc_state   <= S_IDLE;
+        end
+      endcase
+    end
+  end
+
+  assign rd_x0    = pub[rd_index][15:0];
+  assign rd_y0    = pub[rd_index][31:16];
+  assign rd_x1    = pub[rd_index][47:32];
+  assign rd_y1    = pub[rd_index][63:48];
+  assign rd_count = pub[rd_index][95:64];
+  assign rd_sum   = pub[rd_index][127:96];
+  assign rd_mean  = pub[rd_index][151:144];
+  assign rd_max   = pub[rd_index][159:152];
+
+  // ---- object packet: header, then 5 words per object, from its own snapshot ---------
+  reg          pk_busy_q;
+  reg [OW-1:0] pk_n;
+  reg [2:0]    pk_flags;  // {lost, table_full, too_many}
+  reg [OW-1:0] pk_obj;    // object of the current word
+  reg [2:0]    pk_w;      // 0..4 within the object, or header when pk_hdr
+  reg          pk_hdr;
+  assign pkt_busy = pk_busy_q;
+  assign pkt_n_w  = pk_n;
+
+  wire [OBW-1:0] pk_e = pkt[pk_obj[IW-1:0]];
+  reg  [31:0]    pk_word;
+  always @* begin
+    case (pk_w)
+      3'd0:    pk_word = pk_e[31:0];
+      3'd1:    pk_word = pk_e[63:32];
+      3'd2:    pk_word = pk_e[95:64];
+      3'd3:    pk_word = pk_e[127:96];
+      default: pk_word = {16'd0, pk_e[159:144]};
+    endcase
+  end
+  assign m_axis_obj_tvalid = pk_busy_q;
+  assign m_axis_obj_tdata  = pk_hdr ? {8'hA5, 13'd0, pk_flags, {(8-OW){1'b0}}, pk_n} : pk_word;
+  assign m_axis_obj_tlast  = pk_hdr ? (pk_n == {OW{1'b0}})
+                                    : (pk_w == 3'd4 && pk_obj == pk_n - 1'b1);
+  wire unused_pk = &{pkt_n_w, pk_e[143:128]};
+
+  always @(posedge clk) begin
+    if (pkt_load) for (k = 0; k < MAX_OBJECTS; k = k + 1) pkt[k] <= work[k];
+  end
+
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      pk_busy_q <= 1'b0;
+      pk_n      <= {OW{1'b0}};
+      pk_flags  <= 3'd0;
+      pk_obj    <= {OW{1'b0}};
+      pk_w      <= 3'd0;
+      pk_hdr    <= 1'b0;
+      pkt_lost  <= 1'b0;
+    end else begin
+      if (pkt_load) begin
+        pk_busy_q <= 1'b1;
+        pk_n      <= sc_nobj;
+        pk_flags  <= {pkt_lost, sc_tf, sc_many};
+        pk_obj    <= {OW{1'b0}};
+        pk_w      <= 3'd0;
+        pk_hdr    <= 1'b1;
+        pkt_lost  <= 1'b0;
+      end else begin
+        if (sc_state == S_PUB) pkt_lost <= 1'b1;  // busy: this list's packet is dropped
+        if (pk_busy_q && m_axis_obj_tready) begin
+          if (m_axis_obj_tlast) begin
+            pk_busy_q <= 1'b0;
+          end else if (pk_hdr) begin
+            pk_hdr <= 1'b0;
+          end else if (pk_w == 3'd4) begin
+            pk_w   <= 3'd0;
+            pk_obj <= pk_obj + 1'b1;
+          end else begin
+            pk_w <= pk_w + 1'b1;
+          end
+        end
+      end
+    end
+  end
+endmodule
+`default_nettype wire

@@ -1,0 +1,173 @@
+`default_nettype none
+// Windowed median of the disparity stream (docs/algorithm.md, section 7): the
+// (2*RY+1) x (2*RX+1) window of sort keys (valid ? d + 1 : 0) is ranked in parallel and
+// the element of middle rank is the output. Window pixels outside the frame take the
+// centre's key, so the element count is fixed and no sorter has to shrink at borders.
+// The three post-processing filters are this module at three window shapes.
+//
+// Latency: like sm_census, the output beat after the ce of input beat n is the pixel of
+// input beat n - (RY*width + RX) - 2 (window delay, line-buffer read, window shift).
+module sm_post_median #(
+    parameter MAX_WIDTH = 320,  // widest active line
+    parameter DISP      = 128,  // disparity levels 0..DISP-1
+    parameter RY        = 2,    // window rows above and below the centre
+    parameter RX        = 0     // window columns left and right of the centre
+) (
+    input  wire          clk,
+    input  wire          rst_n,
+    input  wire          ce,
+    input  wire [XW-1:0] width,    // active width
+    input  wire          enable,   // 0: pass the centre through (same latency)
+    input  wire [4:0]    s_side,
+    input  wire [15:0]   s_disp,   // bit 15 valid, low bits disparity
+    output reg  [4:0]    m_side,
+    output reg  [15:0]   m_disp
+);
+  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam DW = $clog2(DISP);
+  localparam KW = DW + 1;             // sort key: 0 = invalid, d + 1 otherwise
+  localparam NR = 2 * RY + 1;         // window rows
+  localparam NC = 2 * RX + 1;         // window columns
+  localparam N  = NR * NC;            // window elements
+  localparam MID = (N - 1) / 2;       // rank of the median
+  localparam RW = $clog2(N);          // rank counter width
+
+  generate
+    if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
+      initial $error("sm_post_median: DISP (%0d) must be even, 4..254", DISP);
+    end
+    if (RY < 0 || RY > 3 || RX < 0 || RX > 3 || N < 3) begin : g_bad_win
+      initial $error("sm_post_median: window RY=%0d RX=%0d outside 0..3 or too small", RY, RX);
+    end
+  endgenerate
+
+  // ---- window control for the entering beat --------------------------------------
+  wire [XW-1:0] s_x;
+  wire [4:0]    c_side;
+  wire [XW-1:0] c_x;
+  wire [NR-1:0] row_ok;
+  wire [NC-1:0] col_ok;
+  sm_win_ctrl #(
+      .MAX_WIDTH(MAX_WIDTH), .D_ROWS(RY), .D_COLS(RX),
+      .R_UP(RY), .R_DN(RY), .R_L(RX), .R_R(RX)
+  ) u_ctrl (
+      .clk(clk), .rst_n(rst_n), .ce(ce), .width(width), .s_side(s_side),
+      .s_x(s_x), .c_side(c_side), .c_x(c_x), .row_ok(row_ok), .col_ok(col_ok)
+  );
+  wire unused_cx = &c_x;  // the masks already carry the column position
+
+  // ---- stage 1: line-buffer read of the entering column ----------------------------
+  // Whole 16-bit words are kept so a disabled filter passes the centre bit for bit.
+  wire [16*NR-1:0] col_in;  // the entering column, row NR-1 = live row
+  reg  [15:0]      live_q;
+  generate
+    if (RY > 0) begin : g_lb
+      wire [16*(NR-1)-1:0] lb_dout;  // rows live-1 .. live-(NR-1)
+      sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(16), .ROWS(NR - 1)) u_lb (
+          .clk(clk), .ce(ce), .col(s_x), .din(s_disp), .dout(lb_dout)
+      );
+      genvar a;
+      for (a = 0; a < NR - 1; a = a + 1) begin : g_rows
+        assign col_in[16*(NR-2-a) +: 16] = lb_dout[16*a +: 16];
+      end
+    end else begin : g_no_lb
+      wire unused_sx = &s_x;  // single row: no line buffer to address
+    end
+  endgenerate
+  assign col_in[16*(NR-1) +: 16] = live_q;
+
+  reg [4:0]    side_q, side_q2;
+  reg [NR-1:0] row_ok_q, row_ok_q2;
+  reg [NC-1:0] col_ok_q, col_ok_q2;
+
+  // ---- stage 2: the window, win[r*NC + j] = row (centre + r - RY), column (centre + j - RX)
+  reg [15:0] win [0:N-1];
+
+  // ---- stage 3: rank every element, pick the middle one ------------------------------
+  function [KW-1:0] key_of(input [DW:0] vd);  // {valid, d}
+    key_of = vd[DW] ? {1'b0, vd[DW-1:0]} + 1'b1 : {KW{1'b0}};
+  endfunction
+  wire [15:0]   ctr = win[RY*NC + RX];
+  wire [KW-1:0] ctr_key = key_of({ctr[15], ctr[DW-1:0]});
+  wire [KW-1:0] key [0:N-1];
+  wire [N-1:0]  is_mid;
+  genvar r, j, i;
+  generate
+    for (r = 0; r < NR; r = r + 1) begin : g_kr
+      for (j = 0; j < NC; j = j + 1) begin : g_kc
+        assign key[r*NC + j] = (row_ok_q2[r] & col_ok_q2[j]) ? key_of({win[r*NC + j][15], win[r*NC + j][DW-1:0]}) : ctr_key;
+      end
+    end
+    for (i = 0; i < N; i = i + 1) begin : g_rank
+      // elements lower i in the order (key, index): ties go to the lower index, so
+      // every element has a distinct rank and exactly one holds rank MID
+      wire [N-1:0] lower;
+      for (j = 0; j < N; j = j + 1) begin : g_cmp
+        if (j < i) begin : g_lo
+          assign lower[j] = key[j] <= key[i];
+        end else if (j > i) begin : g_hi
+          assign lower[j] = key[j] < key[i];
+        end else begin : g_self
+          assign lower[j] = 1'b0;
+        end
+      end
+      reg [RW:0] cnt;
+      integer b;
+      always @* begin
+        cnt = {(RW+1){1'b0}};
+        for (b = 0; b < N; b = b + 1) cnt = cnt + {{RW{1'b0}}, lower[b]};
+      end
+      /* verilator lint_off WIDTH */  // MID is a 32-bit localparam below 2^RW
+      assign is_mid[i] = (cnt == MID);
+      /* verilator lint_on WIDTH */
+    end
+  endgenerate
+
+  reg [KW-1:0] med;
+  integer e;
+  always @* begin
+    med = {KW{1'b0}};
+    for (e = 0; e < N; e = e + 1) med = med | (is_mid[e] ? key[e] : {KW{1'b0}});
+  end
+  // key - 1 modulo 2^DW is d even for key = 2^DW (d = DISP-1 when DISP is a power of 2)
+  wire [DW-1:0] med_d = med[DW-1:0] - 1'b1;
+  wire [15:0]   med_pix = (med == {KW{1'b0}}) ? 16'd0 : {1'b1, {(15-DW){1'b0}}, med_d};
+
+  // The enable is taken with the frame's first centre at this stage, so every pixel of
+  // a frame sees the same setting even when the register changes mid-frame.
+  reg  en_q;
+  wire en = side_q2[1] ? enable : en_q;
+
+  integer a2, b2;
+  always @(posedge clk) begin
+    if (ce) begin
+      live_q    <= s_disp;
+      row_ok_q  <= row_ok;
+      col_ok_q  <= col_ok;
+      row_ok_q2 <= row_ok_q;
+      col_ok_q2 <= col_ok_q;
+      // shift the window one column left; the entering column lands at j = NC-1
+      for (a2 = 0; a2 < NR; a2 = a2 + 1) begin
+        for (b2 = 0; b2 < NC - 1; b2 = b2 + 1) win[a2*NC + b2] <= win[a2*NC + b2 + 1];
+        win[a2*NC + NC - 1] <= col_in[16*a2 +: 16];
+      end
+      m_disp <= en ? med_pix : ctr;
+    end
+  end
+
+  // sideband and enable: control state, reset so no phantom real beat leaves after reset
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      side_q  <= 5'd0;
+      side_q2 <= 5'd0;
+      m_side  <= 5'd0;
+      en_q    <= 1'b0;
+    end else if (ce) begin
+      side_q  <= c_side;
+      side_q2 <= side_q;
+      m_side  <= side_q2;
+      en_q    <= en;
+    end
+  end
+endmodule
+`default_nettype wire

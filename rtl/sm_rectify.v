@@ -1,0 +1,433 @@
+`default_nettype none
+// Grid-based rectification of one camera (docs/algorithm.md, section 2).
+//
+// Output pixel (x, y) leaves while input (x, y + RECT_RADIUS + 1) enters (sm_win_ctrl
+// with D_ROWS = RECT_RADIUS + 1, D_COLS = 0), so rows y-R..y+R of the frame are in the
+// n-line buffer. The buffer holds 2R+2 row slots: the live row and the 2R+1 window rows.
+// It is split into four banks by row-slot parity and column parity; the four bilinear
+// taps (ix|ix+1, iy|iy+1) always fall into four different banks, so one read per bank
+// per beat fetches them all.
+//
+// Pipeline (ce's after the entering beat): 0 grid read, 1 V0/V1 (only the first pixel
+// of a 16-pixel segment loads them), 2 S accumulated across the segment, 3 source
+// position, tap validity and buffer addresses, 4 buffer read, 5 bilinear blend into
+// m_pix. The buffer write of an entering pixel is delayed to ce 4 as well, so the read
+// of a beat sees every earlier row and none of the rows entering after it: the slot of
+// row y-R is only overwritten by the row after the live one.
+//
+// Grid memory: point (gx, gy) of bank b is at grid_waddr = {b, gy[GYB-1:0], gx[GXB-1:0]},
+// i.e. point index gy * GWMAX + gx with GWMAX = 2**GXB (docs/algorithm.md, section 2).
+// The four corners of a grid cell lie in four different (gx, gy) parity banks.
+module sm_rectify #(
+    parameter MAX_WIDTH   = 320,  // widest active line
+    parameter MAX_HEIGHT  = 240,  // tallest active frame
+    parameter RECT_RADIUS = 15    // rows above/below the output row the source may use
+) (
+    input  wire           clk,
+    input  wire           rst_n,
+    input  wire           ce,
+    input  wire [XW-1:0]  width,       // active width, 16..MAX_WIDTH
+    input  wire           enable,      // 0: pass pixels through (latched at output sof)
+    input  wire           grid_bank,   // grid bank to use (latched at output sof)
+    input  wire           grid_we,     // grid write, independent of ce
+    input  wire [GAW-1:0] grid_waddr,  // {bank, gy, gx}
+    input  wire [31:0]    grid_wdata,  // {sy, sx}, signed Q.5
+    input  wire [4:0]     s_side,
+    input  wire [7:0]     s_pix,
+    output reg  [4:0]     m_side,
+    output reg  [7:0]     m_pix
+);
+  localparam R      = RECT_RADIUS;
+  localparam XW     = $clog2(MAX_WIDTH + 1);
+  localparam YW     = $clog2(MAX_HEIGHT + 1);
+  localparam NR     = 2 * R + 2;              // row slots of the line buffer
+  localparam SB     = $clog2(NR);             // slot number bits
+  localparam HALFW  = (MAX_WIDTH + 1) / 2;    // columns per column-parity bank row
+  localparam CHW    = $clog2(HALFW);          // bits of a column pair index
+  localparam BDEPTH = (R + 1) * HALFW;        // words per line-buffer bank
+  localparam BAW    = $clog2(BDEPTH);
+  localparam GXB0   = $clog2((MAX_WIDTH + 15) / 16 + 1);
+  localparam GYB0   = $clog2((MAX_HEIGHT + 15) / 16 + 1);
+  localparam GXB    = (GXB0 < 2) ? 2 : GXB0;  // grid x bits, GWMAX = 2**GXB
+  localparam GYB    = (GYB0 < 2) ? 2 : GYB0;  // grid y bits
+  localparam GAW    = 1 + GYB + GXB;          // grid_waddr width
+  localparam GBW    = GAW - 2;                // address of one grid parity bank
+  localparam VW     = 22;                     // V0/V1 (Q.9), |V| <= 2^19
+  localparam SW     = 27;                     // S (Q.13), |S| <= 2^23
+  localparam IW     = 14;                     // ix/iy, signed, |ix| <= 1024
+  localparam DYW    = 16;                     // row offsets, signed
+  localparam RW     = 2 * R + 1;              // window rows
+
+  generate
+    if (R < 1 || R > 31) begin : g_bad_r
+      initial $error("sm_rectify: RECT_RADIUS (%0d) must be 1..31", R);
+    end
+    if (MAX_WIDTH < 16 || MAX_WIDTH > 4095) begin : g_bad_w
+      initial $error("sm_rectify: MAX_WIDTH (%0d) must be 16..4095", MAX_WIDTH);
+    end
+    if (MAX_HEIGHT < 16 || MAX_HEIGHT > 4095) begin : g_bad_h
+      initial $error("sm_rectify: MAX_HEIGHT (%0d) must be 16..4095", MAX_HEIGHT);
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------- stage 0 (entering)
+  wire [XW-1:0] s_x;
+  wire [4:0]    c_side;
+  wire [XW-1:0] c_x;
+  wire [RW-1:0] row_ok;
+  /* verilator lint_off UNUSEDSIGNAL */  // no column window: taps test columns themselves
+  wire          col_ok;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  sm_win_ctrl #(
+      .MAX_WIDTH(MAX_WIDTH),
+      .D_ROWS   (R + 1),
+      .D_COLS   (0),
+      .R_UP     (R),
+      .R_DN     (R),
+      .R_L      (0),
+      .R_R      (0)
+  ) u_win (
+      .clk   (clk),
+      .rst_n (rst_n),
+      .ce    (ce),
+      .width (width),
+      .s_side(s_side),
+      .s_x   (s_x),
+      .c_side(c_side),
+      .c_x   (c_x),
+      .row_ok(row_ok),
+      .col_ok(col_ok)
+  );
+
+  // Parameters overridden by a parent arrive as 32-bit integers; the truncation to the
+  // sized constants below is intended (the values fit).
+  /* verilator lint_off WIDTH */
+  localparam [SB-1:0]  LAST_SLOT = NR - 1;
+  localparam [SB-1:0]  HALF_NR   = R + 1;
+  localparam [DYW-1:0] RD        = R;
+  localparam [DYW-1:0] NRD       = NR;
+  localparam [BAW-1:0] HALFW_B   = HALFW;
+  /* verilator lint_on WIDTH */
+
+  // Row slot of the live row; the centre row is R+1 slots back, which modulo 2R+2 is
+  // also R+1 slots ahead.
+  reg  [SB-1:0] ls_q;
+  wire [SB-1:0] ls = !s_side[2] ? ls_q : (ls_q == LAST_SLOT) ? {SB{1'b0}} : ls_q + 1'b1;
+  wire [SB-1:0] cs = (ls >= HALF_NR) ? ls - HALF_NR : ls + HALF_NR;
+
+  // Centre row number and the frame's parameters, taken at the centre's sof.
+  reg  [YW-1:0] cy_q;
+  reg           bank_q, en_q;
+  wire          c_sof = c_side[1];
+  wire [YW-1:0] cy = c_sof ? {YW{1'b0}} : c_side[2] ? cy_q + 1'b1 : cy_q;
+  wire          bank_f = c_sof ? grid_bank : bank_q;
+  wire          en_f = c_sof ? enable : en_q;
+
+  // Grid cell of the centre; c_x >> 4 and cy >> 4 fit GXB/GYB bits for in-frame pixels,
+  // the bits cut off only matter on virtual rows.
+  /* verilator lint_off WIDTH */
+  wire [GXB-1:0] gx = c_x >> 4;
+  wire [GYB-1:0] gy = cy >> 4;
+  /* verilator lint_on WIDTH */
+  wire [GXB-1:0] gx1 = gx + 1'b1;
+  wire [GYB-1:0] gy1 = gy + 1'b1;
+
+  // Grid parity banks, index {y parity, x parity}: each reads the cell corner with its
+  // parities.
+  wire [31:0] g_rd[0:3];
+  genvar b;
+  generate
+    for (b = 0; b < 4; b = b + 1) begin : g_grid
+      localparam PX = b & 1;
+      localparam PY = b >> 1;
+      wire [GXB-1:0] cx_b = (gx[0] == PX[0]) ? gx : gx1;
+      wire [GYB-1:0] cy_b = (gy[0] == PY[0]) ? gy : gy1;
+      wire           w_hit = (grid_waddr[0] == PX[0]) && (grid_waddr[GXB] == PY[0]);
+      wire [GBW-1:0] waddr = {grid_waddr[GAW-1], grid_waddr[GAW-2:GXB+1], grid_waddr[GXB-1:1]};
+      wire [GBW-1:0] raddr = {bank_f, cy_b[GYB-1:1], cx_b[GXB-1:1]};
+      /* verilator lint_off UNUSEDSIGNAL */  // parity bit 0 is the bank itself
+      wire           unused_par = cx_b[0] ^ cy_b[0];
+      /* verilator lint_on UNUSEDSIGNAL */
+      sm_rect_ram #(
+          .DATA_W(32),
+          .DEPTH (1 << GBW)
+      ) u_ram (
+          .clk  (clk),
+          .we   (grid_we && w_hit),
+          .waddr(waddr),
+          .wdata(grid_wdata),
+          .re   (ce),
+          .raddr(raddr),
+          .rdata(g_rd[b])
+      );
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------- stage 1: V0/V1
+  reg [4:0]    side_q;
+  reg [3:0]    fx_q, fy_q;
+  reg          gxp_q, gyp_q, en_q1;
+  reg [XW-1:0] cx_q;
+  reg [YW-1:0] cy_q1;
+  reg [SB-1:0] cs_q;
+  reg [RW-1:0] rok_q;
+
+  wire [31:0] k00 = g_rd[{gyp_q, gxp_q}];
+  wire [31:0] k10 = g_rd[{gyp_q, ~gxp_q}];
+  wire [31:0] k01 = g_rd[{~gyp_q, gxp_q}];
+  wire [31:0] k11 = g_rd[{~gyp_q, ~gxp_q}];
+
+  // Products are taken modulo 2^VW: the true values fit, so the bits are the signed result.
+  function [VW-1:0] sext16(input [15:0] v);
+    sext16 = {{(VW - 16){v[15]}}, v};
+  endfunction
+  wire [VW-1:0] wy1 = {{(VW - 5){1'b0}}, 5'd16 - {1'b0, fy_q}};  // 16 - fy
+  wire [VW-1:0] wy  = {{(VW - 4){1'b0}}, fy_q};
+  wire [VW-1:0] v0x = sext16(k00[15:0]) * wy1 + sext16(k01[15:0]) * wy;
+  wire [VW-1:0] v1x = sext16(k10[15:0]) * wy1 + sext16(k11[15:0]) * wy;
+  wire [VW-1:0] v0y = sext16(k00[31:16]) * wy1 + sext16(k01[31:16]) * wy;
+  wire [VW-1:0] v1y = sext16(k10[31:16]) * wy1 + sext16(k11[31:16]) * wy;
+
+  // ---------------------------------------------------------------- stage 2: S
+  reg [4:0]    side_q2;
+  reg [3:0]    fx_q2;
+  reg          en_q2;
+  reg [XW-1:0] cx_q2;
+  reg [YW-1:0] cy_q2;
+  reg [SB-1:0] cs_q2;
+  reg [RW-1:0] rok_q2;
+  reg [VW-1:0] v0x_q, v1x_q, v0y_q, v1y_q;  // of the current 16-pixel segment
+  reg [SW-1:0] sx_acc_q, sy_acc_q;           // S of the previous pixel
+
+  function [SW-1:0] sextv(input [VW-1:0] v);
+    sextv = {{(SW - VW){v[VW-1]}}, v};
+  endfunction
+  // S(fx) = V0*(16-fx) + V1*fx = S(fx-1) + (V1 - V0), S(0) = 16*V0
+  wire [SW-1:0] sx_s = (fx_q2 == 4'd0) ? sextv(v0x_q) << 4 : sx_acc_q + sextv(v1x_q) - sextv(v0x_q);
+  wire [SW-1:0] sy_s = (fx_q2 == 4'd0) ? sextv(v0y_q) << 4 : sy_acc_q + sextv(v1y_q) - sextv(v0y_q);
+
+  // ---------------------------------------------------------------- stage 3: taps
+  reg [4:0]    side_q3;
+  reg          en_q3;
+  reg [XW-1:0] cx_q3;
+  reg [YW-1:0] cy_q3;
+  reg [SB-1:0] cs_q3;
+  reg [RW-1:0] rok_q3;
+
+  // Q.4 = (S + 256) >> 9, arithmetic
+  /* verilator lint_off UNUSEDSIGNAL */  // the low bits are below the Q.4 step
+  wire [SW-1:0] sx_r = sx_acc_q + 27'd256;
+  wire [SW-1:0] sy_r = sy_acc_q + 27'd256;
+  /* verilator lint_on UNUSEDSIGNAL */
+  // |S| <= 2^23 so bits SW-1..IW+13 are copies of the sign; ix/iy keep IW bits.
+  wire [IW-1:0] ix = en_q3 ? sx_r[IW+12:13] : {{(IW - XW){1'b0}}, cx_q3};
+  wire [IW-1:0] iy = en_q3 ? sy_r[IW+12:13] : {{(IW - YW){1'b0}}, cy_q3};
+  wire [3:0]    ax = en_q3 ? sx_r[12:9] : 4'd0;
+  wire [3:0]    ay = en_q3 ? sy_r[12:9] : 4'd0;
+
+  // Columns: ix and ix+1 inside 0..width-1.
+  wire [IW-1:0] ix1  = ix + 1'b1;
+  wire [IW-1:0] wide_w = {{(IW - XW){1'b0}}, width};
+  wire          c0ok = !ix[IW-1] && (ix < wide_w);
+  wire          c1ok = !ix1[IW-1] && (ix1 < wide_w);
+
+  // Rows: iy and iy+1 within R of the centre row and inside the frame (row_ok).
+  wire [DYW-1:0] dy0 = {{(DYW - IW){iy[IW-1]}}, iy} - {{(DYW - YW){1'b0}}, cy_q3};
+  wire [DYW-1:0] dy1 = dy0 + 1'b1;
+  wire           in0 = ($signed(dy0) >= -$signed(RD)) && ($signed(dy0) <= $signed(RD));
+  wire           in1 = ($signed(dy1) >= -$signed(RD)) && ($signed(dy1) <= $signed(RD));
+  /* verilator lint_off WIDTH */  // indices are in 0..2R when in0/in1 hold
+  /* verilator lint_off UNUSEDSIGNAL */
+  wire [DYW-1:0] idx0 = dy0 + RD;
+  wire [DYW-1:0] idx1 = dy1 + RD;
+  wire           r0ok = in0 && rok_q3[idx0];
+  wire           r1ok = in1 && rok_q3[idx1];
+  /* verilator lint_on UNUSEDSIGNAL */
+  /* verilator lint_on WIDTH */
+
+  // Slots of rows iy and iy+1 (meaningful when r0ok / r1ok).
+  wire [DYW-1:0] t0 = {{(DYW - SB){1'b0}}, cs_q3} + dy0;
+  /* verilator lint_off UNUSEDSIGNAL */  // a wrapped slot fits SB bits
+  wire [DYW-1:0] t0w = t0[DYW-1] ? t0 + NRD : ($signed(t0) >= $signed(NRD)) ? t0 - NRD : t0;
+  /* verilator lint_on UNUSEDSIGNAL */
+  wire [SB-1:0]  slot0 = t0w[SB-1:0];
+  wire [SB-1:0]  slot1 = (slot0 == LAST_SLOT) ? {SB{1'b0}} : slot0 + 1'b1;
+
+  // Bank {row parity, column parity}: which tap it serves and where that tap is.
+  wire          rp = slot0[0];  // row parity of tap row iy
+  wire          cp = ix[0];     // column parity of tap column ix
+  wire [SB-1:0] slot_e = rp ? slot1 : slot0;
+  wire [SB-1:0] slot_o = rp ? slot0 : slot1;
+  wire          rv_e = rp ? r1ok : r0ok;
+  wire          rv_o = rp ? r0ok : r1ok;
+  wire [IW-1:0] col_e = cp ? ix1 : ix;
+  wire [IW-1:0] col_o = cp ? ix : ix1;
+  wire          cv_e = cp ? c1ok : c0ok;
+  wire          cv_o = cp ? c0ok : c1ok;
+
+  // Only col >> 1 addresses a bank; high bits are zero for in-image columns.
+  /* verilator lint_off UNUSEDSIGNAL */
+  function [BAW-1:0] baddr(input [SB-1:0] slot, input [IW-1:0] col, input ok);
+    /* verilator lint_off WIDTH */
+    baddr = ok ? (slot >> 1) * HALFW_B + col[CHW:1] : {BAW{1'b0}};
+    /* verilator lint_on WIDTH */
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  wire [BAW-1:0] ra0 = baddr(slot_e, col_e, rv_e && cv_e);  // bank {0,0}
+  wire [BAW-1:0] ra1 = baddr(slot_e, col_o, rv_e && cv_o);  // bank {0,1}
+  wire [BAW-1:0] ra2 = baddr(slot_o, col_e, rv_o && cv_e);  // bank {1,0}
+  wire [BAW-1:0] ra3 = baddr(slot_o, col_o, rv_o && cv_o);  // bank {1,1}
+
+  wire [4:0] ax1 = 5'd16 - {1'b0, ax};
+  wire [4:0] ay1 = 5'd16 - {1'b0, ay};
+
+  // ---------------------------------------------------------------- stage 4: read
+  reg [4:0]     side_q4;
+  reg [BAW-1:0] ra_q[0:3];
+  reg [8:0]     w00_q, w10_q, w01_q, w11_q;
+  reg [3:0]     tv_q;  // tap valid: {11, 01, 10, 00}
+  reg           rp_q, cp_q;
+
+  // Line-buffer writes, delayed to the read ce of the same beat.
+  reg [7:0]     wp_q, wp_q2, wp_q3, wp_q4;
+  reg [1:0]     wb_q2, wb_q3, wb_q4;
+  reg [BAW-1:0] wa_q2, wa_q3, wa_q4;
+  reg [XW-1:0]  wx_q;
+  reg [SB-1:0]  wls_q;
+  wire [BAW-1:0] wa1 = baddr(wls_q, {{(IW - XW){1'b0}}, wx_q}, 1'b1);
+
+  wire [7:0] lb_rd[0:3];
+  generate
+    for (b = 0; b < 4; b = b + 1) begin : g_lb
+      localparam [1:0] BI = b;
+      sm_rect_ram #(
+          .DATA_W(8),
+          .DEPTH (BDEPTH)
+      ) u_ram (
+          .clk  (clk),
+          .we   (ce && (wb_q4 == BI)),
+          .waddr(wa_q4),
+          .wdata(wp_q4),
+          .re   (ce),
+          .raddr(ra_q[b]),
+          .rdata(lb_rd[b])
+      );
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------- stage 5: blend
+  reg [4:0] side_q5;
+  reg [8:0] w00_q2, w10_q2, w01_q2, w11_q2;
+  reg [3:0] tv_q2;
+  reg       rp_q2, cp_q2;
+
+  wire [7:0]  p00 = tv_q2[0] ? lb_rd[{rp_q2, cp_q2}] : 8'd0;
+  wire [7:0]  p10 = tv_q2[1] ? lb_rd[{rp_q2, ~cp_q2}] : 8'd0;
+  wire [7:0]  p01 = tv_q2[2] ? lb_rd[{~rp_q2, cp_q2}] : 8'd0;
+  wire [7:0]  p11 = tv_q2[3] ? lb_rd[{~rp_q2, ~cp_q2}] : 8'd0;
+  // weights sum to 256, so the blend is at most 255*256 + 128 (16 bits)
+  /* verilator lint_off UNUSEDSIGNAL */  // bits 7:0 are below the result
+  wire [16:0] blend = {9'd0, p00} * {8'd0, w00_q2} + {9'd0, p10} * {8'd0, w10_q2} +
+                      {9'd0, p01} * {8'd0, w01_q2} + {9'd0, p11} * {8'd0, w11_q2} + 17'd128;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  // ---------------------------------------------------------------- registers
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      ls_q    <= {SB{1'b0}};
+      cy_q    <= {YW{1'b0}};
+      bank_q  <= 1'b0;
+      en_q    <= 1'b0;
+      side_q  <= 5'd0;
+      side_q2 <= 5'd0;
+      side_q3 <= 5'd0;
+      side_q4 <= 5'd0;
+      side_q5 <= 5'd0;
+      m_side  <= 5'd0;
+    end else if (ce) begin
+      ls_q    <= ls;
+      cy_q    <= cy;
+      bank_q  <= bank_f;
+      en_q    <= en_f;
+      side_q  <= c_side;
+      side_q2 <= side_q;
+      side_q3 <= side_q2;
+      side_q4 <= side_q3;
+      side_q5 <= side_q4;
+      m_side  <= side_q5;
+    end
+  end
+
+  always @(posedge clk) begin
+    if (ce) begin
+      // stage 0 -> 1
+      fx_q  <= c_x[3:0];
+      fy_q  <= cy[3:0];
+      gxp_q <= gx[0];
+      gyp_q <= gy[0];
+      en_q1 <= en_f;
+      cx_q  <= c_x;
+      cy_q1 <= cy;
+      cs_q  <= cs;
+      rok_q <= row_ok;
+      wp_q  <= s_pix;
+      wx_q  <= s_x;
+      wls_q <= ls;
+      // stage 1 -> 2
+      if (fx_q == 4'd0) begin
+        v0x_q <= v0x;
+        v1x_q <= v1x;
+        v0y_q <= v0y;
+        v1y_q <= v1y;
+      end
+      fx_q2  <= fx_q;
+      en_q2  <= en_q1;
+      cx_q2  <= cx_q;
+      cy_q2  <= cy_q1;
+      cs_q2  <= cs_q;
+      rok_q2 <= rok_q;
+      wp_q2  <= wp_q;
+      wa_q2  <= wa1;
+      wb_q2  <= {wls_q[0], wx_q[0]};
+      // stage 2 -> 3
+      sx_acc_q <= sx_s;
+      sy_acc_q <= sy_s;
+      en_q3    <= en_q2;
+      cx_q3    <= cx_q2;
+      cy_q3    <= cy_q2;
+      cs_q3    <= cs_q2;
+      rok_q3   <= rok_q2;
+      wp_q3    <= wp_q2;
+      wa_q3    <= wa_q2;
+      wb_q3    <= wb_q2;
+      // stage 3 -> 4
+      ra_q[0] <= ra0;
+      ra_q[1] <= ra1;
+      ra_q[2] <= ra2;
+      ra_q[3] <= ra3;
+      w00_q   <= {4'd0, ax1} * {4'd0, ay1};
+      w10_q   <= {5'd0, ax} * {4'd0, ay1};
+      w01_q   <= {4'd0, ax1} * {5'd0, ay};
+      w11_q   <= {5'd0, ax} * {5'd0, ay};
+      tv_q    <= {c1ok && r1ok, c0ok && r1ok, c1ok && r0ok, c0ok && r0ok};
+      rp_q    <= rp;
+      cp_q    <= cp;
+      wp_q4   <= wp_q3;
+      wa_q4   <= wa_q3;
+      wb_q4   <= wb_q3;
+      // stage 4 -> 5
+      w00_q2 <= w00_q;
+      w10_q2 <= w10_q;
+      w01_q2 <= w01_q;
+      w11_q2 <= w11_q;
+      tv_q2  <= tv_q;
+      rp_q2  <= rp_q;
+      cp_q2  <= cp_q;
+      // stage 5 -> out
+      m_pix  <= blend[15:8];
+    end
+  end
+endmodule
+`default_nettype wire

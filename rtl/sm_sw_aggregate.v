@@ -1,0 +1,302 @@
+`default_nettype none
+// Adaptive support-weight cost aggregation (docs/algorithm.md, section 5).
+//
+// Every cost level of every pixel in the SW x SW window is weighted by a power of two
+// (0, 1, 2 or 4) chosen from the left-image intensity difference to the centre, summed,
+// and normalised by the reciprocal of the weight sum. The weights, their sum and the
+// reciprocal depend only on the pixel, so they are computed once per beat and shared by
+// all DISP levels; per level there are only multiplexers (the products), two adder
+// trees and one multiplier.
+//
+// Pipeline, counted in ce from the one on which beat (x+R, y+R) enters (ce 0); the
+// output of pixel (x, y) is on m_side/m_agg after ce 5 (latency 6 beats after the
+// window delay of R rows and R columns):
+//   ce 0  line-buffer read of the entering column; window-controller masks registered;
+//         sw_table latched when the centre is sof
+//   ce 1  column shifted into the window registers; weight codes of the window that is
+//         being formed (the one of the centre of ce 0) registered
+//   ce 2  per window row and level: sum of the SW weighted costs; weight sum
+//   ce 3  per level: sum of the SW row sums; RECIP(weight sum) from the ROM
+//   ce 4  per level: A_raw * RECIP
+//   ce 5  round, shift by 12, saturate to CW bits
+module sm_sw_aggregate #(
+    parameter MAX_WIDTH  = 320,  // widest active line
+    parameter DISP       = 128,  // disparity levels
+    parameter CENSUS     = 15,   // census window side: sets the raw cost width
+    parameter SW         = 5,    // support-weight window side (odd, 3..7)
+    parameter COST_SHIFT = 2     // raw Hamming cost >> COST_SHIFT before aggregation
+) (
+    input  wire                 clk,
+    input  wire                 rst_n,
+    input  wire                 ce,
+    input  wire [XW-1:0]        width,     // active width
+    input  wire [63:0]          sw_table,  // code of |dI| >> 3 = k at [2k +: 2]
+    input  wire [4:0]           s_side,
+    input  wire [DISP*HW-1:0]   s_cost,    // raw Hamming cost of level d at [d*HW +: HW]
+    input  wire [7:0]           s_left,    // left rectified pixel of the same beat
+    output reg  [4:0]           m_side,
+    output reg  [DISP*CW-1:0]   m_agg      // aggregated cost of level d at [d*CW +: CW]
+);
+  localparam XW    = $clog2(MAX_WIDTH + 1);
+  localparam CB    = CENSUS * CENSUS - 1;           // census bits = largest raw cost
+  localparam HW    = $clog2(CB + 1);                // raw cost width
+  localparam CMAX  = CB >> COST_SHIFT;              // largest shifted cost
+  localparam CW    = $clog2(CMAX + 1);              // shifted / aggregated cost width
+  localparam R     = (SW - 1) / 2;                  // window radius
+  localparam NQ    = SW * SW;                       // window positions
+  localparam WMAX  = 4 * NQ;                        // largest weight sum
+  localparam SUMW  = $clog2(WMAX + 1);              // weight sum width
+  localparam RW    = 13;                            // RECIP width: RECIP(1) = 4096
+  localparam PW    = CW + 2;                        // one weighted cost: C << 2 at most
+  localparam RSW   = $clog2(4 * SW * CMAX + 1);     // sum of one window row
+  localparam AW    = $clog2(4 * NQ * CMAX + 1);     // A_raw
+  localparam MW    = AW + RW;                       // A_raw * RECIP
+  localparam QW    = MW - 12 + 1;                   // (A_raw * RECIP + 2048) >> 12
+  localparam LVW   = DISP * CW;                     // shifted costs of one pixel
+  localparam LBW   = LVW + 8;                       // line-buffer word per row: costs, pixel
+  localparam COLW  = SW * LVW;                      // costs of one window column
+  localparam [QW-1:0] OMAX = {{(QW - CW) {1'b0}}, {CW{1'b1}}};  // saturation: 2^CW - 1
+
+  generate
+    if (SW < 3 || SW > 7 || (SW % 2) == 0) begin : g_bad_sw
+      initial $error("sm_sw_aggregate: SW (%0d) must be odd, 3..7", SW);
+    end
+    if (CENSUS < 3 || CENSUS > 15 || (CENSUS % 2) == 0) begin : g_bad_census
+      initial $error("sm_sw_aggregate: CENSUS (%0d) must be odd, 3..15", CENSUS);
+    end
+    if (CMAX < 1) begin : g_bad_shift
+      initial $error("sm_sw_aggregate: COST_SHIFT (%0d) leaves no cost bits", COST_SHIFT);
+    end
+    if (DISP < 1) begin : g_bad_disp
+      initial $error("sm_sw_aggregate: DISP (%0d) must be at least 1", DISP);
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------- ce 0: entry
+  wire [XW-1:0]   s_x;
+  wire [4:0]      c_side;
+  wire [XW-1:0]   unused_c_x;
+  wire [2*R:0]    row_ok, col_ok;
+  sm_win_ctrl #(
+      .MAX_WIDTH(MAX_WIDTH), .D_ROWS(R), .D_COLS(R),
+      .R_UP(R), .R_DN(R), .R_L(R), .R_R(R)
+  ) u_win (
+      .clk(clk), .rst_n(rst_n), .ce(ce), .width(width), .s_side(s_side),
+      .s_x(s_x), .c_side(c_side), .c_x(unused_c_x), .row_ok(row_ok), .col_ok(col_ok)
+  );
+
+  // Only the shifted cost is stored: CW + COST_SHIFT == HW, so it is the top CW bits
+  // of each raw cost and the low COST_SHIFT bits are dropped here.
+  wire [LVW-1:0] cost_in;
+  genvar d, k, c;
+  generate
+    for (d = 0; d < DISP; d = d + 1) begin : g_shift_in
+      assign cost_in[d*CW +: CW] = s_cost[d*HW + COST_SHIFT +: CW];
+      if (COST_SHIFT > 0) begin : g_drop
+        wire [COST_SHIFT-1:0] unused_low = s_cost[d*HW +: COST_SHIFT];
+      end
+    end
+  endgenerate
+
+  wire [(SW-1)*LBW-1:0] lb_dout;  // rows live-1 .. live-(SW-1) of the entering column
+  sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(LBW), .ROWS(SW - 1)) u_lb (
+      .clk(clk), .ce(ce), .col(s_x), .din({s_left, cost_in}), .dout(lb_dout)
+  );
+
+  reg [LVW-1:0] live_cost_q;  // live row of the entering column, beside lb_dout
+  reg [7:0]     live_pix_q;
+  reg [2*R:0]   row_ok_q, col_ok_q;
+  reg [63:0]    table_q;      // weight codes of the frame whose pixels are centred now
+  reg [4:0]     side1_q;
+
+  always @(posedge clk) begin
+    if (ce) begin
+      live_cost_q <= cost_in;
+      live_pix_q  <= s_left;
+      row_ok_q    <= row_ok;
+      col_ok_q    <= col_ok;
+      // The codes of the sof centre are formed on the next ce, after this latch.
+      if (c_side[1]) table_q <= sw_table;
+    end
+  end
+
+  // ---------------------------------------------------------------- ce 1: window
+  // Column c of the window is offset i = R - c from the centre (column 0 entered last),
+  // row k is offset j = R - k (row 0 is the live row).
+  wire [COLW-1:0]   col_cost;
+  wire [SW*8-1:0]   col_pix;
+  assign col_cost[0 +: LVW] = live_cost_q;
+  assign col_pix[0 +: 8]    = live_pix_q;
+  generate
+    for (k = 1; k < SW; k = k + 1) begin : g_col
+      assign col_cost[k*LVW +: LVW] = lb_dout[(k-1)*LBW +: LVW];
+      assign col_pix[k*8 +: 8]      = lb_dout[(k-1)*LBW + LVW +: 8];
+    end
+  endgenerate
+
+  reg [SW*COLW-1:0] cwin_q;  // costs of the window, column c at [c*COLW +: COLW]
+  reg [NQ*8-1:0]    pwin_q;  // left pixels, column c at [c*SW*8 +: SW*8]
+
+  // The weights are needed together with the window's costs, so they are computed from
+  // the window as it forms on this ce: the entering column plus columns 0..SW-2.
+  wire [NQ*8-1:0] pform = {pwin_q[(SW-1)*SW*8-1:0], col_pix};
+  wire [7:0]      centre = pform[(R*SW + R)*8 +: 8];
+  wire [NQ*2-1:0] code;  // code of row k, column c at [(k*SW + c)*2 +: 2]
+  generate
+    for (k = 0; k < SW; k = k + 1) begin : g_wrow
+      for (c = 0; c < SW; c = c + 1) begin : g_wcol
+        wire [7:0] pix  = pform[(c*SW + k)*8 +: 8];
+        wire [7:0] diff = (pix > centre) ? pix - centre : centre - pix;
+        // |dI| >> 3 of an 8-bit difference never exceeds 31: the min() is free.
+        wire [4:0] kidx = diff[7:3];
+        wire [2:0] unused_diff = diff[2:0];
+        wire       in_img = row_ok_q[2*R-k] & col_ok_q[2*R-c];
+        assign code[(k*SW + c)*2 +: 2] = in_img ? table_q[{kidx, 1'b0} +: 2] : 2'd0;
+      end
+    end
+  endgenerate
+
+  reg [NQ*2-1:0] code_q;
+  reg [4:0]      side2_q;
+  always @(posedge clk) begin
+    if (ce) begin
+      cwin_q <= {cwin_q[(SW-1)*COLW-1:0], col_cost};
+      pwin_q <= pform;
+      code_q <= code;
+    end
+  end
+  // The oldest pixel column is dropped by the shift above.
+  wire [SW*8-1:0] unused_pix_old = pwin_q[(SW-1)*SW*8 +: SW*8];
+
+  // ---------------------------------------------------------------- ce 2: row sums
+  // A weight 1 << (code-1) times a cost is a multiplexer of shifted copies.
+  function [PW-1:0] wmul;
+    input [1:0]    cd;
+    input [CW-1:0] cost;
+    begin
+      case (cd)
+        2'd0:    wmul = {PW{1'b0}};
+        2'd1:    wmul = {2'b00, cost};
+        2'd2:    wmul = {1'b0, cost, 1'b0};
+        default: wmul = {cost, 2'b00};
+      endcase
+    end
+  endfunction
+
+  wire [SW*DISP*RSW-1:0] rsum;  // row k, level d at [(k*DISP + d)*RSW +: RSW]
+  generate
+    for (k = 0; k < SW; k = k + 1) begin : g_rs_row
+      for (d = 0; d < DISP; d = d + 1) begin : g_rs_lvl
+        wire [SW*PW-1:0] terms;
+        for (c = 0; c < SW; c = c + 1) begin : g_term
+          assign terms[c*PW +: PW] = wmul(code_q[(k*SW + c)*2 +: 2],
+                                          cwin_q[c*COLW + k*LVW + d*CW +: CW]);
+        end
+        sm_sw_addtree #(.N(SW), .IW(PW), .OW(RSW)) u_sum (
+            .terms(terms), .sum(rsum[(k*DISP + d)*RSW +: RSW]));
+      end
+    end
+  endgenerate
+
+  // Weight sum of the window, once per pixel.
+  wire [NQ*3-1:0] wts;
+  generate
+    for (k = 0; k < NQ; k = k + 1) begin : g_wt
+      wire [1:0] cd = code_q[k*2 +: 2];
+      assign wts[k*3 +: 3] = {cd == 2'd3, cd == 2'd2, cd == 2'd1};
+    end
+  endgenerate
+  wire [SUMW-1:0] wsum;
+  sm_sw_addtree #(.N(NQ), .IW(3), .OW(SUMW)) u_wsum (.terms(wts), .sum(wsum));
+
+  reg [SW*DISP*RSW-1:0] rsum_q;
+  reg [SUMW-1:0]        wsum_q;
+  reg [4:0]             side3_q;
+  always @(posedge clk) begin
+    if (ce) begin
+      rsum_q <= rsum;
+      wsum_q <= wsum;
+    end
+  end
+
+  // ---------------------------------------------------------------- ce 3: A_raw, RECIP
+  wire [DISP*AW-1:0] araw;
+  generate
+    for (d = 0; d < DISP; d = d + 1) begin : g_col_sum
+      wire [SW*RSW-1:0] rows;
+      for (k = 0; k < SW; k = k + 1) begin : g_row
+        assign rows[k*RSW +: RSW] = rsum_q[(k*DISP + d)*RSW +: RSW];
+      end
+      sm_sw_addtree #(.N(SW), .IW(RSW), .OW(AW)) u_sum (.terms(rows), .sum(araw[d*AW +: AW]));
+    end
+  endgenerate
+
+  // RECIP(s) = floor((4096 + floor(s/2)) / s), RECIP(0) = 0: a ROM filled at
+  // elaboration, read through a register.
+  reg [RW-1:0] recip_rom [0:WMAX];
+  integer s;
+  integer recip_unused_hi;  // RECIP <= 4096: only its low RW bits are stored
+  initial begin
+    recip_rom[0] = {RW{1'b0}};
+    for (s = 1; s <= WMAX; s = s + 1) begin
+      recip_unused_hi = (4096 + s / 2) / s;
+      recip_rom[s]    = recip_unused_hi[RW-1:0];
+    end
+  end
+
+  reg [DISP*AW-1:0] araw_q;
+  reg [RW-1:0]      recip_q;
+  reg [4:0]         side4_q;
+  always @(posedge clk) begin
+    if (ce) begin
+      araw_q  <= araw;
+      recip_q <= recip_rom[wsum_q];
+    end
+  end
+
+  // ---------------------------------------------------------------- ce 4: multiply
+  reg [DISP*MW-1:0] prod_q;
+  reg [4:0]         side5_q;
+  integer n;
+  always @(posedge clk) begin
+    if (ce) begin
+      for (n = 0; n < DISP; n = n + 1)
+        prod_q[n*MW +: MW] <= araw_q[n*AW +: AW] * recip_q;
+    end
+  end
+
+  // ---------------------------------------------------------------- ce 5: round, saturate
+  wire [DISP*CW-1:0] agg;
+  generate
+    for (d = 0; d < DISP; d = d + 1) begin : g_norm
+      wire [MW:0]   rnd = {1'b0, prod_q[d*MW +: MW]} + 2048;
+      wire [QW-1:0] q   = rnd[MW:12];
+      wire [11:0]   unused_frac = rnd[11:0];
+      assign agg[d*CW +: CW] = (q > OMAX) ? OMAX[CW-1:0] : q[CW-1:0];
+    end
+  endgenerate
+
+  always @(posedge clk) begin
+    if (ce) m_agg <= agg;
+  end
+
+  // Sideband: the only control state, reset so no stale real beat leaves after reset.
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      side1_q <= 5'd0;
+      side2_q <= 5'd0;
+      side3_q <= 5'd0;
+      side4_q <= 5'd0;
+      side5_q <= 5'd0;
+      m_side  <= 5'd0;
+    end else if (ce) begin
+      side1_q <= c_side;
+      side2_q <= side1_q;
+      side3_q <= side2_q;
+      side4_q <= side3_q;
+      side5_q <= side4_q;
+      m_side  <= side5_q;
+    end
+  end
+endmodule
+`default_nettype wire

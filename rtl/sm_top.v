@@ -1,0 +1,233 @@
+`default_nettype none
+// Census stereo matching IP: AXI4-Stream video in (left and right pixels together),
+// pre-processing -> main processing -> post-processing, AXI4-Stream disparity out, an
+// object-list packet per frame, and AXI4-Lite registers for every run-time parameter.
+//
+// Every stage between the input sequencer and the output formatter advances on one
+// clock enable (docs/algorithm.md, "Streaming protocol"): ce is high when the sequencer
+// has a beat (camera pixel or virtual flush pixel) and the output FIFO can take the
+// beat that leaves the pipeline. A continuous camera stream with an always-ready output
+// therefore runs at one pixel per clock and never stalls.
+module sm_top #(
+    parameter MAX_WIDTH   = 320,  // widest active line
+    parameter MAX_HEIGHT  = 240,  // tallest active frame
+    parameter DISP        = 128,  // disparity levels 0..DISP-1
+    parameter CENSUS      = 15,   // census window side
+    parameter SW          = 5,    // support-weight window side
+    parameter RECT_RADIUS = 15,   // rows above/below an output row the rectifier reads
+    parameter COST_SHIFT  = 2,    // raw Hamming cost >> COST_SHIFT before aggregation
+    parameter MAX_OBJECTS = 8,    // objects reported per frame
+    parameter LABEL_SLOTS = 64    // equivalence-table entries of the object labeller
+) (
+    input  wire        aclk,
+    input  wire        aresetn,
+    // camera: tdata = {right, left}, tuser = start of frame, tlast = end of line
+    input  wire [15:0] s_axis_tdata,
+    input  wire        s_axis_tuser,
+    input  wire        s_axis_tlast,
+    input  wire        s_axis_tvalid,
+    output wire        s_axis_tready,
+    // disparity: tdata[15] = valid, tdata[DW-1:0] = disparity
+    output wire [15:0] m_axis_tdata,
+    output wire        m_axis_tuser,
+    output wire        m_axis_tlast,
+    output wire        m_axis_tvalid,
+    input  wire        m_axis_tready,
+    // object list, one packet per frame (docs/algorithm.md section 8)
+    output wire [31:0] m_axis_obj_tdata,
+    output wire        m_axis_obj_tlast,
+    output wire        m_axis_obj_tvalid,
+    input  wire        m_axis_obj_tready,
+    // host interface
+    input  wire [11:0] s_axil_awaddr,
+    input  wire        s_axil_awvalid,
+    output wire        s_axil_awready,
+    input  wire [31:0] s_axil_wdata,
+    input  wire [3:0]  s_axil_wstrb,
+    input  wire        s_axil_wvalid,
+    output wire        s_axil_wready,
+    output wire [1:0]  s_axil_bresp,
+    output wire        s_axil_bvalid,
+    input  wire        s_axil_bready,
+    input  wire [11:0] s_axil_araddr,
+    input  wire        s_axil_arvalid,
+    output wire        s_axil_arready,
+    output wire [31:0] s_axil_rdata,
+    output wire [1:0]  s_axil_rresp,
+    output wire        s_axil_rvalid,
+    input  wire        s_axil_rready
+);
+  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam YW = $clog2(MAX_HEIGHT + 1);
+  localparam CB = CENSUS * CENSUS - 1;
+  localparam HW = $clog2(CB + 1);
+  localparam CW = $clog2((CB >> COST_SHIFT) + 1);
+  // Virtual rows that push a frame's tail out: the vertical reach of every stage plus
+  // one row for the horizontal delays (all shorter than a line).
+  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + 2 + 1 + 2;
+
+  wire rst_n = aresetn;
+
+  // ---------------------------------------------------------------- registers
+  wire [XW-1:0] cfg_width;
+  wire [YW-1:0] cfg_height;
+  wire [9:0]    cfg_gain_l, cfg_gain_r;
+  wire [8:0]    cfg_offset_l, cfg_offset_r;
+  wire          cfg_rect_enable, cfg_grid_bank;
+  wire [7:0]    cfg_occ;
+  wire [63:0]   cfg_sw_table;
+  wire [2:0]    cfg_filter_enable;
+  wire [7:0]    cfg_obj_near, cfg_obj_tol;
+  wire [15:0]   cfg_obj_min_pixels;
+  wire          grid_we;
+  wire [31:0]   grid_wdata;
+  wire [15:0]   grid_waddr;  // {camera, bank, point}
+  wire          frame_start;
+  wire [7:0]    err_pulse;
+  wire          list_ready;
+  wire [7:0]    obj_rd_idx;
+  wire [31:0]   obj_rd_data;
+  wire [2:0]    obj_rd_word;
+  wire [7:0]    obj_count;
+  wire [1:0]    obj_flags;
+
+  sm_axil_regs #(
+      .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS)
+  ) u_regs (
+      .aclk(aclk), .aresetn(aresetn),
+      .s_axil_awaddr(s_axil_awaddr), .s_axil_awvalid(s_axil_awvalid), .s_axil_awready(s_axil_awready),
+      .s_axil_wdata(s_axil_wdata), .s_axil_wstrb(s_axil_wstrb), .s_axil_wvalid(s_axil_wvalid),
+      .s_axil_wready(s_axil_wready), .s_axil_bresp(s_axil_bresp), .s_axil_bvalid(s_axil_bvalid),
+      .s_axil_bready(s_axil_bready), .s_axil_araddr(s_axil_araddr), .s_axil_arvalid(s_axil_arvalid),
+      .s_axil_arready(s_axil_arready), .s_axil_rdata(s_axil_rdata), .s_axil_rresp(s_axil_rresp),
+      .s_axil_rvalid(s_axil_rvalid), .s_axil_rready(s_axil_rready),
+      .frame_start(frame_start), .err_pulse(err_pulse),
+      .cfg_width(cfg_width), .cfg_height(cfg_height), .cfg_gain_l(cfg_gain_l), .cfg_gain_r(cfg_gain_r),
+      .cfg_offset_l(cfg_offset_l), .cfg_offset_r(cfg_offset_r), .cfg_rect_enable(cfg_rect_enable),
+      .cfg_grid_bank(cfg_grid_bank), .cfg_occ(cfg_occ), .cfg_sw_table(cfg_sw_table),
+      .cfg_filter_enable(cfg_filter_enable), .cfg_obj_near(cfg_obj_near), .cfg_obj_tol(cfg_obj_tol),
+      .cfg_obj_min_pixels(cfg_obj_min_pixels),
+      .grid_we(grid_we), .grid_waddr(grid_waddr), .grid_wdata(grid_wdata),
+      .list_ready(list_ready), .obj_count(obj_count), .obj_flags(obj_flags),
+      .obj_rd_idx(obj_rd_idx), .obj_rd_word(obj_rd_word), .obj_rd_data(obj_rd_data)
+  );
+
+  // ---------------------------------------------------------------- input sequencer
+  wire       beat_valid;
+  wire [4:0] beat_side;
+  wire [7:0] beat_left, beat_right;
+  wire       out_room;
+  wire       ce = beat_valid && out_room;
+
+  sm_seq #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .FLUSH_ROWS(FLUSH_ROWS)) u_seq (
+      .clk(aclk), .rst_n(rst_n),
+      .width(cfg_width), .height(cfg_height), .frame_start(frame_start), .err_pulse(err_pulse),
+      .s_axis_tdata(s_axis_tdata), .s_axis_tuser(s_axis_tuser), .s_axis_tlast(s_axis_tlast),
+      .s_axis_tvalid(s_axis_tvalid), .s_axis_tready(s_axis_tready),
+      .beat_valid(beat_valid), .beat_side(beat_side), .beat_left(beat_left), .beat_right(beat_right),
+      .ce(ce)
+  );
+  // The width the stages use is the one the sequencer framed the rows with.
+  wire [XW-1:0] width = cfg_width;
+
+  // ---------------------------------------------------------------- pre-processing
+  wire [4:0] br_side;
+  wire [7:0] br_left, br_right;
+  sm_brightness u_bright (
+      .clk(aclk), .rst_n(rst_n), .ce(ce),
+      .gain_l(cfg_gain_l), .gain_r(cfg_gain_r), .offset_l(cfg_offset_l), .offset_r(cfg_offset_r),
+      .s_side(beat_side), .s_left(beat_left), .s_right(beat_right),
+      .m_side(br_side), .m_left(br_left), .m_right(br_right)
+  );
+
+  wire [4:0] rl_side, rr_side;
+  wire [7:0] rl_pix, rr_pix;
+  wire [14:0] grid_addr_cam = grid_waddr[14:0];
+  sm_rectify #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .RECT_RADIUS(RECT_RADIUS)) u_rect_l (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_rect_enable),
+      .grid_bank(cfg_grid_bank), .grid_we(grid_we && !grid_waddr[15]),
+      .grid_waddr(grid_addr_cam), .grid_wdata(grid_wdata),
+      .s_side(br_side), .s_pix(br_left), .m_side(rl_side), .m_pix(rl_pix)
+  );
+  sm_rectify #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .RECT_RADIUS(RECT_RADIUS)) u_rect_r (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_rect_enable),
+      .grid_bank(cfg_grid_bank), .grid_we(grid_we && grid_waddr[15]),
+      .grid_waddr(grid_addr_cam), .grid_wdata(grid_wdata),
+      .s_side(br_side), .s_pix(br_right), .m_side(rr_side), .m_pix(rr_pix)
+  );
+  wire unused_rr_side = ^rr_side;  // both rectifiers carry the same sideband
+
+  // ---------------------------------------------------------------- main processing
+  wire [4:0]    cs_side;
+  wire [CB-1:0] cs_cl, cs_cr;
+  wire [7:0]    cs_left;
+  sm_census #(.MAX_WIDTH(MAX_WIDTH), .CENSUS(CENSUS)) u_census (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
+      .s_side(rl_side), .s_left(rl_pix), .s_right(rr_pix),
+      .m_side(cs_side), .m_cl(cs_cl), .m_cr(cs_cr), .m_left(cs_left)
+  );
+
+  wire [4:0]         ct_side;
+  wire [DISP*HW-1:0] ct_cost;
+  wire [7:0]         ct_left;
+  sm_cost #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS)) u_cost (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
+      .s_side(cs_side), .s_cl(cs_cl), .s_cr(cs_cr), .s_left(cs_left),
+      .m_side(ct_side), .m_cost(ct_cost), .m_left(ct_left)
+  );
+
+  wire [4:0]         ag_side;
+  wire [DISP*CW-1:0] ag_cost;
+  sm_sw_aggregate #(
+      .MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .SW(SW), .COST_SHIFT(COST_SHIFT)
+  ) u_agg (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .sw_table(cfg_sw_table),
+      .s_side(ct_side), .s_cost(ct_cost), .s_left(ct_left),
+      .m_side(ag_side), .m_agg(ag_cost)
+  );
+
+  wire [4:0]  dp_side;
+  wire [15:0] dp_disp;
+  sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW)) u_dp (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .occ(cfg_occ),
+      .s_side(ag_side), .s_cost(ag_cost), .m_side(dp_side), .m_disp(dp_disp)
+  );
+
+  // ---------------------------------------------------------------- post-processing
+  wire [4:0]  f1_side, f2_side, f3_side;
+  wire [15:0] f1_disp, f2_disp, f3_disp;
+  sm_post_vmed #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post1 (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[0]),
+      .s_side(dp_side), .s_disp(dp_disp), .m_side(f1_side), .m_disp(f1_disp)
+  );
+  sm_post_med3 #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post2 (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[1]),
+      .s_side(f1_side), .s_disp(f1_disp), .m_side(f2_side), .m_disp(f2_disp)
+  );
+  sm_post_hmed #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post3 (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[2]),
+      .s_side(f2_side), .s_disp(f2_disp), .m_side(f3_side), .m_disp(f3_disp)
+  );
+
+  sm_objects #(
+      .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS),
+      .LABEL_SLOTS(LABEL_SLOTS)
+  ) u_objects (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .height(cfg_height),
+      .near_thr(cfg_obj_near), .tol(cfg_obj_tol), .min_pixels(cfg_obj_min_pixels),
+      .s_side(f3_side), .s_disp(f3_disp),
+      .list_ready(list_ready), .obj_count(obj_count), .obj_flags(obj_flags),
+      .rd_idx(obj_rd_idx), .rd_word(obj_rd_word), .rd_data(obj_rd_data),
+      .m_axis_obj_tdata(m_axis_obj_tdata), .m_axis_obj_tlast(m_axis_obj_tlast),
+      .m_axis_obj_tvalid(m_axis_obj_tvalid), .m_axis_obj_tready(m_axis_obj_tready)
+  );
+
+  // ---------------------------------------------------------------- output
+  sm_outfmt #(.MAX_WIDTH(MAX_WIDTH)) u_out (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
+      .in_side(f3_side), .in_disp(f3_disp), .room(out_room),
+      .m_axis_tdata(m_axis_tdata), .m_axis_tuser(m_axis_tuser), .m_axis_tlast(m_axis_tlast),
+      .m_axis_tvalid(m_axis_tvalid), .m_axis_tready(m_axis_tready)
+  );
+endmodule
+`default_nettype wire

@@ -1,0 +1,241 @@
+// Cycle-accurate simulation engine for sm_top: streams camera frames into
+// s_axis_video with a camera's timing (or continuously), takes the disparity stream and
+// the object packets from the IP, and measures cycles. Shared by stereo_sim and the
+// system tests.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "sm_axil.hpp"
+#include "sm_tb.hpp"
+#include "sm_types.hpp"
+
+namespace sm {
+
+struct CameraTiming {
+  bool continuous = false;  // no blanking at all
+  int hblank = 80;          // idle cycles after each line
+  int vblank_lines = 22;    // idle lines (of width + hblank cycles) after each frame
+  double pixel_clock_hz = 0;  // 0: derived as (W+hblank)*(H+vblank)*fps
+  double fps = 30.0;
+  int idle_percent = 0;     // random extra idle cycles on the input (tests)
+  int backpressure_percent = 0;  // random tready=0 on the outputs (tests)
+  uint32_t seed = 1;
+  double clock_hz(int w, int h) const {
+    if (pixel_clock_hz > 0) return pixel_clock_hz;
+    return continuous ? double(w) * h * fps : double(w + hblank) * (h + vblank_lines) * fps;
+  }
+};
+
+// One object as it leaves the object stream (docs/algorithm.md section 8).
+struct ObjWords {
+  std::vector<uint32_t> words;  // one packet
+};
+
+struct FrameStats {
+  uint64_t sof_in_cycle = 0;      // cycle the frame's first pixel entered
+  uint64_t last_in_cycle = 0;     // cycle its last pixel entered
+  uint64_t first_out_cycle = 0;   // cycle its first disparity left
+  uint64_t last_out_cycle = 0;    // cycle its last disparity left
+};
+
+struct SimResult {
+  std::vector<DispImage> frames;       // disparity frames out of m_axis
+  std::vector<ObjWords> object_packets;
+  std::vector<FrameStats> stats;
+  uint64_t cycles = 0;
+  uint64_t input_stall_cycles = 0;     // camera pixel waiting with tready low
+  std::string framing_error;           // empty when every frame was well-formed
+};
+
+struct VcdWindow {
+  std::string path;       // empty: no dump
+  int frame = 0;          // start at this input frame ...
+  int line = 0;           // ... and this input line
+  uint64_t cycles = 0;    // dump this many cycles (0: use lines)
+  int lines = 4;          // or this many input line periods
+};
+
+template <class Top>
+class SimEngine {
+ public:
+  explicit SimEngine(Testbench<Top>& tb) : tb_(tb), axil_(tb.top(), [this] { step(); }) {}
+
+  AxilMaster<Top>& axil() { return axil_; }
+
+  void reset(int cycles = 8) {
+    auto& t = tb_.top();
+    t.aresetn = 0;
+    t.s_axis_tvalid = 0;
+    t.m_axis_tready = 1;
+    t.m_axis_obj_tready = 1;
+    axil_.idle();
+    for (int i = 0; i < cycles; ++i) tb_.tick();
+    t.aresetn = 1;
+    tb_.tick();
+  }
+
+  // Progress callback: called with (frames done, frames total) after each output frame.
+  std::function<void(size_t, size_t)> on_frame;
+
+  SimResult run(const std::vector<std::pair<Image8, Image8>>& frames, int width, int height,
+                const CameraTiming& timing, const VcdWindow& vcd = {},
+                uint64_t max_cycles = 0) {
+    SimResult res;
+    res.stats.resize(frames.size());
+    std::mt19937 rng(timing.seed);
+    auto& t = tb_.top();
+    const int hb = timing.continuous ? 0 : timing.hblank;
+    const int vb = timing.continuous ? 0 : timing.vblank_lines;
+    const uint64_t line_period = static_cast<uint64_t>(width + hb);
+    // The camera: pixel n of frame f is due at a fixed cycle; it never waits for the IP
+    // in reality, so a pixel presented late counts as a stall.
+    size_t f = 0;
+    int x = 0, y = 0;
+    uint64_t due = tb_.cycles();
+    const uint64_t start = tb_.cycles();
+    if (max_cycles == 0)
+      max_cycles = (frames.size() + 2) * line_period * static_cast<uint64_t>(height + vb + 64) * 4 + 100000;
+    // Output side.
+    DispImage cur;
+    int ox = 0, oy = 0;
+    size_t oframe = 0;
+    std::vector<uint32_t> pkt;
+    bool vcd_on = false;
+    uint64_t vcd_end = 0;
+
+    while (oframe < frames.size()) {
+      if (tb_.cycles() - start > max_cycles)
+        throw std::runtime_error(fmt::format("simulation made no progress: {} of {} frames out after {} cycles",
+                                             oframe, frames.size(), tb_.cycles() - start));
+      // VCD window: opens when the camera reaches the chosen frame/line.
+      if (!vcd.path.empty() && !vcd_on && vcd_end == 0 && f == static_cast<size_t>(vcd.frame) &&
+          y == vcd.line && x == 0) {
+        if (!tb_.open_trace(vcd.path))
+          throw std::runtime_error("this simulator was built without tracing (--trace)");
+        vcd_on = true;
+        vcd_end = tb_.cycles() + (vcd.cycles ? vcd.cycles : vcd.lines * line_period);
+      }
+      if (vcd_on && tb_.cycles() >= vcd_end) {
+        tb_.close_trace();
+        vcd_on = false;
+      }
+      // Drive the camera.
+      const bool have = f < frames.size() && tb_.cycles() >= due;
+      bool present = have;
+      if (present && timing.idle_percent > 0 && x == 0 && static_cast<int>(rng() % 100) < timing.idle_percent)
+        present = false;  // a late line start: idle cycles between pixels are in the tests' timing
+      if (present && timing.idle_percent > 0 && static_cast<int>(rng() % 100) < timing.idle_percent)
+        present = false;
+      t.s_axis_tvalid = present;
+      if (present) {
+        const auto& fr = frames[f];
+        t.s_axis_tdata = static_cast<uint32_t>(fr.first.at(x, y)) | (static_cast<uint32_t>(fr.second.at(x, y)) << 8);
+        t.s_axis_tuser = (x == 0 && y == 0);
+        t.s_axis_tlast = (x == width - 1);
+      }
+      t.m_axis_tready = !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
+      t.m_axis_obj_tready = !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
+      t.eval();
+      const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
+      if (t.s_axis_tvalid && !t.s_axis_tready) ++res.input_stall_cycles;
+      const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
+      const uint32_t od = t.m_axis_tdata;
+      const bool ou = t.m_axis_tuser, ol = t.m_axis_tlast;
+      const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
+      const uint32_t objd = t.m_axis_obj_tdata;
+      const bool objl = t.m_axis_obj_tlast;
+      const uint64_t now = tb_.cycles();
+      tb_.tick();
+      if (in_hs) {
+        if (x == 0 && y == 0) res.stats[f].sof_in_cycle = now;
+        res.stats[f].last_in_cycle = now;
+        if (++x == width) {
+          x = 0;
+          due = std::max(due + 1, now + 1 + hb);
+          if (++y == height) {
+            y = 0;
+            ++f;
+            due = now + 1 + hb + static_cast<uint64_t>(vb) * line_period;
+          }
+        } else {
+          due = std::max(due + 1, now + 1);
+        }
+      }
+      if (obj_hs) {
+        pkt.push_back(objd);
+        if (objl) {
+          res.object_packets.push_back({pkt});
+          pkt.clear();
+        }
+      }
+      if (out_hs) {
+        if (ox == 0 && oy == 0) {
+          if (!ou && res.framing_error.empty())
+            res.framing_error = fmt::format("frame {}: first pixel without tuser", oframe);
+          cur = DispImage(width, height);
+          res.stats[oframe].first_out_cycle = now;
+        } else if (ou && res.framing_error.empty()) {
+          res.framing_error = fmt::format("frame {}: tuser at x {} y {}", oframe, ox, oy);
+        }
+        if (ol != (ox == width - 1) && res.framing_error.empty())
+          res.framing_error = fmt::format("frame {}: tlast {} at x {} y {}", oframe, ol, ox, oy);
+        cur.at(ox, oy) = static_cast<DispPix>(od);
+        if (++ox == width) {
+          ox = 0;
+          if (++oy == height) {
+            oy = 0;
+            res.stats[oframe].last_out_cycle = now;
+            res.frames.push_back(std::move(cur));
+            ++oframe;
+            if (on_frame) on_frame(oframe, frames.size());
+          }
+        }
+      }
+    }
+    // Let the last object packet out.
+    t.s_axis_tvalid = 0;
+    for (int n = 0; n < 4 * 64 * 8 + 64 && res.object_packets.size() < frames.size(); ++n) {
+      t.m_axis_obj_tready = 1;
+      t.eval();
+      const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
+      const uint32_t objd = t.m_axis_obj_tdata;
+      const bool objl = t.m_axis_obj_tlast;
+      tb_.tick();
+      if (obj_hs) {
+        pkt.push_back(objd);
+        if (objl) {
+          res.object_packets.push_back({pkt});
+          pkt.clear();
+        }
+      }
+    }
+    if (vcd_on) tb_.close_trace();
+    res.cycles = tb_.cycles() - start;
+    return res;
+  }
+
+  // Advances one clock with the streams idle (used by register accesses).
+  void step() {
+    auto& t = tb_.top();
+    t.s_axis_tvalid = 0;
+    t.m_axis_tready = 1;
+    t.m_axis_obj_tready = 1;
+    tb_.tick();
+  }
+
+ private:
+  Testbench<Top>& tb_;
+  AxilMaster<Top> axil_;
+};
+
+}  // namespace sm

@@ -1,0 +1,23 @@
+# Trellis DP (docs/algorithm.md section 6): model unit tests and block tests of sm_dp.
+add_executable(test_dp_model ${CMAKE_CURRENT_LIST_DIR}/test_dp_model.cpp)
+target_link_libraries(test_dp_model PRIVATE sm_model Catch2::Catch2)
+target_compile_options(test_dp_model PRIVATE ${SM_WARNINGS})
+catch_discover_tests(test_dp_model PROPERTIES LABELS unit)
+
+# Small point (CW = 4 is CENSUS 7 >> COST_SHIFT 2): odd width and full width.
+sm_rtl_test(NAME tb_dp TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CW=4 ARGS --width 37 --rows 9 --frames 3)
+add_test(NAME tb_dp_w64 COMMAND tb_dp --width 64 --rows 7 --frames 2 --seed 7)
+set_tests_properties(tb_dp_w64 PROPERTIES LABELS rtl TIMEOUT 600)
+# Minimum active width S + P + 1 = 11.
+add_test(NAME tb_dp_wmin COMMAND tb_dp --width 11 --rows 6 --frames 2 --seed 3)
+set_tests_properties(tb_dp_wmin PROPERTIES LABELS rtl TIMEOUT 600)
+# Neither MAX_WIDTH nor DISP a power of two (CW = 3 is CENSUS 5 >> 2).
+sm_rtl_test(NAME tb_dp_odd TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=50 DISP=10 CW=3 ARGS --width 23 --rows 8 --frames 3)
+# Paper configuration.
+sm_rtl_test(NAME tb_dp_paper TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 CW=6 ARGS --width 320 --rows 8 --frames 3
+            LABELS "rtl;slow")
+add_test(NAME tb_dp_paper_wmin COMMAND tb_dp_paper --width 67 --rows 6 --frames 3 --seed 4)
+set_tests_properties(tb_dp_paper_wmin PROPERTIES LABELS "rtl;slow" TIMEOUT 600)

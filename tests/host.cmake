@@ -1,0 +1,31 @@
+# Host interface and stream edges: register file, input sequencer, output formatter,
+# plus the register-map unit test. Small configurations for speed, one paper point each.
+set(SM_HOST_TESTS ${CMAKE_SOURCE_DIR}/tests)
+
+function(sm_host_test name top src)
+  sm_rtl_test(NAME ${name} TOP ${top} SOURCES ${SM_HOST_TESTS}/${src} ${ARGN})
+  add_dependencies(${name} sm_regmap_gen_files)
+endfunction()
+# warnings on the test benches only (not on the Verilator runtime compiled alongside)
+set_source_files_properties(${SM_HOST_TESTS}/tb_axil_regs.cpp ${SM_HOST_TESTS}/tb_seq.cpp
+                            ${SM_HOST_TESTS}/tb_outfmt.cpp PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
+
+sm_host_test(tb_axil_regs sm_axil_regs tb_axil_regs.cpp
+             PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 MAX_OBJECTS=4)
+sm_host_test(tb_axil_regs_paper sm_axil_regs tb_axil_regs.cpp
+             PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABELS rtl slow)
+sm_host_test(tb_seq sm_seq tb_seq.cpp PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 FLUSH_ROWS=3)
+sm_host_test(tb_seq_paper sm_seq tb_seq.cpp PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 FLUSH_ROWS=28
+             ARGS paper LABELS rtl slow)
+sm_host_test(tb_outfmt sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=64 FIFO_DEPTH=8)
+sm_host_test(tb_outfmt_paper sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=320 FIFO_DEPTH=256
+             ARGS paper LABELS rtl slow)
+
+# Register map against independent truth: sm::Regs defaults, the spec's grid size, layout.
+add_executable(test_regmap ${SM_HOST_TESTS}/test_regmap.cpp)
+target_include_directories(test_regmap PRIVATE ${SM_GEN_DIR})
+target_link_libraries(test_regmap PRIVATE sm_model Catch2::Catch2)
+target_compile_options(test_regmap PRIVATE ${SM_WARNINGS})
+add_dependencies(test_regmap sm_regmap_gen_files)
+add_test(NAME test_regmap COMMAND test_regmap)
+set_tests_properties(test_regmap PROPERTIES LABELS unit)

@@ -1,0 +1,34 @@
+# Synthesis check (label synth): every block that exists is mapped with Yosys
+# synth_xilinx -family xc7 at the small configuration; a test fails on a Yosys error, on
+# unmapped cells, or -- for the blocks in tools/synth/expect_bram.txt, mapped with
+# -nolutram -- when no block RAM results. sm_top also regenerates the harness report
+# build/synth/sm_top_stereo_sim_small.json.
+set(SM_SYNTH_CI_PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 CENSUS=7 SW=3 RECT_RADIUS=4)
+file(STRINGS ${CMAKE_SOURCE_DIR}/tools/synth/expect_bram.txt bram_lines REGEX "^sm_")
+set(SM_SYNTH_EXPECT_BRAM)
+foreach(l ${bram_lines})
+  string(REGEX MATCH "^[a-z0-9_]+" m "${l}")
+  list(APPEND SM_SYNTH_EXPECT_BRAM ${m})
+endforeach()
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+             ${CMAKE_SOURCE_DIR}/tools/synth/expect_bram.txt)
+
+file(GLOB synth_rtl CONFIGURE_DEPENDS ${SM_RTL_DIR}/sm_*.v)
+foreach(f ${synth_rtl})
+  get_filename_component(m ${f} NAME_WE)
+  set(args -t ${m} -f xc7 -x $<TARGET_FILE:sm_synth_report> -L ${SM_GEN_DIR} -T 1800)
+  foreach(p ${SM_SYNTH_CI_PARAMS})
+    list(APPEND args -p ${p})
+  endforeach()
+  set(labels synth)
+  if(m STREQUAL "sm_top")
+    list(APPEND args -c stereo_sim_small -o ${CMAKE_BINARY_DIR}/synth)
+  else()
+    list(APPEND args -c ci -o ${CMAKE_BINARY_DIR}/synth/ci)
+  endif()
+  if(m IN_LIST SM_SYNTH_EXPECT_BRAM)
+    list(APPEND args -n -b)
+  endif()
+  add_test(NAME synth_${m} COMMAND ${CMAKE_SOURCE_DIR}/tools/synth/sm_synth.sh ${args})
+  set_tests_properties(synth_${m} PROPERTIES LABELS "${labels}" TIMEOUT 1900)
+endforeach()

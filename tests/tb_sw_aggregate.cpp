@@ -1,0 +1,278 @@
+// Block test of sm_sw_aggregate against the model sw_aggregate (docs/algorithm.md,
+// section 5): frames of random raw costs and partly smooth, partly noisy left images,
+// a different weight table per frame (checks the latch at the stage's sof), random ce
+// gaps, garbage on virtual beats and idle cycles. Every real output pixel is compared
+// bit for bit, and its beat must leave exactly at the documented latency.
+#include SM_VTOP_H
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "aggregate.hpp"
+#include "beat_schedule.hpp"
+#include "sm_tb.hpp"
+
+namespace {
+
+constexpr int kMaxWidth = SM_P_MAX_WIDTH;
+constexpr int kDisp = SM_P_DISP;
+constexpr int kCensus = SM_P_CENSUS;
+constexpr int kSw = SM_P_SW;
+constexpr int kCostShift = SM_P_COST_SHIFT;
+constexpr int kR = (kSw - 1) / 2;
+constexpr int kPipe = 6;  // beats from the window's entering beat to the output, inclusive
+
+int clog2(int v) {
+  int n = 0;
+  while ((1 << n) < v) ++n;
+  return n;
+}
+
+// A bit vector of the given width as 32-bit words, written to / read from a Verilated
+// port of any width (scalar types up to 64 bits, VlWide above).
+using Bits = std::vector<uint32_t>;
+Bits make_bits(int width) { return Bits(static_cast<size_t>((width + 31) / 32), 0u); }
+void put_field(Bits& b, int lsb, int n, uint32_t v) {
+  for (int i = 0; i < n; ++i) {
+    const int bit = lsb + i;
+    const uint32_t m = 1u << (bit & 31);
+    if ((v >> i) & 1u)
+      b[static_cast<size_t>(bit >> 5)] |= m;
+    else
+      b[static_cast<size_t>(bit >> 5)] &= ~m;
+  }
+}
+uint32_t get_field(const Bits& b, int lsb, int n) {
+  uint32_t v = 0;
+  for (int i = 0; i < n; ++i) {
+    const int bit = lsb + i;
+    v |= ((b[static_cast<size_t>(bit >> 5)] >> (bit & 31)) & 1u) << i;
+  }
+  return v;
+}
+void random_bits(Bits& b, int width, std::mt19937& rng) {
+  for (auto& w : b) w = rng();
+  if (width % 32) b.back() &= (1u << (width % 32)) - 1u;
+}
+template <typename T>
+void to_port(T& port, const Bits& b) {
+  if constexpr (std::is_integral_v<T>) {
+    uint64_t v = b[0];
+    if (b.size() > 1) v |= static_cast<uint64_t>(b[1]) << 32;
+    port = static_cast<T>(v);
+  } else {
+    for (size_t i = 0; i < b.size(); ++i) port[i] = b[i];
+  }
+}
+template <typename T>
+Bits from_port(const T& port, int width) {
+  Bits b = make_bits(width);
+  if constexpr (std::is_integral_v<T>) {
+    const uint64_t v = static_cast<uint64_t>(port);
+    b[0] = static_cast<uint32_t>(v);
+    if (b.size() > 1) b[1] = static_cast<uint32_t>(v >> 32);
+  } else {
+    for (size_t i = 0; i < b.size(); ++i) b[i] = port[i];
+  }
+  return b;
+}
+
+struct Frame {
+  sm::Image8 left;
+  sm::CostVolume raw;
+  std::array<uint8_t, 32> table{};
+  sm::CostVolume expect;
+};
+
+// Left image: blocks of smooth gradient with small noise beside blocks of full-range
+// noise, so every |dI| >> 3 bucket (hence every weight code) occurs.
+sm::Image8 make_left(int w, int h, std::mt19937& rng) {
+  sm::Image8 im(w, h);
+  std::uniform_int_distribution<int> noise(0, 255), small(-3, 3), base(20, 200);
+  const int b0 = base(rng);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool smooth = ((x / 8) + (y / 4)) % 3 != 0;
+      const int v = smooth ? b0 + 2 * x + y + small(rng) : noise(rng);
+      im.at(x, y) = static_cast<uint8_t>(std::clamp(v, 0, 255));
+    }
+  return im;
+}
+
+std::array<uint8_t, 32> make_table(std::mt19937& rng) {
+  std::array<uint8_t, 32> t{};
+  for (auto& c : t) c = static_cast<uint8_t>(rng() & 3);
+  // All four codes surely occur, on the small differences that smooth regions produce.
+  t[0] = 3;
+  t[1] = 2;
+  t[2] = 1;
+  t[3] = 0;
+  return t;
+}
+
+uint64_t pack_table(const std::array<uint8_t, 32>& t) {
+  uint64_t v = 0;
+  for (int k = 0; k < 32; ++k) v |= static_cast<uint64_t>(t[static_cast<size_t>(k)] & 3) << (2 * k);
+  return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"sm_sw_aggregate block test"};
+  int width = 37;
+  std::vector<int> heights{9, 6, 11};
+  uint32_t seed = 1;
+  int idle = 30;
+  std::string trace;
+  app.add_option("--width", width, "active width")->check(CLI::Range(kSw, kMaxWidth));
+  app.add_option("--heights", heights, "rows of each frame, sent back to back");
+  app.add_option("--seed", seed, "random seed");
+  app.add_option("--idle", idle, "percent of cycles with ce low")->check(CLI::Range(0, 95));
+  app.add_option("--trace", trace, "write a VCD file (model built with --trace only)");
+  CLI11_PARSE(app, argc, argv);
+
+  // Each frame's table is put on sw_table when its first beat enters (as the shadow
+  // registers would be); the stage latches it R rows + R columns later, so the next frame
+  // may start no earlier than that: at least R + 1 rows per frame (the core's minimum
+  // height is 16).
+  for (int h : heights)
+    if (h < kR + 1) {
+      fmt::print("error: --heights {} is below R + 1 = {} rows\n", h, kR + 1);
+      return 2;
+    }
+
+  sm::HwConfig hw;
+  hw.max_width = kMaxWidth;
+  hw.disp = kDisp;
+  hw.census = kCensus;
+  hw.sw = kSw;
+  hw.cost_shift = kCostShift;
+  const int cb = hw.census_bits();
+  const int hwid = clog2(cb + 1);
+  const int cw = hw.cost_bits();
+
+  std::mt19937 rng(seed);
+  std::vector<Frame> frames;
+  for (int h : heights) {
+    Frame f;
+    f.left = make_left(width, h, rng);
+    f.raw = sm::CostVolume(width, h, kDisp);
+    std::uniform_int_distribution<int> cost(0, cb);
+    for (auto& v : f.raw.v) v = static_cast<uint8_t>(cost(rng));
+    f.table = make_table(rng);
+    f.expect = sm::sw_aggregate(f.raw, f.left, f.table, hw);
+    frames.push_back(std::move(f));
+  }
+  const auto sched = sm::test::make_schedule(width, heights, kR + 2);
+  std::vector<size_t> frame_start(frames.size(), 0);
+  for (size_t i = 0; i < sched.size(); ++i)
+    if (sched[i].frame >= 0 && sched[i].x == 0 && sched[i].y == 0)
+      frame_start[static_cast<size_t>(sched[i].frame)] = i;
+
+  sm::Testbench<SM_VTOP> tb;
+  if (!trace.empty() && !tb.open_trace(trace))
+    fmt::print("note: model built without tracing, --trace ignored\n");
+  sm::test::CeGen ceg(seed * 7919u + 1u, idle);
+  std::mt19937& grng = ceg.rng();
+  const int cost_bits = kDisp * hwid, agg_bits = kDisp * cw;
+  Bits cost_in = make_bits(cost_bits);
+
+  auto garbage = [&]() {
+    random_bits(cost_in, cost_bits, grng);
+    to_port(tb->s_cost, cost_in);
+    tb->s_left = static_cast<uint8_t>(grng());
+    tb->s_side = static_cast<uint8_t>(grng() & 31);
+    tb->sw_table = (static_cast<uint64_t>(grng()) << 32) | grng();
+  };
+
+  tb->width = static_cast<uint32_t>(width);
+  tb->rst_n = 0;
+  tb->ce = 1;
+  for (int i = 0; i < 3; ++i) {
+    garbage();
+    tb.tick();
+  }
+  tb->rst_n = 1;
+
+  sm::test::OutputOrder order(width, heights);
+  long passed = 0, failed = 0;
+  bool reported = false;
+  uint64_t table_now = pack_table(frames[0].table);  // the shadow register's value
+  for (size_t t = 0; t < sched.size(); ++t) {
+    while (!ceg.next()) {
+      tb->ce = 0;
+      garbage();
+      tb.tick();
+    }
+    const auto& b = sched[t];
+    tb->ce = 1;
+    tb->s_side = b.side;
+    if (b.frame >= 0) {
+      const Frame& f = frames[static_cast<size_t>(b.frame)];
+      if (b.x == 0 && b.y == 0) table_now = pack_table(f.table);
+      for (int d = 0; d < kDisp; ++d)
+        put_field(cost_in, d * hwid, hwid, f.raw.at(b.x, b.y, d));
+      to_port(tb->s_cost, cost_in);
+      tb->s_left = f.left.at(b.x, b.y);
+    } else {
+      random_bits(cost_in, cost_bits, grng);
+      to_port(tb->s_cost, cost_in);
+      tb->s_left = static_cast<uint8_t>(grng());
+    }
+    tb->sw_table = table_now;
+    tb.tick();
+
+    const uint8_t side = tb->m_side;
+    if (!(side & sm::test::kReal)) continue;
+    sm::test::BeatInfo o;
+    try {
+      o = order.next(side);
+    } catch (const std::exception& e) {
+      fmt::print("FAIL: {}\n", e.what());
+      ++failed;
+      break;
+    }
+    const size_t want_t = frame_start[static_cast<size_t>(o.frame)] +
+                          static_cast<size_t>(o.y) * width + o.x +
+                          static_cast<size_t>(kR) * width + kR + (kPipe - 1);
+    if (t != want_t) {
+      fmt::print("FAIL: pixel (frame {}, x {}, y {}) left after beat {}, expected {}\n", o.frame,
+                 o.x, o.y, t, want_t);
+      ++failed;
+      break;
+    }
+    const Bits got = from_port(tb->m_agg, agg_bits);
+    const Frame& f = frames[static_cast<size_t>(o.frame)];
+    bool ok = true;
+    for (int d = 0; d < kDisp && ok; ++d) {
+      const uint32_t g = get_field(got, d * cw, cw);
+      const uint32_t e = f.expect.at(o.x, o.y, d);
+      if (g != e) {
+        ok = false;
+        if (!reported)
+          fmt::print("first mismatch: frame {} x {} y {} level {}: expected {}, got {}\n", o.frame,
+                     o.x, o.y, d, e, g);
+        reported = true;
+      }
+    }
+    ok ? ++passed : ++failed;
+  }
+  if (!order.done()) {
+    fmt::print("FAIL: not every pixel left the block\n");
+    ++failed;
+  }
+  fmt::print("sm_sw_aggregate MAX_WIDTH={} DISP={} CENSUS={} SW={} COST_SHIFT={} width={}: "
+             "{} passed, {} failed\n",
+             kMaxWidth, kDisp, kCensus, kSw, kCostShift, width, passed, failed);
+  return failed == 0 ? 0 : 1;
+}

@@ -1,0 +1,179 @@
+// System test of the whole IP (sm_top): frames of a synthetic scene streamed through
+// the AXI4-Stream video input with random idle cycles and random output back-pressure,
+// every output pixel and object packet compared with the reference model.
+//
+// Usage: tb_top <scene dir> [mode]
+//   mode "stress"   : random idle cycles and back-pressure, 3 frames, register change
+//                     between frames (default)
+//   mode "budget"   : 2 frames with the camera timing of 30 frames/s: no input stall,
+//                     frame period within the camera's
+//   mode "vcd FILE" : writes a windowed VCD and checks it holds the stream signals
+//   mode "calib FILE": loads the calibration JSON into the registers first
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "calib_file.hpp"
+#include "pipeline.hpp"
+#include "common/sm_io.hpp"
+#include "sm_regs_io.hpp"
+#include "sm_sim.hpp"
+#include SM_VTOP_H
+
+namespace {
+
+sm::HwConfig compiled_config() {
+  sm::HwConfig hw;
+  hw.max_width = SM_P_MAX_WIDTH;
+  hw.max_height = SM_P_MAX_HEIGHT;
+  hw.disp = SM_P_DISP;
+  hw.census = SM_P_CENSUS;
+  hw.sw = SM_P_SW;
+  hw.rect_radius = SM_P_RECT_RADIUS;
+  return hw;
+}
+
+int failures = 0, passes = 0;
+void check(bool ok, const std::string& what) {
+  if (ok) {
+    ++passes;
+  } else {
+    ++failures;
+    fmt::print("FAIL: {}\n", what);
+  }
+}
+
+// Compares the IP's frames with the model; returns the number of differing pixels.
+int compare(const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm::Image8>>& frames,
+            const std::vector<sm::Regs>& regs, const sm::HwConfig& hw) {
+  int bad = 0;
+  check(res.framing_error.empty(), "output framing: " + res.framing_error);
+  check(res.frames.size() == frames.size(), fmt::format("{} frames out of {}", res.frames.size(), frames.size()));
+  for (size_t f = 0; f < frames.size() && f < res.frames.size(); ++f) {
+    const auto m = sm::run_pipeline(frames[f].first, frames[f].second, hw, regs[f], false);
+    int n = 0;
+    for (int y = 0; y < m.post.h; ++y)
+      for (int x = 0; x < m.post.w; ++x)
+        if (m.post.at(x, y) != res.frames[f].at(x, y) && n++ == 0)
+          fmt::print("first mismatch frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}\n", f, x, y,
+                     m.post.at(x, y), res.frames[f].at(x, y));
+    check(n == 0, fmt::format("frame {} bit-exact ({} pixels differ)", f, n));
+    bad += n;
+    const auto want = sm::object_packet(m.objects, false);
+    check(f < res.object_packets.size() && res.object_packets[f].words == want,
+          fmt::format("frame {} object packet", f));
+  }
+  return bad;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fmt::print(stderr, "usage: tb_top <scene dir> [stress|budget|vcd FILE|calib FILE]\n");
+    return 2;
+  }
+  const std::string mode = argc > 2 ? argv[2] : "stress";
+  const std::string arg = argc > 3 ? argv[3] : "";
+  try {
+    const sm::HwConfig hw = compiled_config();
+    const sm::tools::Scene sc = sm::tools::load_scene(argv[1]);
+    const sm::Image8 l = sm::tools::to_image8(sc.left), r = sm::tools::to_image8(sc.right);
+    if (l.w > hw.max_width || l.h > hw.max_height)
+      throw std::runtime_error(fmt::format("scene {}x{} larger than the configuration", l.w, l.h));
+    sm::Regs regs = sm::Regs::defaults(hw);
+    regs.width = l.w;
+    regs.height = l.h;
+    regs.grid_l = sm::RectGrid::identity(l.w, l.h);
+    regs.grid_r = regs.grid_l;
+    if (mode == "calib") apply_calib(sm::load_calib(arg), regs);
+
+    sm::Testbench<SM_VTOP> tb;
+    sm::SimEngine<SM_VTOP> sim(tb);
+    sim.reset();
+    sm::write_registers(sim.axil(), regs, hw);
+    sm::CameraTiming timing;
+    std::vector<std::pair<sm::Image8, sm::Image8>> frames;
+    std::vector<sm::Regs> per_frame;
+
+    if (mode == "stress") {
+      // Frame 1 is a different image pair (the scene mirrored) so frame edges mix content.
+      sm::Image8 lm = l, rm = r;
+      for (int y = 0; y < l.h; ++y)
+        for (int x = 0; x < l.w; ++x) {
+          lm.at(x, y) = r.at(l.w - 1 - x, y);
+          rm.at(x, y) = l.at(l.w - 1 - x, y);
+        }
+      frames = {{l, r}, {lm, rm}, {l, r}};
+      per_frame = {regs, regs, regs};
+      timing.continuous = true;
+      timing.idle_percent = 20;
+      timing.backpressure_percent = 30;
+      timing.seed = 12345;
+      const auto res = sim.run(frames, l.w, l.h, timing);
+      compare(res, frames, per_frame, hw);
+    } else if (mode == "budget") {
+      frames = {{l, r}, {l, r}};
+      per_frame = {regs, regs};
+      timing.continuous = false;  // 30 frames/s camera timing, output always ready
+      const auto res = sim.run(frames, l.w, l.h, timing);
+      compare(res, frames, per_frame, hw);
+      check(res.input_stall_cycles == 0, fmt::format("camera never stalled ({} stall cycles)", res.input_stall_cycles));
+      const uint64_t camera_period = static_cast<uint64_t>(l.w + timing.hblank) * (l.h + timing.vblank_lines);
+      const uint64_t period = res.stats[1].last_out_cycle - res.stats[0].last_out_cycle;
+      check(period <= camera_period, fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
+      const uint64_t frame_cycles = res.stats[0].last_out_cycle - res.stats[0].sof_in_cycle + 1;
+      const double seconds = frame_cycles / timing.clock_hz(l.w, l.h);
+      check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,
+            fmt::format("{} cycles per frame fit the 30 fps budget", frame_cycles));
+      fmt::print("budget: {} cycles sof->last pixel, period {} (camera {}), stalls {}\n", frame_cycles, period,
+                 camera_period, res.input_stall_cycles);
+      // Continuous stream: W*H cycles per frame in steady state.
+      sm::CameraTiming cont;
+      cont.continuous = true;
+      const auto rc = sim.run(frames, l.w, l.h, cont);
+      compare(rc, frames, per_frame, hw);
+      const uint64_t cperiod = rc.stats[1].last_out_cycle - rc.stats[0].last_out_cycle;
+      check(cperiod == static_cast<uint64_t>(l.w) * l.h,
+            fmt::format("continuous stream: frame period {} == W*H {}", cperiod, l.w * l.h));
+      check(rc.input_stall_cycles == 0, fmt::format("continuous stream never stalled ({})", rc.input_stall_cycles));
+    } else if (mode == "vcd") {
+      frames = {{l, r}};
+      per_frame = {regs};
+      timing.continuous = true;
+      sm::VcdWindow vw;
+      vw.path = arg;
+      vw.frame = 0;
+      vw.line = 2;
+      vw.lines = 2;
+      const auto res = sim.run(frames, l.w, l.h, timing, vw);
+      compare(res, frames, per_frame, hw);
+      std::ifstream f(arg);
+      std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+      check(text.rfind("$date", 0) == 0 || text.find("$timescale") != std::string::npos, "VCD header");
+      check(text.find("$enddefinitions") != std::string::npos, "VCD definitions end");
+      for (const char* sig : {"s_axis_tdata", "s_axis_tvalid", "s_axis_tready", "m_axis_tdata", "m_axis_tvalid",
+                              "m_axis_tuser", "m_axis_tlast"})
+        check(text.find(sig) != std::string::npos, fmt::format("VCD has {}", sig));
+      size_t stamps = 0;
+      for (size_t p = text.find("\n#"); p != std::string::npos; p = text.find("\n#", p + 1)) ++stamps;
+      check(stamps >= static_cast<size_t>(2 * l.w) && stamps <= static_cast<size_t>(2 * 2 * l.w + 4),
+            fmt::format("VCD window holds {} time stamps for 2 lines", stamps));
+    } else if (mode == "calib") {
+      frames = {{l, r}};
+      per_frame = {regs};
+      timing.continuous = true;
+      const auto res = sim.run(frames, l.w, l.h, timing);
+      compare(res, frames, per_frame, hw);
+    } else {
+      throw std::runtime_error("unknown mode " + mode);
+    }
+  } catch (const std::exception& e) {
+    fmt::print("error: {}\n", e.what());
+    ++failures;
+  }
+  fmt::print("{} passed, {} failed\n", passes, failures);
+  return failures ? 1 : 0;
+}

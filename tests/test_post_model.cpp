@@ -1,0 +1,279 @@
+// Model tests of the post-processing (docs/algorithm.md sections 7-8) against
+// independent truth: hand-computed cases, OpenCV's medianBlur and connectedComponents.
+#define CATCH_CONFIG_MAIN
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+#include "post.hpp"
+
+using namespace sm;
+
+namespace {
+HwConfig small_hw() {
+  HwConfig hw;
+  hw.max_width = 64;
+  hw.max_height = 64;
+  hw.disp = 64;
+  hw.max_objects = 4;
+  hw.label_slots = 16;
+  return hw;
+}
+DispImage constant(int w, int h, unsigned d) { return DispImage(w, h, make_disp(d, true)); }
+}  // namespace
+
+TEST_CASE("vertical median removes one- and two-row streaks", "[unit][post]") {
+  const HwConfig hw = small_hw();
+  DispImage m = constant(20, 12, 10);
+  for (int x = 3; x < 15; ++x) m.at(x, 4) = make_disp(40, true);      // one row
+  for (int x = 2; x < 9; ++x) m.at(x, 8) = m.at(x, 9) = make_disp(3, true);  // two rows
+  CHECK(post_vmedian(m, hw) == constant(20, 12, 10));
+  // a three-row band is a real surface and stays
+  DispImage band = constant(20, 12, 10);
+  for (int y = 4; y < 7; ++y)
+    for (int x = 0; x < 20; ++x) band.at(x, y) = make_disp(30, true);
+  CHECK(post_vmedian(band, hw) == band);
+}
+
+TEST_CASE("3x3 median equals cv::medianBlur on the interior", "[unit][post]") {
+  const HwConfig hw = small_hw();
+  std::mt19937 rng(5);
+  DispImage m(40, 30);
+  cv::Mat keys(30, 40, CV_8U);
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const unsigned d = rng() % 64;
+      m.at(x, y) = make_disp(d, true);
+      keys.at<uint8_t>(y, x) = static_cast<uint8_t>(d);
+    }
+  cv::Mat ref;
+  cv::medianBlur(keys, ref, 3);
+  const DispImage out = post_median3(m, hw);
+  for (int y = 1; y < 29; ++y)
+    for (int x = 1; x < 39; ++x) {
+      INFO("x " << x << " y " << y);
+      REQUIRE(out.at(x, y) == make_disp(ref.at<uint8_t>(y, x), true));
+    }
+}
+
+TEST_CASE("median window hand cases: border rule, invalid pixels, 1x5 and 5x3 windows",
+          "[unit][post]") {
+  const HwConfig hw = small_hw();
+  // horizontal 1x5 at x=2 of the row 1 5 2 9 3 -> sorted 1 2 3 5 9 -> 3
+  DispImage r(5, 1);
+  const unsigned v[5] = {1, 5, 2, 9, 3};
+  for (int x = 0; x < 5; ++x) r.at(x, 0) = make_disp(v[x], true);
+  const DispImage h = post_median(r, hw, 0, 2);
+  CHECK(h.at(2, 0) == make_disp(3, true));
+  // x=0: window 1 1 1 5 2 (two outside pixels take the centre 1) -> 1
+  CHECK(h.at(0, 0) == make_disp(1, true));
+  // x=4: 2 9 3 3 3 -> 3
+  CHECK(h.at(4, 0) == make_disp(3, true));
+  // invalid pixels sort lowest: 3 of 5 invalid -> invalid (0x0000)
+  DispImage c(1, 5, make_disp(7, true));
+  c.at(0, 1) = make_disp(9, false);
+  c.at(0, 2) = 0;
+  c.at(0, 3) = make_disp(1, false);
+  const DispImage vm = post_vmedian(c, hw);
+  CHECK(vm.at(0, 2) == 0);
+  // at y=0 the window is 7 7 7 inv inv (two outside rows take the centre) -> 7
+  CHECK(vm.at(0, 0) == make_disp(7, true));
+  // 5x3 window at the centre of a 5x3 image holding 0..14 -> 7; at its corner (0,0) the
+  // window is 0 1 / 3 4 / 6 7 inside plus 9 copies of the centre 0 -> 0
+  DispImage g(3, 5);
+  for (int i = 0; i < 15; ++i) g.at(i % 3, i / 3) = make_disp(i, true);
+  const DispImage gm = post_median53(g, hw);
+  CHECK(gm.at(1, 2) == make_disp(7, true));
+  CHECK(gm.at(0, 0) == make_disp(0, true));
+  // (2,4) holds 14: inside 7 8 10 11 13 14, 9 outside copies of 14 -> 14
+  CHECK(gm.at(2, 4) == make_disp(14, true));
+  // (1,3) holds 10: inside rows 1..4 x cols 0..2 = 3..14 (12 values) + 3 copies of 10
+  // -> sorted 3..9 (7 values), then 10 10 10 10: the 8th (index 7) is 10
+  CHECK(gm.at(1, 3) == make_disp(10, true));
+  // an isolated wrong pixel vanishes under the 3x3 median
+  DispImage s = constant(7, 7, 20);
+  s.at(3, 3) = make_disp(50, true);
+  CHECK(post_median3(s, hw) == constant(7, 7, 20));
+}
+
+TEST_CASE("post_process follows filter_enable and reports every step", "[unit][post]") {
+  const HwConfig hw = small_hw();
+  std::mt19937 rng(9);
+  DispImage m(25, 15);
+  for (auto& p : m.px) p = make_disp(rng() % 64, rng() % 8 != 0);
+  Regs regs = Regs::defaults(hw);
+  std::vector<DispImage> steps;
+  regs.filter_enable = 0;
+  CHECK(post_process(m, regs, hw, &steps) == m);
+  REQUIRE(steps.size() == 3);
+  regs.filter_enable = 2;
+  CHECK(post_process(m, regs, hw) == post_median3(m, hw));
+  regs.filter_enable = 7;
+  const DispImage all = post_process(m, regs, hw, &steps);
+  CHECK(steps[0] == post_vmedian(m, hw));
+  CHECK(steps[1] == post_median3(steps[0], hw));
+  CHECK(all == post_median53(steps[1], hw));
+}
+
+TEST_CASE("objects: boxes at known depths on a far background", "[unit][objects]") {
+  const HwConfig hw = small_hw();
+  Regs regs = Regs::defaults(hw);
+  regs.obj_near = 20;
+  regs.obj_tol = 1;
+  regs.obj_min_pixels = 4;
+  DispImage m = constant(50, 40, 5);
+  auto box = [&](int x0, int y0, int x1, int y1, unsigned d) {
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) m.at(x, y) = make_disp(d, true);
+  };
+  box(30, 3, 45, 10, 40);   // first in raster order (row 3)
+  box(2, 12, 11, 30, 25);
+  box(20, 20, 22, 22, 60);  // 9 pixels
+  box(40, 38, 41, 38, 50);  // 2 pixels: below min_pixels
+  m.at(16, 16) = make_disp(63, false);  // invalid: ignored
+  const ObjectList l = separate_objects(m, regs, hw);
+  REQUIRE(l.objects.size() == 3);
+  CHECK_FALSE(l.too_many_objects);
+  CHECK_FALSE(l.table_full);
+  const Object& a = l.objects[0];
+  CHECK((a.x0 == 30 && a.y0 == 3 && a.x1 == 45 && a.y1 == 10));
+  CHECK(a.count == 16 * 8);
+  CHECK(a.mean_disp == 40);
+  CHECK(a.max_disp == 40);
+  CHECK(a.sum_disp == 40 * 128);
+  const Object& b = l.objects[1];
+  CHECK((b.x0 == 2 && b.y0 == 12 && b.x1 == 11 && b.y1 == 30 && b.count == 190));
+  CHECK(b.mean_disp == 25);
+  const Object& c = l.objects[2];
+  CHECK((c.x0 == 20 && c.y0 == 20 && c.x1 == 22 && c.y1 == 22 && c.count == 9));
+  CHECK(c.mean_disp == 60);
+}
+
+TEST_CASE("objects: tolerance, merging shapes, mean and nearest disparity", "[unit][objects]") {
+  const HwConfig hw = small_hw();
+  Regs regs = Regs::defaults(hw);
+  regs.obj_near = 10;
+  regs.obj_tol = 2;
+  regs.obj_min_pixels = 1;
+  // two touching halves at 30 and 32 merge (|dd| = 2); at 30 and 33 they do not
+  DispImage m = constant(20, 10, 0);
+  for (int y = 2; y < 6; ++y)
+    for (int x = 2; x < 12; ++x) m.at(x, y) = make_disp(x < 7 ? 30 : 32, true);
+  ObjectList l = separate_objects(m, regs, hw);
+  REQUIRE(l.objects.size() == 1);
+  CHECK(l.objects[0].count == 40);
+  CHECK(l.objects[0].sum_disp == 20 * 30 + 20 * 32);
+  CHECK(l.objects[0].mean_disp == 31);
+  CHECK(l.objects[0].max_disp == 32);
+  for (int y = 2; y < 6; ++y) m.at(11, y) = make_disp(35, true);
+  l = separate_objects(m, regs, hw);
+  CHECK(l.objects.size() == 2);
+  // mean is floor: 3 pixels 30, 30, 31 -> 91 / 3 = 30
+  DispImage t = constant(10, 3, 0);
+  t.at(1, 1) = t.at(2, 1) = make_disp(30, true);
+  t.at(3, 1) = make_disp(31, true);
+  l = separate_objects(t, regs, hw);
+  REQUIRE(l.objects.size() == 1);
+  CHECK(l.objects[0].mean_disp == 30);
+  // a U (arms meet only at the bottom) and a W are one object each
+  DispImage u = constant(30, 12, 0);
+  for (int y = 1; y < 10; ++y) u.at(2, y) = u.at(8, y) = make_disp(40, true);
+  for (int x = 2; x <= 8; ++x) u.at(x, 9) = make_disp(40, true);
+  for (int y = 1; y < 10; ++y) u.at(12, y) = u.at(16, y) = u.at(20, y) = make_disp(50, true);
+  for (int x = 12; x <= 20; ++x) u.at(x, 10) = make_disp(50, true);
+  u.at(12, 10) = u.at(12, 9);
+  l = separate_objects(u, regs, hw);
+  REQUIRE(l.objects.size() == 2);
+  CHECK(l.objects[0].count == 9 + 9 + 5);
+  CHECK((l.objects[1].x0 == 12 && l.objects[1].x1 == 20 && l.objects[1].y1 == 10));
+  CHECK(l.objects[1].count == 27 + 9);
+}
+
+TEST_CASE("objects: overflow of the list and of the label table raise the flags",
+          "[unit][objects]") {
+  const HwConfig hw = small_hw();  // K = 4, 16 labels
+  Regs regs = Regs::defaults(hw);
+  regs.obj_near = 10;
+  regs.obj_tol = 0;
+  regs.obj_min_pixels = 2;
+  DispImage m = constant(40, 10, 0);
+  for (int i = 0; i < 6; ++i) m.at(2 + 5 * i, 3) = m.at(3 + 5 * i, 3) = make_disp(20 + i, true);
+  ObjectList l = separate_objects(m, regs, hw);
+  CHECK(l.objects.size() == 4);
+  CHECK(l.too_many_objects);
+  CHECK_FALSE(l.table_full);
+  CHECK(l.objects[3].mean_disp == 23);  // the first four in raster order
+  // 20 isolated near pixels (singletons) then a big box: the box finds no label
+  DispImage s = constant(40, 20, 0);
+  for (int i = 0; i < 20; ++i) s.at(2 * i, 0) = make_disp(30, true);
+  for (int y = 5; y < 15; ++y)
+    for (int x = 5; x < 15; ++x) s.at(x, y) = make_disp(30, true);
+  regs.obj_min_pixels = 1;
+  l = separate_objects(s, regs, hw);
+  CHECK(l.table_full);
+  CHECK(l.too_many_objects);
+  for (const Object& o : l.objects) CHECK(o.count == 1);  // the box was dropped
+  regs.obj_min_pixels = 2;  // singletons no longer qualify: nothing listed, flag stays
+  l = separate_objects(s, regs, hw);
+  CHECK(l.objects.empty());
+  CHECK(l.table_full);
+  CHECK_FALSE(l.too_many_objects);
+}
+
+TEST_CASE("objects: components match cv::connectedComponentsWithStats", "[unit][objects]") {
+  HwConfig hw = small_hw();
+  hw.label_slots = 1024;
+  hw.max_objects = 1000;  // model only: list every component
+  Regs regs = Regs::defaults(hw);
+  regs.obj_near = 10;
+  regs.obj_tol = 0;
+  regs.obj_min_pixels = 1;
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 5; ++trial) {
+    DispImage m(48, 32, make_disp(0, true));
+    cv::Mat mask(32, 48, CV_8U, cv::Scalar(0));
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 48; ++x)
+        if (rng() % 100 < 45) {
+          m.at(x, y) = make_disp(33, true);
+          mask.at<uint8_t>(y, x) = 255;
+        }
+    cv::Mat lab, stats, cent;
+    const int n = cv::connectedComponentsWithStats(mask, lab, stats, cent, 4, CV_32S);
+    const ObjectList l = separate_objects(m, regs, hw);
+    CHECK_FALSE(l.table_full);
+    std::vector<std::array<int, 5>> a, b;
+    for (int i = 1; i < n; ++i)
+      a.push_back({stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+                   stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT),
+                   stats.at<int>(i, cv::CC_STAT_AREA)});
+    for (const Object& o : l.objects)
+      b.push_back({o.x0, o.y0, o.x1 - o.x0 + 1, o.y1 - o.y0 + 1, static_cast<int>(o.count)});
+    CHECK(n > 20);
+    CHECK_FALSE(l.too_many_objects);
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    CHECK(a == b);
+  }
+}
+
+TEST_CASE("object packet format", "[unit][objects]") {
+  ObjectList l;
+  Object o;
+  o.x0 = 3;
+  o.y0 = 4;
+  o.x1 = 10;
+  o.y1 = 12;
+  o.count = 72;
+  o.sum_disp = 2880;
+  o.mean_disp = 40;
+  o.max_disp = 41;
+  l.objects.push_back(o);
+  l.table_full = true;
+  const std::vector<uint32_t> p = object_packet(l, true);
+  const std::vector<uint32_t> want = {0xA5000601u, 0x00040003u, 0x000C000Au, 72u, 2880u,
+                                      0x2928u};
+  CHECK(p == want);
+  CHECK(object_packet(ObjectList{}, false) == std::vector<uint32_t>{0xA5000000u});
+}

@@ -1,0 +1,110 @@
+// Unit tests of the generated register map (sm_regmap.hpp from rtl/regmap.json) against
+// independent truth: the model's defaults (sm::Regs::defaults), the spec's grid size
+// (sm::RectGrid), field widths from docs/algorithm.md and hand-computed addresses.
+#define CATCH_CONFIG_MAIN
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <string>
+
+#include "sm_regmap.hpp"
+#include "sm_types.hpp"
+
+namespace rm = sm::regmap;
+
+namespace {
+const rm::Field& field(const std::string& name) {
+  for (const auto& f : rm::fields())
+    if (name == f.name) return f;
+  FAIL("no field " << name);
+  throw 0;
+}
+int64_t reset(const std::string& name, const sm::HwConfig& hw) { return field(name).reset.eval(hw); }
+}  // namespace
+
+TEST_CASE("reset values are the model's defaults", "[regmap]") {
+  for (const auto& [w, h] : {std::pair{320, 240}, std::pair{64, 48}}) {
+    sm::HwConfig hw;
+    hw.max_width = w;
+    hw.max_height = h;
+    const sm::Regs d = sm::Regs::defaults(hw);
+    CHECK(reset("WIDTH.VALUE", hw) == d.width);
+    CHECK(reset("HEIGHT.VALUE", hw) == d.height);
+    CHECK(reset("GAIN_L.VALUE", hw) == d.gain_l);
+    CHECK(reset("GAIN_R.VALUE", hw) == d.gain_r);
+    CHECK(reset("OFFSET_L.VALUE", hw) == d.offset_l);
+    CHECK(reset("OFFSET_R.VALUE", hw) == d.offset_r);
+    CHECK(reset("RECT_ENABLE.VALUE", hw) == (d.rect_enable ? 1 : 0));
+    CHECK(reset("OCC.VALUE", hw) == d.occ);
+    CHECK(reset("FILTER_ENABLE.VALUE", hw) == d.filter_enable);
+    CHECK(reset("OBJ_NEAR.VALUE", hw) == d.obj_near);
+    CHECK(reset("OBJ_TOL.VALUE", hw) == d.obj_tol);
+    CHECK(reset("OBJ_MIN_PIXELS.VALUE", hw) == d.obj_min_pixels);
+    uint64_t sw = 0;
+    for (int k = 0; k < 32; ++k) sw |= static_cast<uint64_t>(d.sw_table[k]) << (2 * k);
+    CHECK(static_cast<uint64_t>(reset("SW_TABLE0.CODES", hw)) == (sw & 0xffffffffu));
+    CHECK(static_cast<uint64_t>(reset("SW_TABLE1.CODES", hw)) == (sw >> 32));
+  }
+}
+
+TEST_CASE("field widths and ranges follow the spec", "[regmap]") {
+  sm::HwConfig hw;
+  CHECK(field("GAIN_L.VALUE").width == 10);  // Q2.8
+  CHECK(field("GAIN_L.VALUE").max.eval(hw) == 1023);
+  CHECK(field("OFFSET_L.VALUE").width == 9);
+  CHECK(field("OFFSET_L.VALUE").is_signed);
+  CHECK(field("OFFSET_L.VALUE").min.eval(hw) == -256);
+  CHECK(field("OFFSET_L.VALUE").max.eval(hw) == 255);
+  CHECK(field("OCC.VALUE").width == 8);
+  CHECK(field("FILTER_ENABLE.VALUE").width == 3);
+  CHECK(field("WIDTH.VALUE").min.eval(hw) == 16);
+  CHECK(field("WIDTH.VALUE").max.eval(hw) == 320);
+  CHECK(field("HEIGHT.VALUE").max.eval(hw) == 240);
+  CHECK(field("ID.VALUE").reset.eval(hw) == 0x534D4331);
+  // every pipeline parameter of sm::Regs is shadowed
+  for (const char* n : {"WIDTH.VALUE", "HEIGHT.VALUE", "GAIN_L.VALUE", "GAIN_R.VALUE", "OFFSET_L.VALUE",
+                        "OFFSET_R.VALUE", "RECT_ENABLE.VALUE", "OCC.VALUE", "SW_TABLE0.CODES",
+                        "SW_TABLE1.CODES", "FILTER_ENABLE.VALUE", "OBJ_NEAR.VALUE", "OBJ_TOL.VALUE",
+                        "OBJ_MIN_PIXELS.VALUE", "CONTROL.GRID_BANK"})
+    CHECK(field(n).shadow);
+}
+
+TEST_CASE("addresses are unique, aligned and below the windows", "[regmap]") {
+  std::set<uint32_t> seen;
+  for (const auto& r : rm::registers()) {
+    CHECK(r.addr % 4 == 0);
+    CHECK(r.addr < rm::kObjBase);
+    CHECK(seen.insert(r.addr).second);
+    uint32_t used = 0;
+    for (int i = 0; i < r.num_fields; ++i) {
+      const auto& f = rm::fields()[r.first_field + i];
+      CHECK((used & f.mask()) == 0);
+      used |= f.mask();
+    }
+  }
+  CHECK(rm::kObjBase + rm::kObjSize <= rm::kGridBase);
+  CHECK(rm::kGridBase + rm::kGridSize == (1u << rm::kAddrBits));
+}
+
+TEST_CASE("window address helpers (hand-computed)", "[regmap]") {
+  CHECK(rm::obj_header_addr() == 0x800);
+  CHECK(rm::obj_addr(0, 0) == 0x810);
+  CHECK(rm::obj_addr(2, 3) == 0x83C);
+  CHECK(rm::grid_addr(0, 0, 0) == 0x8000);
+  CHECK(rm::grid_addr(0, 1, 0) == 0xA000);
+  CHECK(rm::grid_addr(1, 0, 5) == 0xC014);
+  CHECK(rm::grid_word(-32, 64) == 0x0040FFE0u);
+}
+
+TEST_CASE("the grid window holds the spec's grid", "[regmap]") {
+  for (const auto& [w, h] : {std::pair{320, 240}, std::pair{64, 48}, std::pair{640, 480}}) {
+    sm::HwConfig hw;
+    hw.max_width = w;
+    hw.max_height = h;
+    const int spec = sm::RectGrid::points_w(w) * sm::RectGrid::points_h(h);
+    CHECK(rm::grid_points(hw) == spec);
+    CHECK(spec <= (1 << rm::kGridPointBits));
+  }
+  // MAX_OBJECTS up to the model's limit fits the object window
+  CHECK(4 * (rm::kObjFirstIdx + rm::kObjWords * 64) <= rm::kObjSize);
+}

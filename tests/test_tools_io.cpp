@@ -1,0 +1,154 @@
+// Shared tool helpers (tools/common/sm_io.*): bad-1.0 metric on hand-computed cases,
+// disparity renderings, image loading errors and atomic writes.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "common/sm_io.hpp"
+
+namespace fs = std::filesystem;
+using namespace sm::tools;
+
+namespace {
+fs::path scratch(const std::string& name) {
+  fs::path d = fs::path(SM_TEST_TMP) / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+}  // namespace
+
+TEST_CASE("bad-1.0 on a hand-computed 4x2 case", "[unit][tools]") {
+  // gt:  0 (unknown)  2.0  3.5  10       est: 5  3.0  2.4  -1 (invalid)
+  //      4          4    4    4               4  5.5  2    4
+  const cv::Mat gt = (cv::Mat_<float>(2, 4) << 0, 2.0f, 3.5f, 10, 4, 4, 4, 4);
+  const cv::Mat est = (cv::Mat_<float>(2, 4) << 5, 3.0f, 2.4f, -1, 4, 5.5f, 2, 4);
+  BadStats s = bad1(est, gt, cv::Mat());
+  CHECK(s.evaluated == 7);  // the unknown pixel is skipped
+  CHECK(s.invalid == 1);
+  // bad: 3.5 vs 2.4 (1.1), invalid, 4 vs 5.5 (1.5), 4 vs 2 (2) -> 4; |1.0| is not bad.
+  CHECK(s.bad == 4);
+  CHECK(s.bad_pct() == Approx(400.0 / 7));
+  const cv::Mat mask = (cv::Mat_<uint8_t>(2, 4) << 255, 255, 0, 0, 255, 255, 255, 255);
+  s = bad1(est, gt, mask);
+  CHECK(s.evaluated == 5);
+  CHECK(s.bad == 2);
+  CHECK(s.invalid == 0);
+}
+
+TEST_CASE("disparity renderings", "[unit][tools]") {
+  sm::DispImage d(3, 1);
+  d.at(0, 0) = sm::make_disp(0, true);
+  d.at(1, 0) = sm::make_disp(15, true);
+  d.at(2, 0) = sm::make_disp(7, false);
+  const cv::Mat f = disp_to_float(d);
+  CHECK(f.at<float>(0, 0) == 0.0f);
+  CHECK(f.at<float>(0, 1) == 15.0f);
+  CHECK(f.at<float>(0, 2) < 0.0f);
+  const cv::Mat g = disp_to_grey(f, 16);
+  CHECK(g.at<uint8_t>(0, 0) == 0);
+  CHECK(g.at<uint8_t>(0, 1) == 255);
+  CHECK(g.at<uint8_t>(0, 2) == 0);
+  const cv::Mat half = disp_to_grey((cv::Mat_<float>(1, 1) << 5.0f), 11);  // 5 * 255 / 10
+  CHECK(half.at<uint8_t>(0, 0) == 128);
+  const cv::Mat c = disp_to_colour(f, 16);
+  CHECK(c.type() == CV_8UC3);
+  CHECK(c.at<cv::Vec3b>(0, 2) == cv::Vec3b(0, 0, 0));
+  CHECK(c.at<cv::Vec3b>(0, 1) != cv::Vec3b(0, 0, 0));
+}
+
+TEST_CASE("image loading: colour to grey, errors name the file", "[unit][tools]") {
+  const fs::path d = scratch("io_load");
+  cv::Mat bgr(5, 7, CV_8UC3, cv::Scalar(10, 200, 60));
+  REQUIRE(cv::imwrite((d / "c.png").string(), bgr));
+  const sm::Image8 g = load_grey((d / "c.png").string());
+  CHECK(g.w == 7);
+  CHECK(g.h == 5);
+  cv::Mat ref;
+  cv::cvtColor(bgr, ref, cv::COLOR_BGR2GRAY);
+  CHECK(g.at(3, 2) == ref.at<uint8_t>(2, 3));
+  CHECK(to_mat(g).at<uint8_t>(4, 6) == ref.at<uint8_t>(4, 6));
+
+  auto fails_with = [](const std::string& path, const std::string& what) {
+    try {
+      load_grey(path);
+    } catch (const ToolError& e) {
+      const std::string m = e.what();
+      CHECK(m.find(path) != std::string::npos);
+      CHECK(m.find(what) != std::string::npos);
+      CHECK(m.find('\n') == std::string::npos);
+      return true;
+    }
+    return false;
+  };
+  CHECK(fails_with((d / "missing.png").string(), "no such file"));
+  { std::ofstream((d / "text.png").string()) << "not an image\n"; }
+  CHECK(fails_with((d / "text.png").string(), "not a readable image"));
+  {  // a PNG cut in the middle of its data
+    std::vector<uchar> buf;
+    cv::Mat noise(64, 64, CV_8UC1);
+    cv::randu(noise, 0, 255);
+    cv::imencode(".png", noise, buf);
+    std::ofstream f((d / "trunc.png").string(), std::ios::binary);
+    f.write(reinterpret_cast<const char*>(buf.data()),
+            static_cast<std::streamsize>(buf.size() / 2));
+  }
+  CHECK(fails_with((d / "trunc.png").string(), "truncated"));
+  { std::ofstream((d / "empty.png").string()); }
+  CHECK(fails_with((d / "empty.png").string(), "empty"));
+}
+
+TEST_CASE("atomic writes leave the final file only", "[unit][tools]") {
+  const fs::path d = scratch("io_write");
+  write_image_atomic((d / "a.png").string(), cv::Mat(4, 4, CV_8UC1, cv::Scalar(7)));
+  write_text_atomic((d / "t.txt").string(), "hello\n");
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(d)) {
+    (void)e;
+    ++n;
+  }
+  CHECK(n == 2);
+  CHECK(cv::imread((d / "a.png").string(), cv::IMREAD_UNCHANGED).at<uint8_t>(3, 3) == 7);
+  // Unwritable target: error, and nothing left behind.
+  CHECK_THROWS_AS(write_image_atomic((d / "no_dir" / "x.png").string(), cv::Mat(4, 4, CV_8UC1)),
+                  ToolError);
+  CHECK_THROWS_AS(write_image_atomic((d / "x.unknownext").string(), cv::Mat(4, 4, CV_8UC1)),
+                  ToolError);
+  n = 0;
+  for (const auto& e : fs::directory_iterator(d)) {
+    (void)e;
+    ++n;
+  }
+  CHECK(n == 2);
+}
+
+TEST_CASE("dataset listing and scene errors", "[unit][tools]") {
+  const fs::path d = scratch("io_dataset");
+  CHECK_THROWS_AS(list_scenes((d / "nope").string()), ToolError);
+  CHECK(list_scenes(d.string()).empty());
+  fs::create_directories(d / "b");
+  fs::create_directories(d / "a");
+  fs::create_directories(d / "junk");
+  cv::Mat img(20, 30, CV_8UC1, cv::Scalar(100));
+  for (const char* s : {"a", "b"}) {
+    cv::imwrite((d / s / "left.png").string(), img);
+    cv::imwrite((d / s / "right.png").string(), img);
+    cv::imwrite((d / s / "gt.png").string(), img);
+    std::ofstream((d / s / "scale.txt").string()) << "4 60\n";
+  }
+  const auto scenes = list_scenes(d.string());
+  REQUIRE(scenes.size() == 2);
+  CHECK(fs::path(scenes[0]).filename() == "a");
+  const Scene sc = load_scene(scenes[0]);
+  CHECK(sc.name == "a");
+  CHECK(sc.scale == 4);
+  CHECK(sc.levels == 60);
+  CHECK(sc.gt.at<float>(0, 0) == 25.0f);
+  CHECK(sc.nonocc.empty());
+  cv::imwrite((d / "b" / "right.png").string(), cv::Mat(20, 31, CV_8UC1));
+  CHECK_THROWS_WITH(load_scene(scenes[1]), Catch::Contains("differ in size"));
+  std::ofstream((d / "a" / "scale.txt").string()) << "four\n";
+  CHECK_THROWS_WITH(load_scene(scenes[0]), Catch::Contains("scale.txt"));
+}

@@ -1,0 +1,73 @@
+// Helpers shared by the command-line tools (sm_scene, stereo_model, sm_evaluate):
+// image loading with one-line errors, atomic output files, disparity colour maps, the
+// stereo-dataset reader (../shared/datasets layout) and the bad-1.0 metric.
+// See docs/evaluation.md.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sm_types.hpp"
+
+namespace sm::tools {
+
+// Every user-facing failure of a tool: the message is one line naming the file/problem.
+struct ToolError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Silences OpenCV's own logging (tools report errors themselves, in one line).
+void quiet_opencv();
+
+// Reads an image file (PNG/JPEG/...) with cv::imread flags; throws ToolError when the
+// file is missing, unreadable or not a decodable image (libpng's chatter is suppressed).
+cv::Mat read_image(const std::string& path, int flags);
+
+// 8-bit grey image: colour inputs are converted with OpenCV's BGR->grey weights.
+cv::Mat load_grey_mat(const std::string& path);
+Image8 load_grey(const std::string& path);
+
+Image8 to_image8(const cv::Mat& grey);  // CV_8UC1 -> Image8
+cv::Mat to_mat(const Image8& img);      // Image8 -> CV_8UC1 (copy)
+
+// Writes an image so that no partial file is ever left under `path`: encode to a
+// temporary name in the same directory, then rename. Throws ToolError.
+void write_image_atomic(const std::string& path, const cv::Mat& img);
+void write_text_atomic(const std::string& path, const std::string& text);
+
+// Disparity as float pixels, negative = invalid (no output).
+cv::Mat disp_to_float(const DispImage& d);
+// Grey rendering: d * 255 / (levels - 1), invalid = 0.
+cv::Mat disp_to_grey(const cv::Mat& disp_f, int levels);
+// Colour rendering (turbo colour map over 0..levels-1), invalid = black.
+cv::Mat disp_to_colour(const cv::Mat& disp_f, int levels);
+
+// One scene of a stereo dataset: folder with left.png right.png gt.png scale.txt and an
+// optional nonocc.png (../shared/datasets/README.md; sm_scene writes the same layout).
+struct Scene {
+  std::string name;
+  std::string dir;
+  cv::Mat left, right;  // CV_8UC1 grey
+  cv::Mat gt;           // CV_32F disparity = value / scale; 0 = unknown
+  cv::Mat nonocc;       // CV_8UC1 (255 = visible in the right view) or empty
+  double scale = 1;
+  int levels = 0;  // disparity levels the scene needs (scale.txt)
+};
+bool is_scene_dir(const std::string& dir);
+Scene load_scene(const std::string& dir);
+// Scene folders below `root` (sorted by name), or `root` itself if it is a scene.
+std::vector<std::string> list_scenes(const std::string& root);
+
+// bad-1.0: percentage of evaluated pixels (gt > 0, and nonocc where present) whose
+// disparity differs from gt by more than 1; invalid estimates (< 0) count as bad.
+struct BadStats {
+  long evaluated = 0;
+  long bad = 0;
+  long invalid = 0;  // evaluated pixels without an estimate (also in bad)
+  double bad_pct() const { return evaluated ? 100.0 * bad / evaluated : 0.0; }
+};
+BadStats bad1(const cv::Mat& est_f, const cv::Mat& gt, const cv::Mat& mask);
+
+}  // namespace sm::tools

@@ -1,0 +1,10 @@
+# sm_toolio: helpers shared by every tool (image I/O with one-line errors, colour maps,
+# dataset reader, bad-1.0 metric, synthetic scene generator). Included by
+# tools/scene.cmake and tools/model_tools.cmake, whichever comes first.
+include_guard(GLOBAL)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+add_library(sm_toolio STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_io.cpp ${CMAKE_CURRENT_LIST_DIR}/sm_scenegen.cpp)
+target_include_directories(sm_toolio PUBLIC ${CMAKE_CURRENT_LIST_DIR}/.. ${OpenCV_INCLUDE_DIRS})
+target_link_libraries(sm_toolio PUBLIC sm_model opencv_core opencv_imgproc opencv_imgcodecs
+                                       fmt::fmt nlohmann_json::nlohmann_json)
+target_compile_options(sm_toolio PRIVATE ${SM_WARNINGS})

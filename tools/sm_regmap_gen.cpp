@@ -1,0 +1,477 @@
+// Register map generator: reads rtl/regmap.json (the single source of truth) and writes
+// sm_regmap.vh (Verilog localparams, included inside sm_axil_regs), sm_regmap.hpp (C++
+// constants and a register table for the test benches and the harness) and
+// registers.md (the documentation committed as docs/registers.md).
+//
+// Usage: sm_regmap_gen <regmap.json> <output dir>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+using nlohmann::json;
+
+// A value that is either a number or the name of a compile-time parameter.
+struct Val {
+  bool present = false;
+  int64_t num = 0;
+  std::string param;  // non-empty: value of this parameter
+};
+
+struct Field {
+  std::string name;
+  int lsb = 0;
+  int width = 0;
+  std::string access = "ro";  // ro, rw, w1c, wp
+  Val reset, min, max;
+  bool is_signed = false;
+  bool shadow = false;
+  std::string desc;
+};
+
+struct Reg {
+  std::string name;
+  uint32_t addr = 0;
+  std::string desc;
+  std::vector<Field> fields;
+};
+
+struct Map {
+  std::string title;
+  int addr_bits = 16;
+  std::vector<std::string> params;
+  std::vector<std::string> notes;
+  std::vector<Reg> regs;
+  // object list
+  uint32_t obj_base = 0, obj_size = 0, obj_offset = 0, obj_stride = 0;
+  std::string obj_desc;
+  Reg obj_header;
+  std::vector<Reg> obj_words;
+  // grid window
+  uint32_t grid_base = 0, grid_size = 0;
+  int grid_point_bits = 0;
+  std::string grid_desc;
+  std::vector<Field> grid_fields;
+};
+
+[[noreturn]] void fail(const std::string& m) { throw std::runtime_error(m); }
+
+int64_t parse_num(const json& j, const std::string& what) {
+  if (j.is_number_integer()) return j.get<int64_t>();
+  if (j.is_string()) {
+    const auto s = j.get<std::string>();
+    try {
+      size_t pos = 0;
+      const int64_t v = std::stoll(s, &pos, 0);
+      if (pos == s.size()) return v;
+    } catch (const std::exception&) {
+    }
+  }
+  fail(fmt::format("{}: expected an integer, got {}", what, j.dump()));
+}
+
+Val parse_val(const json& j, const std::string& what, const std::vector<std::string>& params) {
+  Val v;
+  v.present = true;
+  if (j.is_string()) {
+    const auto s = j.get<std::string>();
+    for (const auto& p : params)
+      if (s == p) {
+        v.param = s;
+        return v;
+      }
+  }
+  v.num = parse_num(j, what);
+  return v;
+}
+
+Field parse_field(const json& j, const std::string& where, const std::vector<std::string>& params,
+                  bool need_access) {
+  Field f;
+  f.name = j.at("name").get<std::string>();
+  const auto w = where + "." + f.name;
+  f.lsb = static_cast<int>(parse_num(j.at("lsb"), w + ".lsb"));
+  f.width = static_cast<int>(parse_num(j.at("width"), w + ".width"));
+  if (f.lsb < 0 || f.width < 1 || f.lsb + f.width > 32) fail(w + ": field outside bits 31:0");
+  if (need_access) {
+    f.access = j.at("access").get<std::string>();
+    if (f.access != "ro" && f.access != "rw" && f.access != "w1c" && f.access != "wp")
+      fail(w + ": access must be ro, rw, w1c or wp");
+    f.reset = parse_val(j.at("reset"), w + ".reset", params);
+  }
+  if (j.contains("min")) f.min = parse_val(j.at("min"), w + ".min", params);
+  if (j.contains("max")) f.max = parse_val(j.at("max"), w + ".max", params);
+  if (f.min.present != f.max.present) fail(w + ": min and max go together");
+  f.is_signed = j.value("signed", false);
+  f.shadow = j.value("shadow", false);
+  f.desc = j.value("desc", "");
+  return f;
+}
+
+void check_overlap(const std::vector<Field>& fs, const std::string& where) {
+  uint32_t used = 0;
+  for (const auto& f : fs) {
+    const uint32_t m = (f.width == 32 ? 0xffffffffu : ((1u << f.width) - 1u)) << f.lsb;
+    if (used & m) fail(where + ": field " + f.name + " overlaps another field");
+    used |= m;
+  }
+}
+
+Map parse(const json& j) {
+  Map m;
+  m.title = j.value("title", "Register map");
+  m.addr_bits = static_cast<int>(parse_num(j.at("addr_bits"), "addr_bits"));
+  m.params = j.at("params").get<std::vector<std::string>>();
+  if (j.contains("notes")) m.notes = j.at("notes").get<std::vector<std::string>>();
+  std::set<uint32_t> addrs;
+  std::set<std::string> names;
+  for (const auto& r : j.at("registers")) {
+    Reg reg;
+    reg.name = r.at("name").get<std::string>();
+    reg.addr = static_cast<uint32_t>(parse_num(r.at("addr"), reg.name + ".addr"));
+    reg.desc = r.value("desc", "");
+    if (reg.addr % 4) fail(reg.name + ": address not word aligned");
+    if (!addrs.insert(reg.addr).second) fail(reg.name + ": address used twice");
+    if (!names.insert(reg.name).second) fail(reg.name + ": name used twice");
+    for (const auto& f : r.at("fields")) reg.fields.push_back(parse_field(f, reg.name, m.params, true));
+    if (reg.fields.empty()) fail(reg.name + ": no fields");
+    check_overlap(reg.fields, reg.name);
+    for (const auto& f : reg.fields)
+      if (f.min.present && reg.fields.size() != 1)
+        fail(reg.name + ": a clamped (min/max) field must be the register's only field");
+    m.regs.push_back(reg);
+  }
+  const auto& o = j.at("object_list");
+  m.obj_base = static_cast<uint32_t>(parse_num(o.at("base"), "object_list.base"));
+  m.obj_size = static_cast<uint32_t>(parse_num(o.at("size"), "object_list.size"));
+  m.obj_offset = static_cast<uint32_t>(parse_num(o.at("obj_offset"), "object_list.obj_offset"));
+  m.obj_stride = static_cast<uint32_t>(parse_num(o.at("obj_stride"), "object_list.obj_stride"));
+  m.obj_desc = o.value("desc", "");
+  m.obj_header.name = o.at("header").at("name").get<std::string>();
+  for (const auto& f : o.at("header").at("fields"))
+    m.obj_header.fields.push_back(parse_field(f, m.obj_header.name, m.params, false));
+  check_overlap(m.obj_header.fields, m.obj_header.name);
+  for (const auto& w : o.at("words")) {
+    Reg reg;
+    reg.name = w.at("name").get<std::string>();
+    reg.addr = static_cast<uint32_t>(parse_num(w.at("offset"), reg.name + ".offset"));
+    for (const auto& f : w.at("fields")) reg.fields.push_back(parse_field(f, reg.name, m.params, false));
+    check_overlap(reg.fields, reg.name);
+    m.obj_words.push_back(reg);
+  }
+  if (m.obj_stride != 4 * m.obj_words.size()) fail("object_list: obj_stride must be 4 * words");
+  const auto& g = j.at("grid_window");
+  m.grid_base = static_cast<uint32_t>(parse_num(g.at("base"), "grid_window.base"));
+  m.grid_size = static_cast<uint32_t>(parse_num(g.at("size"), "grid_window.size"));
+  m.grid_point_bits = static_cast<int>(parse_num(g.at("point_bits"), "grid_window.point_bits"));
+  m.grid_desc = g.value("desc", "");
+  for (const auto& f : g.at("fields")) m.grid_fields.push_back(parse_field(f, "GRID", m.params, false));
+  if ((4u << (m.grid_point_bits + 2)) != m.grid_size)
+    fail("grid_window: size must be 4 * 2^(point_bits + 2)");
+  const uint64_t top = uint64_t{1} << m.addr_bits;
+  for (const auto& r : m.regs)
+    if (r.addr >= m.obj_base || r.addr >= m.grid_base) fail(r.name + ": overlaps a window");
+  if (m.obj_base + m.obj_size > m.grid_base || m.grid_base + m.grid_size > top)
+    fail("windows overlap or exceed addr_bits");
+  return m;
+}
+
+std::string hex32(uint64_t v) { return fmt::format("32'h{:08X}", v & 0xffffffffu); }
+
+std::string vval(const Val& v) {
+  if (!v.param.empty()) return v.param;
+  return fmt::format("{}", v.num);
+}
+
+std::string cval(const Val& v) {
+  if (!v.param.empty()) return fmt::format("Val{{0, \"{}\"}}", v.param);
+  return fmt::format("Val{{{}, nullptr}}", v.num);
+}
+
+std::string mdval(const Val& v) {
+  if (!v.param.empty()) return v.param;
+  if (v.num > 9 || v.num < -9) return fmt::format("0x{:X}", static_cast<uint64_t>(v.num) & 0xffffffffu);
+  return fmt::format("{}", v.num);
+}
+
+std::string bits(const Field& f) {
+  if (f.width == 1) return fmt::format("{}", f.lsb);
+  return fmt::format("{}:{}", f.lsb + f.width - 1, f.lsb);
+}
+
+std::string gen_vh(const Map& m) {
+  std::ostringstream o;
+  o << "// Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit.\n"
+       "// Included inside sm_axil_regs (uses its parameters "
+    << fmt::format("{}", fmt::join(m.params, ", ")) << ").\n";
+  o << fmt::format("localparam SM_ADDR_BITS = {};\n", m.addr_bits);
+  for (const auto& r : m.regs) {
+    o << fmt::format("localparam [{}:0] SM_{}_ADDR = {}'h{:X};\n", m.addr_bits - 1, r.name, m.addr_bits,
+                     r.addr);
+    for (const auto& f : r.fields) {
+      const auto p = fmt::format("SM_{}_{}", r.name, f.name);
+      o << fmt::format("localparam {}_LSB = {};\n", p, f.lsb);
+      o << fmt::format("localparam {}_W = {};\n", p, f.width);
+      if (f.reset.param.empty())
+        o << fmt::format("localparam [31:0] {}_RESET = {};\n", p, hex32(static_cast<uint64_t>(f.reset.num)));
+      else
+        o << fmt::format("localparam [31:0] {}_RESET = {};\n", p, f.reset.param);
+      if (f.min.present) {
+        o << fmt::format("localparam integer {}_MIN = {};\n", p, vval(f.min));
+        o << fmt::format("localparam integer {}_MAX = {};\n", p, vval(f.max));
+      }
+    }
+  }
+  o << fmt::format("localparam [{}:0] SM_OBJ_BASE = {}'h{:X};\n", m.addr_bits - 1, m.addr_bits, m.obj_base);
+  o << fmt::format("localparam SM_OBJ_SIZE = {};\n", m.obj_size);
+  o << fmt::format("localparam SM_OBJ_FIRST_IDX = {};  // word index of object 0\n", m.obj_offset / 4);
+  o << fmt::format("localparam SM_OBJ_WORDS = {};  // words per object\n", m.obj_stride / 4);
+  o << fmt::format("localparam [{}:0] SM_GRID_BASE = {}'h{:X};\n", m.addr_bits - 1, m.addr_bits, m.grid_base);
+  o << fmt::format("localparam SM_GRID_SIZE = {};\n", m.grid_size);
+  o << fmt::format("localparam SM_GRID_POINT_BITS = {};\n", m.grid_point_bits);
+  return o.str();
+}
+
+std::string access_enum(const std::string& a) {
+  if (a == "rw") return "Access::kRW";
+  if (a == "w1c") return "Access::kW1C";
+  if (a == "wp") return "Access::kWP";
+  return "Access::kRO";
+}
+
+std::string gen_hpp(const Map& m) {
+  std::ostringstream o;
+  o << R"(// Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "sm_types.hpp"
+
+namespace sm::regmap {
+
+enum class Access { kRO, kRW, kW1C, kWP };  // wp: write-1 pulse, reads 0
+
+// A number or the value of a compile-time parameter.
+struct Val {
+  int64_t num;
+  const char* param;
+  int64_t eval(const HwConfig& hw) const {
+    if (!param) return num;
+    if (!std::strcmp(param, "MAX_WIDTH")) return hw.max_width;
+    if (!std::strcmp(param, "MAX_HEIGHT")) return hw.max_height;
+    if (!std::strcmp(param, "DISP")) return hw.disp;
+    if (!std::strcmp(param, "MAX_OBJECTS")) return hw.max_objects;
+    throw std::invalid_argument(std::string("regmap: unknown parameter ") + param);
+  }
+};
+
+struct Field {
+  const char* name;
+  int lsb;
+  int width;
+  Access access;
+  Val reset;
+  bool clamped;  // numeric register: the whole word saturates to min..max
+  Val min;
+  Val max;
+  bool is_signed;
+  bool shadow;  // copied to the pipeline at frame_start
+  uint32_t mask() const { return (width == 32 ? 0xffffffffu : ((1u << width) - 1u)) << lsb; }
+};
+
+struct Reg {
+  const char* name;
+  uint32_t addr;
+  int first_field;  // index into fields()
+  int num_fields;
+};
+
+)";
+  o << fmt::format("constexpr int kAddrBits = {};\n\n", m.addr_bits);
+  o << "// Register byte addresses.\n";
+  for (const auto& r : m.regs) o << fmt::format("constexpr uint32_t k{} = 0x{:03X};\n", r.name, r.addr);
+  o << "\n// Field positions: k<REG>_<FIELD>_LSB / _W.\n";
+  for (const auto& r : m.regs)
+    for (const auto& f : r.fields)
+      o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", r.name,
+                       f.name, f.lsb, f.width);
+  size_t nf = 0;
+  for (const auto& r : m.regs) nf += r.fields.size();
+  o << fmt::format("\ninline const std::array<Field, {}>& fields() {{\n  static const std::array<Field, {}> f{{{{\n",
+                   nf, nf);
+  for (const auto& r : m.regs)
+    for (const auto& f : r.fields)
+      o << fmt::format("      {{\"{}.{}\", {}, {}, {}, {}, {}, {}, {}, {}, {}}},\n", r.name, f.name, f.lsb,
+                       f.width, access_enum(f.access), cval(f.reset), f.min.present ? "true" : "false",
+                       cval(f.min), cval(f.max), f.is_signed ? "true" : "false",
+                       f.shadow ? "true" : "false");
+  o << "  }};\n  return f;\n}\n";
+  o << fmt::format("\ninline const std::array<Reg, {}>& registers() {{\n  static const std::array<Reg, {}> r{{{{\n",
+                   m.regs.size(), m.regs.size());
+  int fi = 0;
+  for (const auto& r : m.regs) {
+    o << fmt::format("      {{\"{}\", 0x{:03X}, {}, {}}},\n", r.name, r.addr, fi, r.fields.size());
+    fi += static_cast<int>(r.fields.size());
+  }
+  o << "  }};\n  return r;\n}\n\n";
+  o << "// Object list window (read through the object block's read port).\n";
+  o << fmt::format("constexpr uint32_t kObjBase = 0x{:X};\nconstexpr uint32_t kObjSize = 0x{:X};\n", m.obj_base,
+                   m.obj_size);
+  o << fmt::format("constexpr uint32_t kObjFirstIdx = {};  // word index of object 0\n", m.obj_offset / 4);
+  o << fmt::format("constexpr uint32_t kObjWords = {};  // words per object\n", m.obj_stride / 4);
+  for (const auto& f : m.obj_header.fields)
+    o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", m.obj_header.name,
+                     f.name, f.lsb, f.width);
+  for (size_t w = 0; w < m.obj_words.size(); ++w) {
+    o << fmt::format("constexpr uint32_t k{}_WORD = {};\n", m.obj_words[w].name, m.obj_words[w].addr / 4);
+    for (const auto& f : m.obj_words[w].fields)
+      o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n",
+                       m.obj_words[w].name, f.name, f.lsb, f.width);
+  }
+  o << "// Byte address of word `word` of object i; of the header for obj_header_addr().\n";
+  o << "constexpr uint32_t obj_header_addr() { return kObjBase; }\n";
+  o << "constexpr uint32_t obj_addr(int i, int word) {\n"
+       "  return kObjBase + 4u * (kObjFirstIdx + kObjWords * static_cast<uint32_t>(i) + "
+       "static_cast<uint32_t>(word));\n}\n\n";
+  o << "// Rectification grid window: address = base + 4 * {cam, bank, point}.\n";
+  o << fmt::format("constexpr uint32_t kGridBase = 0x{:X};\nconstexpr uint32_t kGridSize = 0x{:X};\n",
+                   m.grid_base, m.grid_size);
+  o << fmt::format("constexpr int kGridPointBits = {};\n", m.grid_point_bits);
+  o << "constexpr uint32_t grid_addr(int cam, int bank, int point) {\n"
+       "  return kGridBase + 4u * ((static_cast<uint32_t>(cam) << (kGridPointBits + 1)) |\n"
+       "                           (static_cast<uint32_t>(bank) << kGridPointBits) |\n"
+       "                           static_cast<uint32_t>(point));\n}\n";
+  o << "// Grid word: {sy, sx}, each signed Q.5.\n"
+       "constexpr uint32_t grid_word(int16_t sx, int16_t sy) {\n"
+       "  return (static_cast<uint32_t>(static_cast<uint16_t>(sy)) << 16) | static_cast<uint16_t>(sx);\n}\n";
+  o << "constexpr int grid_points(const HwConfig& hw) {\n"
+       "  return ((hw.max_width + 15) / 16 + 1) * ((hw.max_height + 15) / 16 + 1);\n}\n\n";
+  o << "}  // namespace sm::regmap\n";
+  return o.str();
+}
+
+std::string md_escape(const std::string& s) {
+  std::string r;
+  for (char c : s) {
+    if (c == '|') r += "\\|";
+    else r += c;
+  }
+  return r;
+}
+
+void md_fields(std::ostringstream& o, const std::vector<Field>& fs, bool with_access) {
+  if (with_access) {
+    o << "| bits | field | access | reset | range | description |\n|---|---|---|---|---|---|\n";
+    for (const auto& f : fs) {
+      std::string range = f.min.present ? fmt::format("{}..{}", mdval(f.min), mdval(f.max)) : "";
+      if (f.is_signed) range += " (signed)";
+      std::string acc = f.access;
+      if (f.shadow) acc += ", shadow";
+      o << fmt::format("| {} | {} | {} | {} | {} | {} |\n", bits(f), f.name, acc, mdval(f.reset), range,
+                       md_escape(f.desc));
+    }
+  } else {
+    o << "| bits | field | description |\n|---|---|---|\n";
+    for (const auto& f : fs) o << fmt::format("| {} | {} | {} |\n", bits(f), f.name, md_escape(f.desc));
+  }
+  o << "\n";
+}
+
+std::string gen_md(const Map& m) {
+  std::ostringstream o;
+  o << "# " << m.title << "\n\n";
+  o << "<!-- Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit; the ctest "
+       "regmap_doc_current checks that this file is up to date. -->\n\n";
+  o << fmt::format("Address width {} bits (byte addresses). Access: `ro` read-only, `rw` read/write, "
+                   "`w1c` write 1 to clear, `wp` write 1 for a one-clock pulse (reads 0); `shadow` "
+                   "fields reach the pipeline at the next frame start.\n\n",
+                   m.addr_bits);
+  for (const auto& n : m.notes) o << "- " << n << "\n";
+  o << "\n## Summary\n\n| address | register | description |\n|---|---|---|\n";
+  for (const auto& r : m.regs)
+    o << fmt::format("| 0x{:04X} | {} | {} |\n", r.addr, r.name, md_escape(r.desc));
+  o << fmt::format("| 0x{:04X}..0x{:04X} | object list | read-only window |\n", m.obj_base,
+                   m.obj_base + m.obj_size - 1);
+  o << fmt::format("| 0x{:04X}..0x{:04X} | grid window | write-only window |\n", m.grid_base,
+                   m.grid_base + m.grid_size - 1);
+  o << "\n## Registers\n\n";
+  for (const auto& r : m.regs) {
+    o << fmt::format("### {} (0x{:04X})\n\n{}\n\n", r.name, r.addr, r.desc);
+    md_fields(o, r.fields, true);
+  }
+  o << fmt::format("## Object list (0x{:04X}..0x{:04X})\n\n{}\n\n", m.obj_base, m.obj_base + m.obj_size - 1,
+                   m.obj_desc);
+  o << fmt::format("### {} (0x{:04X})\n\n", m.obj_header.name, m.obj_base);
+  md_fields(o, m.obj_header.fields, false);
+  for (const auto& w : m.obj_words) {
+    o << fmt::format("### {} (0x{:04X} + 0x{:X} * i + 0x{:X})\n\n", w.name, m.obj_base + m.obj_offset,
+                     m.obj_stride, w.addr);
+    md_fields(o, w.fields, false);
+  }
+  o << fmt::format("## Rectification grid window (0x{:04X}..0x{:04X})\n\n{}\n\n", m.grid_base,
+                   m.grid_base + m.grid_size - 1, m.grid_desc);
+  md_fields(o, m.grid_fields, false);
+  return o.str();
+}
+
+void write_if_changed(const std::string& path, const std::string& text) {
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (in) {
+      std::ostringstream cur;
+      cur << in.rdbuf();
+      if (cur.str() == text) return;  // keep the time stamp: no needless rebuilds
+    }
+  }
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) fail("cannot write " + path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Generate sm_regmap.vh, sm_regmap.hpp and registers.md from regmap.json"};
+  std::string in_path, out_dir;
+  app.add_option("json", in_path, "register map (rtl/regmap.json)")->required();
+  app.add_option("outdir", out_dir, "output directory")->required();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    std::ifstream in(in_path);
+    if (!in) fail("cannot open file");
+    json j;
+    try {
+      j = json::parse(in);
+    } catch (const json::parse_error& e) {
+      fail(std::string("not valid JSON: ") + e.what());
+    }
+    Map m;
+    try {
+      m = parse(j);
+    } catch (const json::exception& e) {
+      fail(std::string("missing or malformed entry: ") + e.what());
+    }
+    write_if_changed(out_dir + "/sm_regmap.vh", gen_vh(m));
+    write_if_changed(out_dir + "/sm_regmap.hpp", gen_hpp(m));
+    write_if_changed(out_dir + "/registers.md", gen_md(m));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sm_regmap_gen: %s: %s\n", in_path.c_str(), e.what());
+    return 1;
+  }
+  return 0;
+}

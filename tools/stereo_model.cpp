@@ -1,0 +1,289 @@
+// stereo_model: runs the bit-exact reference model (model/pipeline.hpp) on one stereo
+// pair and writes the disparity as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a
+// colour-mapped PNG. Every HwConfig / Regs field can be set by option or by a --regs
+// JSON file (keys = field names); options given on the command line win.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <tuple>
+
+#include "calib_file.hpp"
+#include "common/sm_io.hpp"
+#include "pipeline.hpp"
+
+namespace {
+
+using sm::tools::ToolError;
+using json = nlohmann::json;
+
+std::vector<uint8_t> parse_sw_table(const std::string& s) {
+  std::vector<uint8_t> v;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      size_t used = 0;
+      const int c = std::stoi(item, &used);
+      if (used != item.size() || c < 0 || c > 3) throw std::invalid_argument("");
+      v.push_back(static_cast<uint8_t>(c));
+    } catch (const std::exception&) {
+      throw ToolError(fmt::format("--sw-table: '{}' is not a code 0..3", item));
+    }
+  }
+  if (v.empty() || v.size() > 32)
+    throw ToolError("--sw-table: expected 1..32 comma-separated codes");
+  return v;
+}
+
+// Applies a --regs JSON file (keys = Regs / HwConfig field names) on top of the defaults.
+void apply_regs_json(const std::string& path, sm::HwConfig& hw, sm::Regs& r) {
+  std::ifstream f(path);
+  if (!f) throw ToolError(fmt::format("{}: no such file", path));
+  json j;
+  try {
+    f >> j;
+  } catch (const json::exception&) {
+    throw ToolError(fmt::format("{}: malformed JSON", path));
+  }
+  if (!j.is_object()) throw ToolError(fmt::format("{}: not a JSON object", path));
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& k = it.key();
+    const json& v = it.value();
+    auto num = [&](long lo, long hi) {
+      if (!v.is_number_integer() || v.get<long>() < lo || v.get<long>() > hi)
+        throw ToolError(fmt::format("{}: '{}' must be an integer {}..{}", path, k, lo, hi));
+      return v.get<long>();
+    };
+    using Set = std::function<void(long)>;
+    const std::map<std::string, std::tuple<long, long, Set>> ints = {
+        {"max_width", {16, 4095, [&](long x) { hw.max_width = static_cast<int>(x); }}},
+        {"max_height", {16, 4095, [&](long x) { hw.max_height = static_cast<int>(x); }}},
+        {"disp", {4, 254, [&](long x) { hw.disp = static_cast<int>(x); }}},
+        {"census", {3, 15, [&](long x) { hw.census = static_cast<int>(x); }}},
+        {"sw", {3, 7, [&](long x) { hw.sw = static_cast<int>(x); }}},
+        {"rect_radius", {1, 31, [&](long x) { hw.rect_radius = static_cast<int>(x); }}},
+        {"cost_shift", {0, 4, [&](long x) { hw.cost_shift = static_cast<int>(x); }}},
+        {"max_objects", {1, 64, [&](long x) { hw.max_objects = static_cast<int>(x); }}},
+        {"label_slots", {1, 1024, [&](long x) { hw.label_slots = static_cast<int>(x); }}},
+        {"gain_l", {0, 1023, [&](long x) { r.gain_l = static_cast<uint16_t>(x); }}},
+        {"gain_r", {0, 1023, [&](long x) { r.gain_r = static_cast<uint16_t>(x); }}},
+        {"offset_l", {-256, 255, [&](long x) { r.offset_l = static_cast<int16_t>(x); }}},
+        {"offset_r", {-256, 255, [&](long x) { r.offset_r = static_cast<int16_t>(x); }}},
+        {"rect_enable", {0, 1, [&](long x) { r.rect_enable = x != 0; }}},
+        {"occ", {0, 255, [&](long x) { r.occ = static_cast<uint8_t>(x); }}},
+        {"filter_enable", {0, 7, [&](long x) { r.filter_enable = static_cast<uint8_t>(x); }}},
+        {"obj_near", {0, 255, [&](long x) { r.obj_near = static_cast<uint8_t>(x); }}},
+        {"obj_tol", {0, 255, [&](long x) { r.obj_tol = static_cast<uint8_t>(x); }}},
+        {"obj_min_pixels",
+         {0, 65535, [&](long x) { r.obj_min_pixels = static_cast<uint16_t>(x); }}},
+        {"width", {16, 4095, [](long) {}}},  // the active size is the image size
+        {"height", {16, 4095, [](long) {}}}};
+    if (auto f = ints.find(k); f != ints.end()) {
+      const auto& [lo, hi, set] = f->second;
+      set(num(lo, hi));
+    } else if (k == "sw_table") {
+      if (!v.is_array() || v.empty() || v.size() > 32)
+        throw ToolError(fmt::format("{}: 'sw_table' must be an array of 1..32 codes", path));
+      r.sw_table.fill(0);
+      for (size_t i = 0; i < v.size(); ++i) {
+        if (!v[i].is_number_integer() || v[i].get<int>() < 0 || v[i].get<int>() > 3)
+          throw ToolError(fmt::format("{}: 'sw_table'[{}] must be 0..3", path, i));
+        r.sw_table[i] = v[i].get<uint8_t>();
+      }
+    } else {
+      throw ToolError(fmt::format("{}: unknown key '{}'", path, k));
+    }
+  }
+}
+
+int run(int argc, char** argv) {
+  std::string left, right, out, colour, regs_json, calib, stage = "post", objects_json;
+  sm::HwConfig hw;
+  sm::Regs r = sm::Regs::defaults(hw);
+  int gain_l = 256, gain_r = 256, offset_l = 0, offset_r = 0, occ = 24, filter_enable = 7;
+  int obj_near = 32, obj_tol = 2, obj_min_pixels = 64;
+  bool no_rect = false, verbose = false;
+  std::string sw_table;
+
+  CLI::App app{"Bit-exact reference model of the census stereo IP on one image pair"};
+  app.add_option("left", left, "left image (PNG/JPEG; reference view)")->required();
+  app.add_option("right", right, "right image")->required();
+  app.add_option("-o,--out", out, "disparity PNG (grey, 0..255 over 0..DISP-1, invalid = 0)")
+      ->required();
+  app.add_option("--colour", colour, "colour-mapped disparity PNG (default: <out>_colour.png)");
+  app.add_option("--stage", stage, "disparity written: dp (trellis output) or post (filtered)")
+      ->check(CLI::IsMember({"dp", "post"}))
+      ->capture_default_str();
+  app.add_option("--objects-json", objects_json, "write the object list as JSON");
+  app.add_option("--regs", regs_json, "JSON file of HwConfig/Regs fields (keys = field names)");
+  app.add_option("--calib", calib, "calibration JSON (model/calib_file.hpp): rectification grids");
+  auto* o_mw = app.add_option("--max-width", hw.max_width, "MAX_WIDTH (default: image width)");
+  auto* o_mh = app.add_option("--max-height", hw.max_height, "MAX_HEIGHT (default: image height)");
+  std::vector<CLI::Option*> hw_opts = {
+      app.add_option("--disp", hw.disp, "DISP: disparity levels")->capture_default_str(),
+      app.add_option("--census", hw.census, "CENSUS: census window side")->capture_default_str(),
+      app.add_option("--sw", hw.sw, "SW: support-weight window side")->capture_default_str(),
+      app.add_option("--rect-radius", hw.rect_radius, "RECT_RADIUS")->capture_default_str(),
+      app.add_option("--cost-shift", hw.cost_shift, "COST_SHIFT")->capture_default_str(),
+      app.add_option("--max-objects", hw.max_objects, "MAX_OBJECTS")->capture_default_str(),
+      app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str()};
+  auto* o_gl =
+      app.add_option("--gain-l", gain_l, "left gain, Q2.8 (256 = 1.0)")->capture_default_str();
+  auto* o_gr = app.add_option("--gain-r", gain_r, "right gain, Q2.8")->capture_default_str();
+  auto* o_ol =
+      app.add_option("--offset-l", offset_l, "left offset -256..255")->capture_default_str();
+  auto* o_or =
+      app.add_option("--offset-r", offset_r, "right offset -256..255")->capture_default_str();
+  auto* o_nr =
+      app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
+  auto* o_occ = app.add_option("--occ", occ, "DP occlusion penalty 0..255")->capture_default_str();
+  auto* o_swt =
+      app.add_option("--sw-table", sw_table,
+                     "weight codes 0..3 by |dI|>>3, comma-separated (default 3,3,2,2,1,1,1,1)");
+  auto* o_fe = app.add_option("--filter-enable", filter_enable, "post filters, bit n = filter n+1")
+                   ->capture_default_str();
+  auto* o_on =
+      app.add_option("--obj-near", obj_near, "objects: near threshold")->capture_default_str();
+  auto* o_ot =
+      app.add_option("--obj-tol", obj_tol, "objects: merge tolerance")->capture_default_str();
+  auto* o_om = app.add_option("--obj-min-pixels", obj_min_pixels, "objects: minimum size")
+                   ->capture_default_str();
+  app.add_flag("-v,--verbose", verbose, "print per-stage timing");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  sm::tools::quiet_opencv();
+  const sm::Image8 L = sm::tools::load_grey(left);
+  const sm::Image8 R = sm::tools::load_grey(right);
+  if (L.w != R.w || L.h != R.h)
+    throw ToolError(
+        fmt::format("{}: size {}x{} differs from {} ({}x{})", right, R.w, R.h, left, L.w, L.h));
+
+  // Defaults (MAX_WIDTH x MAX_HEIGHT = image size), then --regs, then explicit options.
+  const sm::HwConfig cli_hw = hw;
+  hw = sm::HwConfig{};
+  hw.max_width = L.w;
+  hw.max_height = L.h;
+  if (!regs_json.empty()) apply_regs_json(regs_json, hw, r);
+  if (o_mw->count()) hw.max_width = cli_hw.max_width;
+  if (o_mh->count()) hw.max_height = cli_hw.max_height;
+  if (hw_opts[0]->count()) hw.disp = cli_hw.disp;
+  if (hw_opts[1]->count()) hw.census = cli_hw.census;
+  if (hw_opts[2]->count()) hw.sw = cli_hw.sw;
+  if (hw_opts[3]->count()) hw.rect_radius = cli_hw.rect_radius;
+  if (hw_opts[4]->count()) hw.cost_shift = cli_hw.cost_shift;
+  if (hw_opts[5]->count()) hw.max_objects = cli_hw.max_objects;
+  if (hw_opts[6]->count()) hw.label_slots = cli_hw.label_slots;
+  try {
+    hw.validate();
+  } catch (const std::invalid_argument& e) {
+    throw ToolError(fmt::format("bad hardware configuration: {}", e.what()));
+  }
+  if (L.w > hw.max_width || L.h > hw.max_height)
+    throw ToolError(fmt::format("{}: size {}x{} above MAX_WIDTH x MAX_HEIGHT = {}x{}", left, L.w,
+                                L.h, hw.max_width, hw.max_height));
+  if (L.w < 16 || L.h < 16)
+    throw ToolError(fmt::format("{}: size {}x{} below 16x16", left, L.w, L.h));
+  r.width = L.w;
+  r.height = L.h;
+  r.grid_l = sm::RectGrid::identity(L.w, L.h);
+  r.grid_r = r.grid_l;
+  auto in_range = [](const char* name, int v, int lo, int hi) {
+    if (v < lo || v > hi) throw ToolError(fmt::format("--{} {} outside {}..{}", name, v, lo, hi));
+    return v;
+  };
+  if (o_gl->count()) r.gain_l = in_range("gain-l", gain_l, 0, 1023);
+  if (o_gr->count()) r.gain_r = in_range("gain-r", gain_r, 0, 1023);
+  if (o_ol->count()) r.offset_l = in_range("offset-l", offset_l, -256, 255);
+  if (o_or->count()) r.offset_r = in_range("offset-r", offset_r, -256, 255);
+  if (o_nr->count()) r.rect_enable = !no_rect;
+  if (o_occ->count()) r.occ = in_range("occ", occ, 0, 255);
+  if (o_fe->count()) r.filter_enable = in_range("filter-enable", filter_enable, 0, 7);
+  if (o_on->count()) r.obj_near = in_range("obj-near", obj_near, 0, 255);
+  if (o_ot->count()) r.obj_tol = in_range("obj-tol", obj_tol, 0, 255);
+  if (o_om->count()) r.obj_min_pixels = in_range("obj-min-pixels", obj_min_pixels, 0, 65535);
+  if (o_swt->count()) {
+    const auto codes = parse_sw_table(sw_table);
+    r.sw_table.fill(0);
+    std::copy(codes.begin(), codes.end(), r.sw_table.begin());
+  }
+  if (!calib.empty()) {
+    sm::CalibFile c;
+    try {
+      c = sm::load_calib(calib);
+    } catch (const std::exception& e) {
+      throw ToolError(e.what());
+    }
+    if (c.width != L.w || c.height != L.h)
+      throw ToolError(fmt::format("{}: calibration is for {}x{}, images are {}x{}", calib, c.width,
+                                  c.height, L.w, L.h));
+    r.grid_l = c.left;
+    r.grid_r = c.right;
+    if (!o_nr->count()) r.rect_enable = true;
+  }
+
+  sm::PipelineResult res;
+  try {
+    res = sm::run_pipeline(L, R, hw, r, false);
+  } catch (const std::invalid_argument& e) {
+    throw ToolError(fmt::format("bad configuration: {}", e.what()));
+  }
+  const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
+  const cv::Mat df = sm::tools::disp_to_float(d);
+  if (colour.empty()) {
+    const std::filesystem::path p(out);
+    colour = (p.parent_path() / (p.stem().string() + "_colour.png")).string();
+  }
+  sm::tools::write_image_atomic(out, sm::tools::disp_to_grey(df, hw.disp));
+  sm::tools::write_image_atomic(colour, sm::tools::disp_to_colour(df, hw.disp));
+  if (!objects_json.empty()) {
+    json j = {{"too_many_objects", res.objects.too_many_objects},
+              {"table_full", res.objects.table_full}};
+    j["objects"] = json::array();
+    for (const auto& o : res.objects.objects)
+      j["objects"].push_back({{"x0", o.x0},
+                              {"y0", o.y0},
+                              {"x1", o.x1},
+                              {"y1", o.y1},
+                              {"count", o.count},
+                              {"mean_disp", o.mean_disp},
+                              {"max_disp", o.max_disp}});
+    sm::tools::write_text_atomic(objects_json, j.dump(2) + "\n");
+  }
+  if (verbose) {
+    double total = 0;
+    fmt::print("stereo_model: {}x{} DISP {} CENSUS {} SW {}\n", L.w, L.h, hw.disp, hw.census,
+               hw.sw);
+    for (const auto& [name, ms] : res.stage_ms) {
+      fmt::print("  {:<12} {:9.1f} ms\n", name, ms);
+      total += ms;
+    }
+    fmt::print("  {:<12} {:9.1f} ms\n", "total", total);
+    long valid = 0;
+    for (auto p : d.px) valid += sm::disp_valid(p);
+    fmt::print("  {} valid pixels of {}, {} objects -> {}, {}\n", valid, d.px.size(),
+               res.objects.objects.size(), out, colour);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "stereo_model: error: {}\n", e.what());
+    return 1;
+  }
+}

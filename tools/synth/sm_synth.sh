@@ -1,0 +1,181 @@
+#!/usr/bin/env bash
+# Yosys synthesis flow of one module (a block or the top level) at one configuration:
+# elaborate with the given parameters, map with synth_xilinx for the chosen family, and
+# turn Yosys' stat and the mapped netlist into a resource / logic-depth report
+# (tools/sm_synth_report.cpp). See docs/synthesis.md.
+#
+# Usage: sm_synth.sh -t <top> -x <sm_synth_report> [options]
+#   -t MODULE     module to synthesize (rtl/<MODULE>.v)
+#   -x PATH       the sm_synth_report executable
+#   -f FAMILY     synth_xilinx family: xc7 (default), xc5v (the paper's Virtex-5), ...
+#   -c CONFIG     configuration name used in the output file name (default: default)
+#   -p NAME=VAL   parameter override; applied only when MODULE declares it, so one
+#                 configuration list serves every block (repeatable)
+#   -o DIR        output folder (default: build/synth); report: DIR/<MODULE>_<CONFIG>.json,
+#                 logs and netlists: DIR/work/<MODULE>_<CONFIG>/
+#   -L DIR        extra folder searched for submodules (repeatable; rtl/ always is)
+#   -T SECONDS    time limit of every Yosys run (default 3600; exit 124 when exceeded)
+#   -n            -nolutram: memories must map to block RAM (CI inference check)
+#   -b            fail when the result holds no block RAM
+#   -B            blocks mode: synthesize every direct submodule of MODULE on its own at
+#                 the parameters MODULE gives it, plus MODULE's own glue logic with the
+#                 submodules as black boxes, and report the sum (for configurations where
+#                 one run of the whole top level takes too long)
+#   -O "OPTS"     extra synth_xilinx options
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+rtl=$(cd "$here/../../rtl" && pwd)
+top= report= family=xc7 config=default outdir=build/synth timeout=3600
+nolutram=0 need_bram=0 blocks=0 extra_opts=
+params=() libdirs=("$rtl")
+
+die() { echo "sm_synth: $*" >&2; exit "${2:-1}"; }
+
+while getopts "t:x:f:c:p:o:L:T:nbBO:h" opt; do
+  case $opt in
+    t) top=$OPTARG ;;
+    x) report=$OPTARG ;;
+    f) family=$OPTARG ;;
+    c) config=$OPTARG ;;
+    p) params+=("$OPTARG") ;;
+    o) outdir=$OPTARG ;;
+    L) libdirs+=("$(cd "$OPTARG" && pwd)") ;;
+    T) timeout=$OPTARG ;;
+    n) nolutram=1 ;;
+    b) need_bram=1 ;;
+    B) blocks=1 ;;
+    O) extra_opts=$OPTARG ;;
+    h) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) die "bad option (use -h)" ;;
+  esac
+done
+[ -n "$top" ] || die "no module given (-t)"
+[ -n "$report" ] && [ -x "$report" ] || die "report tool not executable: '${report}' (-x)"
+top_file="$rtl/$top.v"
+[ -f "$top_file" ] || die "$top_file: no such file"
+command -v yosys >/dev/null || die "yosys not found in PATH"
+
+mkdir -p "$outdir"
+outdir=$(cd "$outdir" && pwd)
+work="$outdir/work/${top}_${config}"
+rm -rf "$work"
+mkdir -p "$work"
+out_json="$outdir/${top}_${config}.json"
+rm -f "$out_json"
+
+opts=$extra_opts
+[ "$nolutram" -eq 1 ] && opts="$opts -nolutram"
+
+# Parameters the module declares (header or body; localparams do not match).
+declared=$(grep -oE '\bparameter\b[^=;]*\b[A-Z_][A-Z0-9_]*[[:space:]]*=' "$top_file" |
+           sed -E 's/.*\b([A-Z_][A-Z0-9_]*)[[:space:]]*=$/\1/' | sort -u || true)
+chparam=
+applied=()
+for p in "${params[@]+"${params[@]}"}"; do
+  k=${p%%=*} v=${p#*=}
+  [[ "$p" == *=* && -n "$k" ]] || die "bad parameter '$p' (want NAME=VALUE)"
+  if grep -qx "$k" <<<"$declared"; then
+    chparam="$chparam -set $k $v"
+    applied+=("$p")
+  fi
+done
+[ -n "$chparam" ] && chparam="chparam$chparam $top"
+
+libargs= incdirs=
+for d in "${libdirs[@]}"; do
+  libargs="$libargs -libdir $d"
+  incdirs="${incdirs}verilog_defaults -add -I$d"$'\n'  # `include of generated headers
+done
+
+# fill <template> <output> KEY=VALUE...: replaces @KEY@ in the template.
+fill() {
+  local in=$1 outf=$2; shift 2
+  local text
+  text=$(<"$in")
+  local kv k v
+  for kv in "$@"; do
+    k=${kv%%=*} v=${kv#*=}
+    text=${text//"@$k@"/"$v"}  # quoted: no & or backslash processing (bash 5.2)
+  done
+  printf '%s\n' "$text" >"$outf"
+}
+
+# run_yosys <script> <log>: one niced, time-limited Yosys run; prints its seconds.
+run_yosys() {
+  local script=$1 log=$2 t0 t1 rc=0
+  t0=$(date +%s.%N)
+  nice -n 10 timeout "$timeout" yosys -q -l "$log" -s "$script" >/dev/null 2>"$log.err" || rc=$?
+  t1=$(date +%s.%N)
+  if [ "$rc" -eq 124 ]; then
+    echo "sm_synth: $top ($config, $family): Yosys exceeded ${timeout} s on $script" >&2
+    exit 124
+  elif [ "$rc" -ne 0 ]; then
+    echo "sm_synth: $top ($config, $family): Yosys failed (exit $rc), log $log:" >&2
+    grep -m3 -E 'ERROR' "$log" "$log.err" >&2 || tail -5 "$log.err" >&2
+    exit 1
+  fi
+  awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }'
+}
+
+# Elaborate once; every mapping run starts from the elaborated design.
+fill "$here/elab.ys.in" "$work/elab.ys" "INCDIRS=$incdirs" "TOP_FILE=$top_file" "CHPARAM=$chparam" "TOP=$top" \
+  "LIBDIRS=$libargs" "ELAB_IL=$work/elab.il" "ELAB_STAT=$work/elab_stat.json"
+t_elab=$(run_yosys "$work/elab.ys" "$work/elab.log")
+
+param_args=()
+for p in "${applied[@]+"${applied[@]}"}"; do param_args+=(--param "$p"); done
+common=(--family "$family" --config "$config" "${param_args[@]+"${param_args[@]}"}")
+
+# map <design module> <tag> <blackbox line> <instances>: one synth_xilinx run and its
+# report part.
+map() {
+  local mod=$1 tag=$2 bb=$3 inst=$4 secs
+  fill "$here/synth.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$work/elab.il" "BLACKBOX=$bb" \
+    "FAMILY=$family" "TOP=$mod" "OPTS=$opts" "STAT=$work/stat_$tag.json" \
+    "STAT_TXT=$work/stat_$tag.txt" "NETLIST=$work/net_$tag.json"
+  secs=$(run_yosys "$work/synth_$tag.ys" "$work/synth_$tag.log") || return $?
+  "$report" report --stat "$work/stat_$tag.json" --netlist "$work/net_$tag.json" \
+    --top "$mod" "${common[@]}" --seconds "$secs" --instances "$inst" \
+    --command "yosys -s $work/synth_$tag.ys  (elaborated by $work/elab.ys)" \
+    -o "$work/part_$tag.json" --quiet || return 1
+  rm -f "$work/net_$tag.json"  # large; the report keeps what matters
+}
+
+if [ "$blocks" -eq 0 ]; then
+  map "$top" all "" 1
+  cp "$work/part_all.json" "$out_json"
+else
+  # Each distinct submodule once, scaled by its instance count.
+  kids=() counts=()
+  while read -r k n; do kids+=("$k") counts+=("$n"); done \
+    < <("$report" children --stat "$work/elab_stat.json" --top "$top")
+  parts=() missing=()
+  i=0
+  for k in "${kids[@]+"${kids[@]}"}"; do
+    echo "sm_synth: block $k (x${counts[$i]})" >&2
+    if map "$k" "b$i" "" "${counts[$i]}"; then
+      parts+=("$work/part_b$i.json")
+    else  # keep going: the other blocks' numbers are still worth having
+      missing+=(--missing "${k##*\\}")
+    fi
+    i=$((i + 1))
+  done
+  bb=
+  [ "${#kids[@]}" -gt 0 ] && bb="blackbox ${kids[*]}"
+  if map "$top" glue "$bb" 1; then
+    parts+=("$work/part_glue.json")
+  else
+    missing+=(--missing "$top (own logic)")
+  fi
+  [ "${#parts[@]}" -gt 0 ] || die "no block could be synthesized"
+  "$report" combine --top "$top" "${common[@]}" -o "$out_json" --quiet \
+    "${missing[@]+"${missing[@]}"}" -- "${parts[@]}"
+  [ "${#missing[@]}" -eq 0 ] || echo "sm_synth: WARNING: incomplete sum, missing:" \
+    "$(printf '%s ' "${missing[@]}" | sed 's/--missing //g')" >&2
+fi
+
+req=()
+[ "$need_bram" -eq 1 ] && req=(--require-bram)
+"$report" show "$out_json" "${req[@]+"${req[@]}"}"
+echo "sm_synth: wrote $out_json (elaboration ${t_elab} s)"
