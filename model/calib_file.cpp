@@ -19,9 +19,7 @@ int pow2_at_least(int v) {
   return p;
 }
 
-nlohmann::json grid_json(const RectGrid& g) {
-  return nlohmann::json{{"sx", g.sx}, {"sy", g.sy}};
-}
+nlohmann::json grid_json(const RectGrid& g) { return nlohmann::json{{"sx", g.sx}, {"sy", g.sy}}; }
 
 }  // namespace
 
@@ -86,7 +84,8 @@ CalibFile load_calib(const std::string& path) {
   c.height = get_int("height", 16, 4095);
   if (get_int("grid_step", 0, 1 << 30) != kGridStep)
     fail(fmt::format("'grid_step' must be {}", kGridStep));
-  if (get_int("frac_bits", 0, 1 << 30) != kMapFrac) fail(fmt::format("'frac_bits' must be {}", kMapFrac));
+  if (get_int("frac_bits", 0, 1 << 30) != kMapFrac)
+    fail(fmt::format("'frac_bits' must be {}", kMapFrac));
   const int gw = RectGrid::points_w(c.width), gh = RectGrid::points_h(c.height);
   if (get_int("grid_w", 0, 1 << 30) != gw || get_int("grid_h", 0, 1 << 30) != gh)
     fail(fmt::format("grid size must be {}x{} for a {}x{} image", gw, gh, c.width, c.height));
@@ -100,7 +99,8 @@ CalibFile load_calib(const std::string& path) {
       const auto& a = j[cam].contains(comp) ? j[cam][comp] : nlohmann::json();
       if (!a.is_array()) fail(fmt::format("'{}.{}' missing or not an array", cam, comp));
       if (a.size() != n)
-        fail(fmt::format("'{}.{}' has {} values, expected {} ({}x{})", cam, comp, a.size(), n, gw, gh));
+        fail(fmt::format("'{}.{}' has {} values, expected {} ({}x{})", cam, comp, a.size(), n, gw,
+                         gh));
       std::vector<int16_t>& dst = comp[1] == 'x' ? g.sx : g.sy;
       dst.resize(n);
       for (size_t i = 0; i < n; ++i) {

@@ -11,10 +11,10 @@
 namespace sm {
 
 struct CalibFile {
-  int width = 0;             // active image size the grids are for
+  int width = 0;  // active image size the grids are for
   int height = 0;
   int rect_radius_needed = 0;  // line-buffer radius the rig needs (informational)
-  RectGrid left, right;      // source positions, Q.5, RectGrid::points_w/h(width/height)
+  RectGrid left, right;        // source positions, Q.5, RectGrid::points_w/h(width/height)
 };
 
 // Throws std::runtime_error naming the file and the problem.

@@ -8,8 +8,8 @@ namespace sm {
 
 CensusImage census_transform(const Image8& in, const HwConfig& hw) {
   if (hw.census < 3 || hw.census > 15 || hw.census % 2 == 0)
-    throw std::invalid_argument(fmt::format("census_transform: census {} must be odd, 3..15",
-                                            hw.census));
+    throw std::invalid_argument(
+        fmt::format("census_transform: census {} must be odd, 3..15", hw.census));
   const int r = (hw.census - 1) / 2;
   const int w = in.w, h = in.h;
   CensusImage out(w, h, CensusVec{0, 0, 0, 0});
@@ -37,8 +37,8 @@ CensusImage census_transform(const Image8& in, const HwConfig& hw) {
 
 CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw) {
   if (cl.w != cr.w || cl.h != cr.h)
-    throw std::invalid_argument(fmt::format("hamming_cost: left {}x{} and right {}x{} differ",
-                                            cl.w, cl.h, cr.w, cr.h));
+    throw std::invalid_argument(
+        fmt::format("hamming_cost: left {}x{} and right {}x{} differ", cl.w, cl.h, cr.w, cr.h));
   if (hw.disp < 1 || hw.disp > 256)
     throw std::invalid_argument(fmt::format("hamming_cost: disp {} outside 1..256", hw.disp));
   const int nd = hw.disp;

@@ -43,9 +43,15 @@ DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int
   return out;
 }
 
-DispImage post_vmedian(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 2, 0); }
-DispImage post_median3(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 1, 1); }
-DispImage post_median53(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 2, 1); }
+DispImage post_vmedian(const DispImage& in, const HwConfig& hw) {
+  return post_median(in, hw, 2, 0);
+}
+DispImage post_median3(const DispImage& in, const HwConfig& hw) {
+  return post_median(in, hw, 1, 1);
+}
+DispImage post_median53(const DispImage& in, const HwConfig& hw) {
+  return post_median(in, hw, 2, 1);
+}
 
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,
                        std::vector<DispImage>* steps) {
@@ -102,10 +108,13 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
       bool near = disp_valid(p) && d >= regs.obj_near;
       int lab = 0;
       if (near) {
-        const bool uok = y > 0 && up_near[x] &&
-                         static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(up_d[x]))) <= regs.obj_tol;
+        const bool uok =
+            y > 0 && up_near[x] &&
+            static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(up_d[x]))) <=
+                regs.obj_tol;
         const bool lok = x > 0 && l_near &&
-                         static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(l_d))) <= regs.obj_tol;
+                         static_cast<unsigned>(
+                             std::abs(static_cast<int>(d) - static_cast<int>(l_d))) <= regs.obj_tol;
         const int ur = parent[up_lab[x]];
         const int lr = l_lab;
         if (uok && lok && ur != lr) {

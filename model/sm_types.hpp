@@ -70,7 +70,7 @@ struct HwConfig {
   int disp = 128;         // DISP: disparity levels 0..DISP-1
   int census = 15;        // CENSUS: census window side (odd, 3..15)
   int sw = 5;             // SW: support-weight window side (odd, 3..7)
-  int rect_radius = 15;   // RECT_RADIUS: rows above/below the output row the
+  int rect_radius = 18;   // RECT_RADIUS: rows above/below the output row the
                           // rectifier can read (line buffer holds 2R+2 rows)
   int cost_shift = 2;     // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
   int max_objects = 8;    // MAX_OBJECTS (K): objects reported per frame
@@ -106,7 +106,7 @@ struct Regs {
   bool rect_enable = true;   // false: the rectifier passes pixels through
   RectGrid grid_l;           // empty = identity for the active size
   RectGrid grid_r;
-  uint8_t occ = 24;          // DP occlusion penalty (8 bits)
+  uint8_t occ = 12;          // DP occlusion penalty (8 bits); 12 by measurement (docs/evaluation.md)
   std::array<uint8_t, 32> sw_table{};  // 2-bit weight codes by |dI| >> 3 (set by defaults())
   uint8_t filter_enable = 7; // bit n enables post-processing filter n+1
   uint8_t obj_near = 32;     // objects: disparity >= obj_near is "near"

@@ -76,15 +76,25 @@ module sm_axil_regs #(
   localparam YW = $clog2(MAX_HEIGHT + 1);
   // Port widths are written from parameters directly: Yosys 0.23 cannot evaluate
   // $clog2 of a parameter-derived localparam in a forward-referenced port width.
-  localparam GRID_POINTS = ((MAX_WIDTH + 15) / 16 + 1) * ((MAX_HEIGHT + 15) / 16 + 1);
-  localparam PB = $clog2(((MAX_WIDTH + 15) / 16 + 1) * ((MAX_HEIGHT + 15) / 16 + 1));
-  localparam GAW = $clog2(((MAX_WIDTH + 15) / 16 + 1) * ((MAX_HEIGHT + 15) / 16 + 1)) + 2;
+  // Grid point = {gy, gx} with a power-of-two row of points, the rectifier's grid
+  // address (sm_rectify): no multiplier between the host and the grid memory.
+  localparam GW_PTS = (MAX_WIDTH + 15) / 16 + 1;   // points per grid row
+  localparam GH_PTS = (MAX_HEIGHT + 15) / 16 + 1;  // grid rows
+  localparam GXB0 = $clog2(GW_PTS);
+  localparam GYB0 = $clog2(GH_PTS);
+  localparam GXB = (GXB0 < 2) ? 2 : GXB0;
+  localparam GYB = (GYB0 < 2) ? 2 : GYB0;
+  localparam PB = GXB + GYB;
+  localparam GRID_POINTS = (1 << PB);
+  localparam GAW = (($clog2((MAX_WIDTH + 15) / 16 + 1) < 2) ? 2 : $clog2((MAX_WIDTH + 15) / 16 + 1)) +
+                   (($clog2((MAX_HEIGHT + 15) / 16 + 1) < 2) ? 2 : $clog2((MAX_HEIGHT + 15) / 16 + 1)) + 2;
   localparam OBJ_IDX_END = SM_OBJ_FIRST_IDX + SM_OBJ_WORDS * MAX_OBJECTS;  // first unused
   localparam OIW = $clog2(SM_OBJ_FIRST_IDX + SM_OBJ_WORDS * MAX_OBJECTS);
   localparam OWW = $clog2(SM_OBJ_SIZE / 4);  // word index bits of the object window
   localparam GWW = SM_GRID_POINT_BITS + 2;   // word index bits of the grid window
   localparam [1:0] OKAY = 2'b00, SLVERR = 2'b10;
-  localparam [SM_GRID_POINT_BITS:0] GP_END = GRID_POINTS[SM_GRID_POINT_BITS:0];
+  localparam [GXB-1:0] GX_END = GW_PTS[GXB-1:0];
+  localparam [GYB:0]   GY_END = GH_PTS[GYB:0];
   localparam [OWW:0] OBJ_FIRST = SM_OBJ_FIRST_IDX[OWW:0];
   localparam [OWW:0] OBJ_END   = OBJ_IDX_END[OWW:0];
 
@@ -250,7 +260,11 @@ module sm_axil_regs #(
   wire              in_grid = (aw_a_q >= SM_GRID_BASE);
   wire [GWW-1:0]    g_word  = aw_a_q[GWW+1:2];
   wire [SM_GRID_POINT_BITS-1:0] g_point = g_word[SM_GRID_POINT_BITS-1:0];
-  wire              grid_ok = in_grid && ({1'b0, g_point} < GP_END) && (w_s_q == 4'hf);
+  wire [GXB-1:0]    g_x     = g_point[GXB-1:0];
+  wire [GYB-1:0]    g_y     = g_point[PB-1:GXB];
+  wire              g_in    = (g_x < GX_END) && ({1'b0, g_y} < GY_END) &&
+                              (g_point >> PB) == {SM_GRID_POINT_BITS{1'b0}};
+  wire              grid_ok = in_grid && g_in && (w_s_q == 4'hf);
   wire              wr_ok   = grid_ok || (!in_grid && is_writable(aw_a_q));
   wire              wr_reg  = do_write && !in_grid && is_writable(aw_a_q);
 

@@ -41,15 +41,17 @@ module sm_cost #(
   endgenerate
   wire unused_width = &width;
 
-  // Right vectors of the DISP-1 previous beats: crd_q[d-1] is beat n - d.
-  reg [CB-1:0] crd_q [0:DISP-2];
-  integer k;
-  always @(posedge clk) begin
-    if (ce) begin
-      crd_q[0] <= s_cr;
-      for (k = 1; k < DISP - 1; k = k + 1) crd_q[k] <= crd_q[k-1];
+  // Right vectors of the DISP-1 previous beats: crd_q[(d-1)*CB +: CB] is beat n - d.
+  // Packed, so the shift is one wide assignment (Verilator cannot loop over an array
+  // with delayed assignments at this size).
+  reg [(DISP-1)*CB-1:0] crd_q;
+  generate
+    if (DISP == 2) begin : g_dl1
+      always @(posedge clk) if (ce) crd_q <= s_cr;
+    end else begin : g_dl
+      always @(posedge clk) if (ce) crd_q <= {crd_q[(DISP-2)*CB-1:0], s_cr};
     end
-  end
+  endgenerate
 
   // ok[d] = (x >= d) for the entering beat: all ones shifted in since the row start.
   reg  [DISP-1:0] ok_q;
@@ -61,7 +63,7 @@ module sm_cost #(
   genvar d;
   generate
     for (d = 0; d < DISP; d = d + 1) begin : g_lvl
-      wire [CB-1:0] crx = (d == 0) ? s_cr : crd_q[(d == 0) ? 0 : d - 1];
+      wire [CB-1:0] crx = (d == 0) ? s_cr : crd_q[((d == 0) ? 0 : d - 1)*CB +: CB];
       sm_popcount #(.N(CB)) u_pc (.clk(clk), .ce(ce), .a(s_cl), .b(crx), .cnt(pc[d]));
     end
   endgenerate

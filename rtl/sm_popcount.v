@@ -21,11 +21,13 @@ module sm_popcount #(
     input  wire [N-1:0]  b,
     output wire [OW-1:0] cnt  // popcount(a ^ b), 2 ce after a and b
 );
-  localparam OW = $clog2(N + 1);
-  localparam NG = (N + 2) / 3;  // leaf groups of three pairs
-  localparam NP = 3 * NG;       // padded input width
-  localparam HB = 32;           // bits per column height in the packed shape vectors
-  localparam NC = 24;           // heap columns tracked (carries above OW are always 0)
+  localparam OW  = $clog2(N + 1);
+  localparam NG  = (N + 2) / 3;  // leaf groups of three pairs
+  localparam NP  = 3 * NG;       // padded input width
+  localparam HB  = 32;           // bits per number in the packed shape tables
+  localparam NC  = OW;           // heap columns: a bit of weight 2^OW is always 0
+  localparam NCP = NC + 2;       // columns in the tables; the top two stay empty
+  localparam MS  = 16;           // stages in the tables (N = 1023 needs 6)
 
   generate
     if (N < 1 || N > 1023) begin : g_bad_n
@@ -33,12 +35,13 @@ module sm_popcount #(
     end
   endgenerate
 
-  // ---- heap shape: packed column heights, HB bits per column ---------------------
-  function [NC*HB-1:0] shape_next(input [NC*HB-1:0] h);
+  // ---- heap shape ----------------------------------------------------------------
+  // Column heights after one more stage; outputs of weight 2^NC and up are dropped.
+  function [NCP*HB-1:0] shape_next(input [NCP*HB-1:0] h);
     integer c, hc, g, r, nch, nch2;
-    reg [NC*HB-1:0] n;
+    reg [NCP*HB-1:0] n;
     begin
-      n = {NC * HB{1'b0}};
+      n = {NCP * HB{1'b0}};
       for (c = 0; c < NC; c = c + 1) begin
         hc   = h[c*HB +: HB];
         g    = hc / 6;
@@ -54,66 +57,69 @@ module sm_popcount #(
     end
   endfunction
 
-  function [NC*HB-1:0] shape_at(input integer s);
+  // Heights of every stage: stage s, column c at [(s*NCP + c)*HB +: HB].
+  function [MS*NCP*HB-1:0] all_shapes(input integer dummy);
     integer k;
-    reg [NC*HB-1:0] h;
+    reg [NCP*HB-1:0] h;
+    reg [MS*NCP*HB-1:0] t;
     begin
-      h = {NC * HB{1'b0}};
-      h[0 +: HB]  = NG;  // leaf bit 0 of every group
-      h[HB +: HB] = NG;  // leaf bit 1
-      for (k = 0; k < s; k = k + 1) h = shape_next(h);
-      shape_at = h;
+      h = {NCP * HB{1'b0}};
+      h[0 +: HB] = NG + dummy;  // leaf bit 0 of every group
+      if (NC > 1) h[HB +: HB] = NG;  // leaf bit 1
+      for (k = 0; k < MS; k = k + 1) begin
+        t[k*NCP*HB +: NCP*HB] = h;
+        h = shape_next(h);
+      end
+      all_shapes = t;
     end
   endfunction
+  localparam [MS*NCP*HB-1:0] SHAPE = all_shapes(0);
 
-  function integer max_height(input [NC*HB-1:0] h);
-    integer c, m;
+  // Flat index of the first bit of each column, same layout.
+  function [MS*NCP*HB-1:0] all_offsets(input [MS*NCP*HB-1:0] sh);
+    integer k, c, o;
+    reg [MS*NCP*HB-1:0] t;
     begin
-      m = 0;
-      for (c = 0; c < NC; c = c + 1) if (h[c*HB +: HB] > m) m = h[c*HB +: HB];
-      max_height = m;
-    end
-  endfunction
-
-  function integer num_stages(input integer dummy);
-    integer k, s;
-    reg [NC*HB-1:0] h;
-    begin
-      h = shape_at(0);
-      s = dummy;
-      for (k = 0; k < 32; k = k + 1)
-        if (max_height(h) > 2) begin
-          h = shape_next(h);
-          s = s + 1;
+      for (k = 0; k < MS; k = k + 1) begin
+        o = 0;
+        for (c = 0; c < NCP; c = c + 1) begin
+          t[(k*NCP + c)*HB +: HB] = o;
+          o = o + sh[(k*NCP + c)*HB +: HB];
         end
+      end
+      all_offsets = t;
+    end
+  endfunction
+  localparam [MS*NCP*HB-1:0] OFFS = all_offsets(SHAPE);
+
+  // Stages until no column holds more than two bits.
+  function integer num_stages(input [MS*NCP*HB-1:0] sh);
+    integer k, c, s;
+    reg done;
+    begin
+      s = MS - 1;
+      for (k = MS - 1; k >= 0; k = k - 1) begin
+        done = 1'b1;
+        for (c = 0; c < NCP; c = c + 1) if (sh[(k*NCP + c)*HB +: HB] > 2) done = 1'b0;
+        if (done) s = k;
+      end
       num_stages = s;
     end
   endfunction
+  localparam NS = num_stages(SHAPE);
 
-  function integer height(input integer s, input integer c);
-    reg [NC*HB-1:0] h;
-    begin
-      h = shape_at(s);
-      height = (c >= 0 && c < NC) ? h[c*HB +: HB] : 0;
-    end
-  endfunction
-
-  // flat index of the first bit of column c at stage s
-  function integer offset(input integer s, input integer c);
-    integer k, o;
-    begin
-      o = 0;
-      for (k = 0; k < c; k = k + 1) o = o + height(s, k);
-      offset = o;
-    end
-  endfunction
-
+  // 6:3 counter as plain logic: an arithmetic "+" here would become carry chains.
   function [2:0] count6(input [5:0] v);
-    count6 = {2'b0, v[0]} + {2'b0, v[1]} + {2'b0, v[2]} + {2'b0, v[3]} + {2'b0, v[4]}
-           + {2'b0, v[5]};
+    reg s1, c1, s2, c2, k;
+    begin
+      s1 = v[0] ^ v[1] ^ v[2];
+      c1 = (v[0] & v[1]) | (v[0] & v[2]) | (v[1] & v[2]);
+      s2 = v[3] ^ v[4] ^ v[5];
+      c2 = (v[3] & v[4]) | (v[3] & v[5]) | (v[4] & v[5]);
+      k  = s1 & s2;
+      count6 = {(c1 & c2) | (c1 & k) | (c2 & k), c1 ^ c2 ^ k, s1 ^ s2};
+    end
   endfunction
-
-  localparam NS = num_stages(0);
 
   // ---- leaves: registered 2-bit counts of three XOR'ed pairs ----------------------
   // Padding bits are equal in a and b, so they XOR to 0.
@@ -134,29 +140,39 @@ module sm_popcount #(
   genvar s, c, t;
   generate
     for (s = 0; s <= NS; s = s + 1) begin : g_st
-      localparam TOT = offset(s, NC);
+      localparam TOT = OFFS[(s*NCP + NC)*HB +: HB];
       wire [TOT-1:0] v;  // the heap after s stages, column by column
       if (s == 0) begin : g_leaf
-        assign v = {leaf1_q, leaf0_q};
+        if (NC > 1) begin : g_two
+          assign v = {leaf1_q, leaf0_q};
+        end else begin : g_one
+          assign v = leaf0_q;  // N = 1: bit 1 is always 0
+          wire unused_leaf1 = |leaf1_q;
+        end
       end else begin : g_cmp
         for (c = 0; c < NC; c = c + 1) begin : g_col
-          localparam HC   = height(s - 1, c);
-          localparam G    = HC / 6;
-          localparam RM   = HC % 6;
+          localparam P  = s - 1;  // the stage this one compresses
+          localparam HC = SHAPE[(P*NCP + c)*HB +: HB];
+          localparam H1 = SHAPE[(P*NCP + c + 1)*HB +: HB];
+          localparam H2 = SHAPE[(P*NCP + c + 2)*HB +: HB];
+          localparam G  = HC / 6;
+          localparam RM = HC % 6;
           localparam NCH  = G + ((RM >= 3) ? 1 : 0);
-          localparam IN0  = offset(s - 1, c);
-          // where this column's outputs land in the next heap
-          localparam PASS0 = (height(s - 1, c) % 6 <= 2) ? height(s - 1, c) % 6 : 0;
-          localparam PASS1 = (height(s - 1, c + 1) % 6 <= 2) ? height(s - 1, c + 1) % 6 : 0;
-          localparam PASS2 = (height(s - 1, c + 2) % 6 <= 2) ? height(s - 1, c + 2) % 6 : 0;
-          localparam NCH1  = height(s - 1, c + 1) / 6 + ((height(s - 1, c + 1) % 6 >= 3) ? 1 : 0);
-          localparam NCH2  = height(s - 1, c + 2) / 6 + ((height(s - 1, c + 2) % 6 >= 3) ? 1 : 0);
-          localparam O0 = offset(s, c) + PASS0;                 // weight-1 outputs
-          localparam O1 = offset(s, c + 1) + PASS1 + NCH1;      // weight-2 outputs
-          localparam O2 = offset(s, c + 2) + PASS2 + NCH2 + NCH1;  // weight-4 outputs
+          localparam NCH1 = H1 / 6 + ((H1 % 6 >= 3) ? 1 : 0);
+          localparam NCH2 = H2 / 6 + ((H2 % 6 >= 3) ? 1 : 0);
+          localparam PS0  = (HC % 6 <= 2) ? HC % 6 : 0;  // bits passed through
+          localparam PS1  = (H1 % 6 <= 2) ? H1 % 6 : 0;
+          localparam PS2  = (H2 % 6 <= 2) ? H2 % 6 : 0;
+          localparam IN0  = OFFS[(P*NCP + c)*HB +: HB];
+          // where this column's outputs land in the next heap: in each column the
+          // passed bits come first, then weight-1, -2, -4 outputs of columns c, c-1, c-2
+          localparam Z0 = OFFS[(s*NCP + c)*HB +: HB];
+          localparam O0 = Z0 + PS0;
+          localparam O1 = OFFS[(s*NCP + c + 1)*HB +: HB] + PS1 + NCH1;
+          localparam O2 = OFFS[(s*NCP + c + 2)*HB +: HB] + PS2 + NCH2 + NCH1;
           if (RM <= 2) begin : g_pass
             for (t = 0; t < RM; t = t + 1) begin : g_p
-              assign v[offset(s, c) + t] = g_st[s-1].v[IN0 + 6 * G + t];
+              assign v[Z0 + t] = g_st[s-1].v[IN0 + 6 * G + t];
             end
           end
           for (t = 0; t < NCH; t = t + 1) begin : g_grp
@@ -171,11 +187,13 @@ module sm_popcount #(
             assign v[O0 + t] = cnt3[0];
             if (c + 1 < NC) begin : g_w2
               assign v[O1 + t] = cnt3[1];
+            end else begin : g_no_w2
+              wire unused_w2 = cnt3[1];  // weight 2^NC: always 0
             end
             if (K >= 4 && c + 2 < NC) begin : g_w4
               assign v[O2 + t] = cnt3[2];
             end else begin : g_no_w4
-              wire unused_w4 = cnt3[2];  // 3 inputs never reach 4
+              wire unused_w4 = cnt3[2];  // 3 inputs never reach 4, or weight >= 2^NC
             end
           end
         end
@@ -188,8 +206,8 @@ module sm_popcount #(
   genvar f;
   generate
     for (f = 0; f < NC; f = f + 1) begin : g_fin
-      localparam HF = height(NS, f);
-      localparam OF = offset(NS, f);
+      localparam HF = SHAPE[(NS*NCP + f)*HB +: HB];
+      localparam OF = OFFS[(NS*NCP + f)*HB +: HB];
       if (HF >= 1) begin : g_a
         assign row_a[f] = g_st[NS].v[OF];
       end else begin : g_a0
@@ -202,12 +220,11 @@ module sm_popcount #(
       end
     end
   endgenerate
-  wire [NC-1:0] sum = row_a + row_b;
-  wire unused_sum_top = |sum[NC-1:OW];  // the count fits OW bits
+  wire [NC-1:0] sum = row_a + row_b;  // modulo 2^OW: the count fits
 
   reg [OW-1:0] cnt_q;
   always @(posedge clk) begin
-    if (ce) cnt_q <= sum[OW-1:0];
+    if (ce) cnt_q <= sum;
   end
   assign cnt = cnt_q;
 endmodule

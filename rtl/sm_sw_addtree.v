@@ -1,9 +1,7 @@
 `default_nettype none
 // Balanced adder tree for the support-weight aggregation: the sum of N unsigned terms
 // in clog2(N) adder levels, so the wide per-level reductions keep a short logic depth
-// (a chained sum would be N-1 adders deep). Built by recursion on halves, which keeps
-// every level a separate signal (no self-feeding vector for the simulator to untangle).
-// Purely combinational; the caller registers.
+// (a chained sum would be N-1 adders deep). Purely combinational; the caller registers.
 module sm_sw_addtree #(
     parameter N  = 5,  // number of terms
     parameter IW = 8,  // width of one term
@@ -12,8 +10,8 @@ module sm_sw_addtree #(
     input  wire [N*IW-1:0] terms,  // term i at [i*IW +: IW]
     output wire [OW-1:0]   sum
 );
-  localparam NA = (N + 1) / 2;  // terms of the lower half
-  localparam NB = N / 2;        // terms of the upper half
+  // Leaves padded to a power of two with zeros (the zero adders are optimised away).
+  localparam P = (N <= 1) ? 1 : (1 << $clog2(N));
 
   generate
     if (N < 1) begin : g_bad_n
@@ -22,19 +20,29 @@ module sm_sw_addtree #(
     if (OW < IW) begin : g_bad_ow
       initial $error("sm_sw_addtree: OW (%0d) must not be below IW (%0d)", OW, IW);
     end
+  endgenerate
 
-    if (N == 1) begin : g_leaf
-      if (OW > IW) begin : g_ext
-        assign sum = {{(OW - IW) {1'b0}}, terms};
+  // Heap order: node i is node 2i + node 2i+1, the root is node 1, leaves are P..2P-1.
+  // One vector holds every level; split_var lets Verilator see the levels as separate
+  // signals instead of one that feeds itself.
+  wire [2*P*OW-1:OW] node  /*verilator split_var*/;
+
+  genvar i;
+  generate
+    for (i = 0; i < P; i = i + 1) begin : g_leaf
+      if (i >= N) begin : g_pad
+        assign node[(P+i)*OW +: OW] = {OW{1'b0}};
+      end else if (OW > IW) begin : g_ext
+        assign node[(P+i)*OW +: OW] = {{(OW - IW) {1'b0}}, terms[i*IW +: IW]};
       end else begin : g_same
-        assign sum = terms;
+        assign node[(P+i)*OW +: OW] = terms[i*IW +: IW];
       end
-    end else begin : g_split
-      wire [OW-1:0] sum_a, sum_b;
-      sm_sw_addtree #(.N(NA), .IW(IW), .OW(OW)) u_a (.terms(terms[NA*IW-1:0]), .sum(sum_a));
-      sm_sw_addtree #(.N(NB), .IW(IW), .OW(OW)) u_b (.terms(terms[N*IW-1:NA*IW]), .sum(sum_b));
-      assign sum = sum_a + sum_b;
+    end
+    for (i = 1; i < P; i = i + 1) begin : g_node
+      assign node[i*OW +: OW] = node[2*i*OW +: OW] + node[(2*i+1)*OW +: OW];
     end
   endgenerate
+
+  assign sum = node[OW +: OW];
 endmodule
 `default_nettype wire

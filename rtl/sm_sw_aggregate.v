@@ -135,11 +135,13 @@ module sm_sw_aggregate #(
   endgenerate
 
   reg [SW*COLW-1:0] cwin_q;  // costs of the window, column c at [c*COLW +: COLW]
-  reg [NQ*8-1:0]    pwin_q;  // left pixels, column c at [c*SW*8 +: SW*8]
+  // Left pixels of columns 0..SW-2 only: the oldest column is needed just once, for the
+  // weights computed while the window forms.
+  reg [(SW-1)*SW*8-1:0] pwin_q;  // column c at [c*SW*8 +: SW*8]
 
   // The weights are needed together with the window's costs, so they are computed from
   // the window as it forms on this ce: the entering column plus columns 0..SW-2.
-  wire [NQ*8-1:0] pform = {pwin_q[(SW-1)*SW*8-1:0], col_pix};
+  wire [NQ*8-1:0] pform = {pwin_q, col_pix};
   wire [7:0]      centre = pform[(R*SW + R)*8 +: 8];
   wire [NQ*2-1:0] code;  // code of row k, column c at [(k*SW + c)*2 +: 2]
   generate
@@ -161,12 +163,10 @@ module sm_sw_aggregate #(
   always @(posedge clk) begin
     if (ce) begin
       cwin_q <= {cwin_q[(SW-1)*COLW-1:0], col_cost};
-      pwin_q <= pform;
+      pwin_q <= pform[(SW-1)*SW*8-1:0];
       code_q <= code;
     end
   end
-  // The oldest pixel column is dropped by the shift above.
-  wire [SW*8-1:0] unused_pix_old = pwin_q[(SW-1)*SW*8 +: SW*8];
 
   // ---------------------------------------------------------------- ce 2: row sums
   // A weight 1 << (code-1) times a cost is a multiplexer of shifted copies.

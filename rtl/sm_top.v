@@ -14,7 +14,7 @@ module sm_top #(
     parameter DISP        = 128,  // disparity levels 0..DISP-1
     parameter CENSUS      = 15,   // census window side
     parameter SW          = 5,    // support-weight window side
-    parameter RECT_RADIUS = 15,   // rows above/below an output row the rectifier reads
+    parameter RECT_RADIUS = 18,   // rows above/below an output row the rectifier reads (the reference rig needs 18)
     parameter COST_SHIFT  = 2,    // raw Hamming cost >> COST_SHIFT before aggregation
     parameter MAX_OBJECTS = 8,    // objects reported per frame
     parameter LABEL_SLOTS = 64    // equivalence-table entries of the object labeller
@@ -39,7 +39,7 @@ module sm_top #(
     output wire        m_axis_obj_tvalid,
     input  wire        m_axis_obj_tready,
     // host interface
-    input  wire [11:0] s_axil_awaddr,
+    input  wire [15:0] s_axil_awaddr,
     input  wire        s_axil_awvalid,
     output wire        s_axil_awready,
     input  wire [31:0] s_axil_wdata,
@@ -49,7 +49,7 @@ module sm_top #(
     output wire [1:0]  s_axil_bresp,
     output wire        s_axil_bvalid,
     input  wire        s_axil_bready,
-    input  wire [11:0] s_axil_araddr,
+    input  wire [15:0] s_axil_araddr,
     input  wire        s_axil_arvalid,
     output wire        s_axil_arready,
     output wire [31:0] s_axil_rdata,
@@ -62,15 +62,26 @@ module sm_top #(
   localparam CB = CENSUS * CENSUS - 1;
   localparam HW = $clog2(CB + 1);
   localparam CW = $clog2((CB >> COST_SHIFT) + 1);
-  // Virtual rows that push a frame's tail out: the vertical reach of every stage plus
-  // one row for the horizontal delays (all shorter than a line).
-  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + 2 + 1 + 2;
+  // Register-file port widths (rtl/regmap.json): grid point = {gy, gx} with a
+  // power-of-two row of points, object list word index.
+  localparam GXB0 = $clog2((MAX_WIDTH + 15) / 16 + 1);
+  localparam GYB0 = $clog2((MAX_HEIGHT + 15) / 16 + 1);
+  localparam GXB  = (GXB0 < 2) ? 2 : GXB0;
+  localparam GYB  = (GYB0 < 2) ? 2 : GYB0;
+  localparam GAW  = 2 + GYB + GXB;
+  localparam OIW  = $clog2(4 + 4 * MAX_OBJECTS);
+  // Virtual rows that push a frame's tail out: the row delays of every stage
+  // (rectify R+1, census, aggregation, DP 2, filters 2+1+2) plus their column delays
+  // (DP skew DISP/2 and the stage pipelines, < DISP/2 + 64 beats) counted in rows of the
+  // narrowest line (16). Extra virtual rows only cost idle time.
+  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + 5 +
+                          (DISP / 2 + 64 + 15) / 16 + 1;
 
   wire rst_n = aresetn;
 
   // ---------------------------------------------------------------- registers
-  wire [XW-1:0] cfg_width;
-  wire [YW-1:0] cfg_height;
+  wire [XW-1:0] cfg_width, host_width;
+  wire [YW-1:0] cfg_height, host_height;
   wire [9:0]    cfg_gain_l, cfg_gain_r;
   wire [8:0]    cfg_offset_l, cfg_offset_r;
   wire          cfg_rect_enable, cfg_grid_bank;
@@ -81,15 +92,13 @@ module sm_top #(
   wire [15:0]   cfg_obj_min_pixels;
   wire          grid_we;
   wire [31:0]   grid_wdata;
-  wire [15:0]   grid_waddr;  // {camera, bank, point}
+  wire [GAW-1:0] grid_waddr;  // {camera, bank, point}
   wire          frame_start;
-  wire [7:0]    err_pulse;
-  wire          list_ready;
-  wire [7:0]    obj_rd_idx;
-  wire [31:0]   obj_rd_data;
-  wire [2:0]    obj_rd_word;
-  wire [7:0]    obj_count;
-  wire [1:0]    obj_flags;
+  wire [5:0]    seq_err;
+  wire          out_overflow;
+  wire          core_enable, soft_reset;
+  wire [OIW-1:0] obj_rd_idx;
+  reg  [31:0]   obj_rd_data_q;
 
   sm_axil_regs #(
       .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS)
@@ -101,16 +110,22 @@ module sm_top #(
       .s_axil_bready(s_axil_bready), .s_axil_araddr(s_axil_araddr), .s_axil_arvalid(s_axil_arvalid),
       .s_axil_arready(s_axil_arready), .s_axil_rdata(s_axil_rdata), .s_axil_rresp(s_axil_rresp),
       .s_axil_rvalid(s_axil_rvalid), .s_axil_rready(s_axil_rready),
-      .frame_start(frame_start), .err_pulse(err_pulse),
+      .frame_start(frame_start), .err_pulse({out_overflow, seq_err}),
+      .enable(core_enable), .soft_reset(soft_reset), .host_width(host_width), .host_height(host_height),
       .cfg_width(cfg_width), .cfg_height(cfg_height), .cfg_gain_l(cfg_gain_l), .cfg_gain_r(cfg_gain_r),
       .cfg_offset_l(cfg_offset_l), .cfg_offset_r(cfg_offset_r), .cfg_rect_enable(cfg_rect_enable),
       .cfg_grid_bank(cfg_grid_bank), .cfg_occ(cfg_occ), .cfg_sw_table(cfg_sw_table),
       .cfg_filter_enable(cfg_filter_enable), .cfg_obj_near(cfg_obj_near), .cfg_obj_tol(cfg_obj_tol),
       .cfg_obj_min_pixels(cfg_obj_min_pixels),
-      .grid_we(grid_we), .grid_waddr(grid_waddr), .grid_wdata(grid_wdata),
-      .list_ready(list_ready), .obj_count(obj_count), .obj_flags(obj_flags),
-      .obj_rd_idx(obj_rd_idx), .obj_rd_word(obj_rd_word), .obj_rd_data(obj_rd_data)
+      .obj_rd_idx(obj_rd_idx), .obj_rd_data(obj_rd_data_q),
+      .grid_we(grid_we), .grid_waddr(grid_waddr), .grid_wdata(grid_wdata)
   );
+
+  // The pipeline restarts on aresetn and on the CONTROL soft-reset pulse; registers keep
+  // their values over a soft reset.
+  reg rst_n_q;
+  always @(posedge aclk) rst_n_q <= aresetn && !soft_reset;
+  wire rst_n = rst_n_q;
 
   // ---------------------------------------------------------------- input sequencer
   wire       beat_valid;
@@ -121,13 +136,15 @@ module sm_top #(
 
   sm_seq #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .FLUSH_ROWS(FLUSH_ROWS)) u_seq (
       .clk(aclk), .rst_n(rst_n),
-      .width(cfg_width), .height(cfg_height), .frame_start(frame_start), .err_pulse(err_pulse),
       .s_axis_tdata(s_axis_tdata), .s_axis_tuser(s_axis_tuser), .s_axis_tlast(s_axis_tlast),
       .s_axis_tvalid(s_axis_tvalid), .s_axis_tready(s_axis_tready),
+      .enable(core_enable), .host_width(host_width), .host_height(host_height),
+      .frame_start(frame_start), .ce(ce),
       .beat_valid(beat_valid), .beat_side(beat_side), .beat_left(beat_left), .beat_right(beat_right),
-      .ce(ce)
+      .err_pulse(seq_err)
   );
-  // The width the stages use is the one the sequencer framed the rows with.
+  // Shadow values change only at the sequencer's frame start, after the previous frame
+  // at a different width has been flushed.
   wire [XW-1:0] width = cfg_width;
 
   // ---------------------------------------------------------------- pre-processing
@@ -142,16 +159,16 @@ module sm_top #(
 
   wire [4:0] rl_side, rr_side;
   wire [7:0] rl_pix, rr_pix;
-  wire [14:0] grid_addr_cam = grid_waddr[14:0];
+  wire [GAW-2:0] grid_addr_cam = grid_waddr[GAW-2:0];  // {bank, gy, gx}
   sm_rectify #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .RECT_RADIUS(RECT_RADIUS)) u_rect_l (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_rect_enable),
-      .grid_bank(cfg_grid_bank), .grid_we(grid_we && !grid_waddr[15]),
+      .grid_bank(cfg_grid_bank), .grid_we(grid_we && !grid_waddr[GAW-1]),
       .grid_waddr(grid_addr_cam), .grid_wdata(grid_wdata),
       .s_side(br_side), .s_pix(br_left), .m_side(rl_side), .m_pix(rl_pix)
   );
   sm_rectify #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .RECT_RADIUS(RECT_RADIUS)) u_rect_r (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_rect_enable),
-      .grid_bank(cfg_grid_bank), .grid_we(grid_we && grid_waddr[15]),
+      .grid_bank(cfg_grid_bank), .grid_we(grid_we && grid_waddr[GAW-1]),
       .grid_waddr(grid_addr_cam), .grid_wdata(grid_wdata),
       .s_side(br_side), .s_pix(br_right), .m_side(rr_side), .m_pix(rr_pix)
   );
@@ -204,11 +221,21 @@ module sm_top #(
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[1]),
       .s_side(f1_side), .s_disp(f1_disp), .m_side(f2_side), .m_disp(f2_disp)
   );
-  sm_post_hmed #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post3 (
+  sm_post_med53 #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post3 (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[2]),
       .s_side(f2_side), .s_disp(f2_disp), .m_side(f3_side), .m_disp(f3_disp)
   );
 
+  // Object list: the register file reads word (idx) of the list window -- header at 0,
+  // object i at 4 + 4i .. 7 + 4i (rtl/regmap.json) -- two clocks after it sets idx.
+  localparam IW = (MAX_OBJECTS > 1) ? $clog2(MAX_OBJECTS) : 1;
+  wire        list_ready, too_many, table_full, pkt_lost;
+  wire [7:0]  obj_count;
+  wire [15:0] rd_x0, rd_y0, rd_x1, rd_y1;
+  wire [31:0] rd_count, rd_sum;
+  wire [7:0]  rd_mean, rd_max;
+  wire [OIW-1:0] obj_word_idx = obj_rd_idx - 4;
+  reg         list_valid_q;
   sm_objects #(
       .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS),
       .LABEL_SLOTS(LABEL_SLOTS)
@@ -216,16 +243,32 @@ module sm_top #(
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .height(cfg_height),
       .near_thr(cfg_obj_near), .tol(cfg_obj_tol), .min_pixels(cfg_obj_min_pixels),
       .s_side(f3_side), .s_disp(f3_disp),
-      .list_ready(list_ready), .obj_count(obj_count), .obj_flags(obj_flags),
-      .rd_idx(obj_rd_idx), .rd_word(obj_rd_word), .rd_data(obj_rd_data),
+      .list_ready(list_ready), .obj_count(obj_count), .too_many(too_many), .table_full(table_full),
+      .pkt_lost(pkt_lost), .rd_index(obj_word_idx[IW+1:2]),
+      .rd_x0(rd_x0), .rd_y0(rd_y0), .rd_x1(rd_x1), .rd_y1(rd_y1), .rd_count(rd_count), .rd_sum(rd_sum),
+      .rd_mean(rd_mean), .rd_max(rd_max),
       .m_axis_obj_tdata(m_axis_obj_tdata), .m_axis_obj_tlast(m_axis_obj_tlast),
       .m_axis_obj_tvalid(m_axis_obj_tvalid), .m_axis_obj_tready(m_axis_obj_tready)
   );
+  wire unused_obj = ^{rd_sum, pkt_lost, obj_word_idx};
+  always @(posedge aclk) begin
+    if (!aresetn) list_valid_q <= 1'b0;
+    else if (list_ready) list_valid_q <= 1'b1;
+    if (obj_rd_idx == {OIW{1'b0}})
+      obj_rd_data_q <= {21'd0, table_full, too_many, list_valid_q, obj_count};
+    else
+      case (obj_word_idx[1:0])
+        2'd0:    obj_rd_data_q <= {rd_x1, rd_x0};
+        2'd1:    obj_rd_data_q <= {rd_y1, rd_y0};
+        2'd2:    obj_rd_data_q <= rd_count;
+        default: obj_rd_data_q <= {16'd0, rd_max, rd_mean};
+      endcase
+  end
 
   // ---------------------------------------------------------------- output
   sm_outfmt #(.MAX_WIDTH(MAX_WIDTH)) u_out (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
-      .in_side(f3_side), .in_disp(f3_disp), .room(out_room),
+      .in_side(f3_side), .in_disp(f3_disp), .room(out_room), .err_overflow(out_overflow),
       .m_axis_tdata(m_axis_tdata), .m_axis_tuser(m_axis_tuser), .m_axis_tlast(m_axis_tlast),
       .m_axis_tvalid(m_axis_tvalid), .m_axis_tready(m_axis_tready)
   );

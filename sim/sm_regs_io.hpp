@@ -47,8 +47,8 @@ void write_registers(AxilMaster<Top>& axil, const Regs& r, const HwConfig& hw, i
   wr(kHEIGHT, static_cast<uint32_t>(r.height), "HEIGHT");
   wr(kGAIN_L, r.gain_l, "GAIN_L");
   wr(kGAIN_R, r.gain_r, "GAIN_R");
-  wr(kOFFSET_L, static_cast<uint32_t>(r.offset_l) & 0x1ffu, "OFFSET_L");
-  wr(kOFFSET_R, static_cast<uint32_t>(r.offset_r) & 0x1ffu, "OFFSET_R");
+  wr(kOFFSET_L, static_cast<uint32_t>(static_cast<int32_t>(r.offset_l)), "OFFSET_L");
+  wr(kOFFSET_R, static_cast<uint32_t>(static_cast<int32_t>(r.offset_r)), "OFFSET_R");
   wr(kRECT_ENABLE, r.rect_enable ? 1u : 0u, "RECT_ENABLE");
   wr(kOCC, r.occ, "OCC");
   uint64_t table = 0;

@@ -12,6 +12,18 @@
 
 namespace sm {
 
+namespace detail {
+// The clock input is `clk` on blocks and `aclk` on the AXI top level.
+template <class T>
+auto clock_of(T& t, int) -> decltype((t.aclk)) {
+  return t.aclk;
+}
+template <class T>
+auto clock_of(T& t, long) -> decltype((t.clk)) {
+  return t.clk;
+}
+}  // namespace detail
+
 template <class Top>
 class Testbench {
  public:
@@ -62,10 +74,11 @@ class Testbench {
 
   // One clock period: falling half then rising edge.
   void tick() {
-    top_->clk = 0;
+    auto& clk = detail::clock_of(*top_, 0);
+    clk = 0;
     top_->eval();
     dump(2 * cycles_);
-    top_->clk = 1;
+    clk = 1;
     top_->eval();
     dump(2 * cycles_ + 1);
     ++cycles_;

@@ -75,8 +75,10 @@ int main(int argc, char** argv) {
     regs.push_back(r);
   };
   // 0: three boxes at known depths on a far background
-  add(box_scene(w, h, 2, {{2, 2, w / 4, h / 3, D / 2 + 2}, {w / 3, h / 2, w / 2, h - 3, D - 3},
-                          {w - 9, 1, w - 2, h - 2, D / 2 + 5}}),
+  add(box_scene(w, h, 2,
+                {{2, 2, w / 4, h / 3, D / 2 + 2},
+                 {w / 3, h / 2, w / 2, h - 3, D - 3},
+                 {w - 9, 1, w - 2, h - 2, D / 2 + 5}}),
       D / 2, 1, 4);
   // 1: random map: many components, overflows the table and the list
   add(random_map(rng, w, h, D, 1), D / 2, 2, 0);
@@ -214,11 +216,11 @@ int main(int argc, char** argv) {
         g.mean_disp = tb->rd_mean;
         g.max_disp = tb->rd_max;
         if (!(g == o))
-          fail(fmt::format("frame {} object {}: expected box ({},{})-({},{}) n {} sum {} mean {} "
-                           "max {}, got ({},{})-({},{}) n {} sum {} mean {} max {}",
-                           f, i, o.x0, o.y0, o.x1, o.y1, o.count, o.sum_disp, o.mean_disp,
-                           o.max_disp, g.x0, g.y0, g.x1, g.y1, g.count, g.sum_disp, g.mean_disp,
-                           g.max_disp));
+          fail(fmt::format(
+              "frame {} object {}: expected box ({},{})-({},{}) n {} sum {} mean {} "
+              "max {}, got ({},{})-({},{}) n {} sum {} mean {} max {}",
+              f, i, o.x0, o.y0, o.x1, o.y1, o.count, o.sum_disp, o.mean_disp, o.max_disp, g.x0,
+              g.y0, g.x1, g.y1, g.count, g.sum_disp, g.mean_disp, g.max_disp));
         else
           ++passed;
       }

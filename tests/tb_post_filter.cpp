@@ -67,6 +67,16 @@ int main(int argc, char** argv) {
     want.push_back(out);
   }
   const auto sched = make_schedule(w, heights, 4);
+  // documented latency (docs/algorithm.md section 7): RY*W + RX + 2 beats
+  const int ry = SM_FILTER == 2 ? 1 : 2, rx = SM_FILTER == 1 ? 0 : 1;
+  const long latency = static_cast<long>(ry) * w + rx + 2;
+  std::vector<std::vector<long>> beat_of(heights.size());  // frame -> y*w+x -> beat index
+  for (size_t i = 0; i < sched.size(); ++i)
+    if (sched[i].frame >= 0) {
+      auto& v = beat_of[sched[i].frame];
+      v.resize(static_cast<size_t>(w) * heights[sched[i].frame]);
+      v[static_cast<size_t>(sched[i].y) * w + sched[i].x] = static_cast<long>(i);
+    }
 
   Testbench<SM_VTOP> tb;
   tb->rst_n = 0;
@@ -100,12 +110,19 @@ int main(int argc, char** argv) {
       if (c && (tb->m_side & kReal)) {
         const BeatInfo o = order.next(tb->m_side);
         const uint16_t e = want[o.frame].at(o.x, o.y);
-        if (tb->m_disp == e) {
+        const size_t pix = static_cast<size_t>(o.y) * w + o.x;
+        const long lat = static_cast<long>(k - 1) - beat_of[o.frame][pix];  // beats since entry
+        if (lat != latency) {
+          if (failed == 0)
+            fmt::print("latency at frame {} x {} y {}: {} beats, documented {}\n", o.frame, o.x,
+                       o.y, lat, latency);
+          ++failed;
+        } else if (tb->m_disp == e) {
           ++passed;
         } else {
           if (failed == 0)
-            fmt::print("first mismatch: frame {} x {} y {} expected {:#06x} got {:#06x}\n",
-                       o.frame, o.x, o.y, e, tb->m_disp);
+            fmt::print("first mismatch: frame {} x {} y {} expected {:#06x} got {:#06x}\n", o.frame,
+                       o.x, o.y, e, tb->m_disp);
           ++failed;
         }
       }

@@ -30,7 +30,9 @@ constexpr int kMaxW = SM_P_MAX_WIDTH;
 constexpr int kMaxH = SM_P_MAX_HEIGHT;
 constexpr int kR = SM_P_RECT_RADIUS;
 
-int16_t q5(double v) { return static_cast<int16_t>(std::clamp(std::lround(v * 32), -32768L, 32767L)); }
+int16_t q5(double v) {
+  return static_cast<int16_t>(std::clamp(std::lround(v * 32), -32768L, 32767L));
+}
 
 sm::RectGrid smooth_grid(int w, int h, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -46,7 +48,8 @@ sm::RectGrid smooth_grid(int w, int h, std::mt19937& rng) {
 }
 
 sm::RectGrid wild_grid(int w, int h, std::mt19937& rng) {
-  std::uniform_int_distribution<int> dy(-2 * kR - 3, 2 * kR + 3), dx(-24, 24), fr(0, 31), pick(0, 15);
+  std::uniform_int_distribution<int> dy(-2 * kR - 3, 2 * kR + 3), dx(-24, 24), fr(0, 31),
+      pick(0, 15);
   sm::RectGrid g = sm::RectGrid::identity(w, h);
   for (int gy = 0; gy < g.gh; ++gy)
     for (int gx = 0; gx < g.gw; ++gx) {

@@ -262,6 +262,8 @@ void verify(const std::string& name, std::vector<Segment>& segs, const RunOut& o
   for (const auto& s : segs) all.insert(all.end(), s.px.begin(), s.px.end());
   const sm::SeqResult m = sm::seq_frames(all);
   const auto& F = m.frames;
+  fmt::print("{}: {} frames, {} beats, fault pulses {} {} {} {} {} {} (short long missing extra few many)\n",
+             name, F.size(), o.beats.size(), o.err[0], o.err[1], o.err[2], o.err[3], o.err[4], o.err[5]);
   check(o.starts.size() == F.size(),
         fmt::format("{}: {} frame_start pulses, model has {} frames", name, o.starts.size(), F.size()));
   for (size_t f = 0; f < std::min(F.size(), o.starts.size()); ++f)

@@ -75,13 +75,13 @@ struct Brute {
 
 }  // namespace
 
-TEST_CASE("ACC_W matches the spec at the paper configuration", "[dp]") {
+TEST_CASE("trellis_dp: ACC_W matches the spec at the paper configuration", "[dp]") {
   sm::HwConfig hw;  // defaults: MAX_WIDTH 320, CENSUS 15, COST_SHIFT 2 -> CW 6
   REQUIRE(hw.cost_bits() == 6);
   CHECK(sm::dp_acc_bits(hw) == 19);
 }
 
-TEST_CASE("optimal path and tie order equal exhaustive enumeration", "[dp]") {
+TEST_CASE("trellis_dp: optimal path and tie order equal exhaustive enumeration", "[dp]") {
   std::mt19937 rng(12345);
   int cases = 0, ties = 0;
   for (int disp : {2, 4}) {
@@ -116,7 +116,7 @@ TEST_CASE("optimal path and tie order equal exhaustive enumeration", "[dp]") {
   CHECK(ties > 100);
 }
 
-TEST_CASE("all-equal costs: choice 0 wins every tie, every pixel matched at 0", "[dp]") {
+TEST_CASE("trellis_dp: equal costs: choice 0 wins ties, all matched at 0", "[dp]") {
   // occ = 0, costs 0: every path costs 0; choice 0 everywhere keeps level 0.
   // costs 3, occ 7: each skipped pixel needs two diagonals (14 > 3), so all match at 0.
   const sm::HwConfig hw = tiny_hw(4);
@@ -130,7 +130,7 @@ TEST_CASE("all-equal costs: choice 0 wins every tie, every pixel matched at 0", 
   }
 }
 
-TEST_CASE("three-way tie picks choice 0, a 1-vs-2 tie picks choice 1", "[dp]") {
+TEST_CASE("trellis_dp: three-way tie picks choice 0, a 1-vs-2 tie picks choice 1", "[dp]") {
   // N = 2, DISP = 4, occ = 0, all costs 0 except A(0,0) = A(1,0) = 9. Hand trellis:
   // (1,1) <- (0,0) (choice 1, U = 0); (2,0) <- (1,1) (choice 2, U = 0; from (1,0) costs
   // 9); (2,1) matched x = 1: U = A(1,1); (2,2) <- (1,1) (choice 1, U = 0); (3,0) matched
@@ -173,7 +173,7 @@ sm::CostVolume ideal_volume(const std::vector<int>& dt, int disp, const std::vec
 }
 }  // namespace
 
-TEST_CASE("constant disparity is returned everywhere, border pixels filled", "[dp]") {
+TEST_CASE("trellis_dp: constant disparity everywhere, border pixels filled", "[dp]") {
   sm::HwConfig hw = tiny_hw(16);
   hw.max_width = 64;
   for (int d0 : {0, 1, 5, 8, 15}) {
@@ -190,7 +190,7 @@ TEST_CASE("constant disparity is returned everywhere, border pixels filled", "[d
   }
 }
 
-TEST_CASE("step: left-occluded background pixels, filled with the background", "[dp]") {
+TEST_CASE("trellis_dp: step up: occluded background pixels, background fill", "[dp]") {
   sm::HwConfig hw = tiny_hw(16);
   hw.max_width = 64;
   const int n = 48, xs = 24;
@@ -214,7 +214,7 @@ TEST_CASE("step: left-occluded background pixels, filled with the background", "
   }
 }
 
-TEST_CASE("step down (foreground left): every left pixel matched", "[dp]") {
+TEST_CASE("trellis_dp: step down (foreground left): every left pixel matched", "[dp]") {
   sm::HwConfig hw = tiny_hw(16);
   hw.max_width = 64;
   const int n = 40, xs = 20;
@@ -227,7 +227,7 @@ TEST_CASE("step down (foreground left): every left pixel matched", "[dp]") {
   for (int x = 0; x < n; ++x) CHECK(line.match[x] == (x < 9 ? -1 : dt[x]));
 }
 
-TEST_CASE("fill rule on hand-made match lists", "[dp]") {
+TEST_CASE("trellis_dp: fill rule on hand-made match lists", "[dp]") {
   std::vector<sm::DispPix> out;
   sm::dp_fill({-1, -1, 5, -1, -1, 2, 7, -1, 3, -1}, out);
   CHECK(out == std::vector<sm::DispPix>{0x8005, 0x8005, 0x8005, 0x8002, 0x8002, 0x8002, 0x8007,
@@ -236,7 +236,7 @@ TEST_CASE("fill rule on hand-made match lists", "[dp]") {
   CHECK(out == std::vector<sm::DispPix>{0x8000, 0x8000, 0x8000});
 }
 
-TEST_CASE("trellis_dp rejects a volume of the wrong depth", "[dp]") {
+TEST_CASE("trellis_dp: rejects a volume of the wrong depth", "[dp]") {
   const sm::HwConfig hw = tiny_hw(16);
   CHECK_THROWS_AS(sm::trellis_dp(sm::CostVolume(8, 2, 8), 5, hw), std::invalid_argument);
 }

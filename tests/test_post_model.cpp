@@ -26,7 +26,7 @@ DispImage constant(int w, int h, unsigned d) { return DispImage(w, h, make_disp(
 TEST_CASE("vertical median removes one- and two-row streaks", "[unit][post]") {
   const HwConfig hw = small_hw();
   DispImage m = constant(20, 12, 10);
-  for (int x = 3; x < 15; ++x) m.at(x, 4) = make_disp(40, true);      // one row
+  for (int x = 3; x < 15; ++x) m.at(x, 4) = make_disp(40, true);             // one row
   for (int x = 2; x < 9; ++x) m.at(x, 8) = m.at(x, 9) = make_disp(3, true);  // two rows
   CHECK(post_vmedian(m, hw) == constant(20, 12, 10));
   // a three-row band is a real surface and stays
@@ -127,10 +127,10 @@ TEST_CASE("objects: boxes at known depths on a far background", "[unit][objects]
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) m.at(x, y) = make_disp(d, true);
   };
-  box(30, 3, 45, 10, 40);   // first in raster order (row 3)
+  box(30, 3, 45, 10, 40);  // first in raster order (row 3)
   box(2, 12, 11, 30, 25);
-  box(20, 20, 22, 22, 60);  // 9 pixels
-  box(40, 38, 41, 38, 50);  // 2 pixels: below min_pixels
+  box(20, 20, 22, 22, 60);              // 9 pixels
+  box(40, 38, 41, 38, 50);              // 2 pixels: below min_pixels
   m.at(16, 16) = make_disp(63, false);  // invalid: ignored
   const ObjectList l = separate_objects(m, regs, hw);
   REQUIRE(l.objects.size() == 3);
@@ -272,8 +272,7 @@ TEST_CASE("object packet format", "[unit][objects]") {
   l.objects.push_back(o);
   l.table_full = true;
   const std::vector<uint32_t> p = object_packet(l, true);
-  const std::vector<uint32_t> want = {0xA5000601u, 0x00040003u, 0x000C000Au, 72u, 2880u,
-                                      0x2928u};
+  const std::vector<uint32_t> want = {0xA5000601u, 0x00040003u, 0x000C000Au, 72u, 2880u, 0x2928u};
   CHECK(p == want);
   CHECK(object_packet(ObjectList{}, false) == std::vector<uint32_t>{0xA5000000u});
 }

@@ -236,6 +236,25 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   CHECK(s["methods"]["bm"]["invalid"].get<long>() > 0);
 }
 
+TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {
+  fs::create_directories(tmp_root());
+  const fs::path j = tmp_root() / "synth.json";
+  fs::remove(j);
+  const Run r = run(SM_EVALUATE_EXE,
+                    "--synthetic 2 --synthetic-size 48x32 --levels 16 -q --methods "
+                    "model,sgbm --occ 10 --json " +
+                        j.string());
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  const auto js = nlohmann::json::parse(slurp(j));
+  REQUIRE(js["scenes"].size() == 2);
+  CHECK(js["scenes"][1]["name"] == "synthetic2");
+  CHECK(js["scenes"][0]["width"] == 48);
+  CHECK(js["scenes"][0]["methods"].size() == 2);
+  expect_error(run(SM_EVALUATE_EXE, "--synthetic 1 --synthetic-size 48by32"), "48by32");
+  expect_error(run(SM_EVALUATE_EXE, "--levels 15 --synthetic 1"), "--levels 15");
+}
+
 TEST_CASE("sm_scene rejects bad parameters cleanly", "[unit][tools][cli]") {
   fs::create_directories(tmp_root());
   const fs::path out = tmp_root() / "scene_bad";

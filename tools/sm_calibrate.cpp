@@ -47,7 +47,8 @@ std::string lower(std::string s) {
 // a text file of the same paths one per line. Relative paths are relative to the list.
 std::vector<Pair> find_pairs(const std::string& input) {
   std::vector<Pair> pairs;
-  if (!fs::exists(input)) throw std::runtime_error(fmt::format("{}: no such file or folder", input));
+  if (!fs::exists(input))
+    throw std::runtime_error(fmt::format("{}: no such file or folder", input));
   if (fs::is_directory(input)) {
     std::map<std::string, Pair> by_key;
     for (const auto& e : fs::directory_iterator(input)) {
@@ -90,11 +91,13 @@ std::vector<Pair> find_pairs(const std::string& input) {
     }
   }
   if (names.empty() || names.size() % 2)
-    throw std::runtime_error(
-        fmt::format("{}: the image list must hold left/right pairs ({} names)", input, names.size()));
+    throw std::runtime_error(fmt::format("{}: the image list must hold left/right pairs ({} names)",
+                                         input, names.size()));
   const fs::path base = fs::path(input).parent_path();
   for (size_t i = 0; i < names.size(); i += 2) {
-    auto full = [&](const std::string& n) { return fs::path(n).is_absolute() ? n : (base / n).string(); };
+    auto full = [&](const std::string& n) {
+      return fs::path(n).is_absolute() ? n : (base / n).string();
+    };
     pairs.push_back({full(names[i]), full(names[i + 1])});
   }
   return pairs;
@@ -154,13 +157,14 @@ int run(int argc, char** argv) {
   CLI::App app{"Stereo chessboard calibration -> sm_rectify grid registers"};
   std::string input, out_json = "calib.json", out_yaml = "calib.yaml", board_s = "9x6";
   double square = 1.0, alpha = 0.0;
-  int width = 320, height = 240, rect_radius = 15;
+  int width = 320, height = 240, rect_radius = 18;
   app.add_option("input", input, "folder of left*/right* images or an image list file")->required();
   app.add_option("--board", board_s, "inner corners per row x per column")->capture_default_str();
   app.add_option("--square", square, "square size (unit of T)")->capture_default_str();
   app.add_option("--width", width, "active image width of the IP")->capture_default_str();
   app.add_option("--height", height, "active image height of the IP")->capture_default_str();
-  app.add_option("--rect-radius", rect_radius, "RECT_RADIUS the IP is built with")->capture_default_str();
+  app.add_option("--rect-radius", rect_radius, "RECT_RADIUS the IP is built with")
+      ->capture_default_str();
   app.add_option("--alpha", alpha, "stereoRectify free scaling (0: valid pixels only, 1: all)")
       ->capture_default_str();
   app.add_option("-o,--out", out_json, "calibration JSON (registers)")->capture_default_str();
@@ -171,7 +175,8 @@ int run(int argc, char** argv) {
   std::string save_dir;
   app.add_option("--save-rectified", save_dir,
                  "folder to write the model-rectified pairs to (side by side, PNG)");
-  app.add_option("--yaml", out_yaml, "camera parameters (cv::FileStorage YAML)")->capture_default_str();
+  app.add_option("--yaml", out_yaml, "camera parameters (cv::FileStorage YAML)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   cv::Size board;
@@ -179,7 +184,8 @@ int run(int argc, char** argv) {
     char x = 0, extra = 0;
     if (std::sscanf(board_s.c_str(), "%d%c%d%c", &board.width, &x, &board.height, &extra) != 3 ||
         (x != 'x' && x != 'X') || board.width < 2 || board.height < 2)
-      throw std::runtime_error(fmt::format("--board '{}': expected <cols>x<rows>, e.g. 9x6", board_s));
+      throw std::runtime_error(
+          fmt::format("--board '{}': expected <cols>x<rows>, e.g. 9x6", board_s));
   }
   if (width < 16 || width > 4095 || height < 16 || height > 4095)
     throw std::runtime_error(fmt::format("--width/--height {}x{} outside 16..4095", width, height));
@@ -207,7 +213,8 @@ int run(int argc, char** argv) {
     std::vector<cv::Point2f> cl, cr;
     const bool ok = find_corners(l, board, 11, cl) && find_corners(r, board, 11, cr);
     fmt::print("{} / {}: {}\n", fs::path(p.left).filename().string(),
-               fs::path(p.right).filename().string(), ok ? "board found" : "board NOT found, skipped");
+               fs::path(p.right).filename().string(),
+               ok ? "board found" : "board NOT found, skipped");
     if (!ok) continue;
     // Corners at the IP size (pixel centres map as in cv::resize).
     const float kx = static_cast<float>(width) / l.cols, ky = static_cast<float>(height) / l.rows;
@@ -223,7 +230,8 @@ int run(int argc, char** argv) {
     small_r.push_back(sr);
   }
   if (obj.size() < 3)
-    throw std::runtime_error(fmt::format("{}: the board was found in only {} pairs, need 3", input, obj.size()));
+    throw std::runtime_error(
+        fmt::format("{}: the board was found in only {} pairs, need 3", input, obj.size()));
 
   cv::Mat k1, d1, k2, d2, rot, tr, e, f;
   std::vector<cv::Mat> rv, tv;
@@ -233,8 +241,8 @@ int run(int argc, char** argv) {
       obj, pts_l, pts_r, k1, d1, k2, d2, size, rot, tr, e, f, cv::CALIB_USE_INTRINSIC_GUESS,
       cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-6));
   cv::Mat r1, r2, p1, p2, q;
-  cv::stereoRectify(k1, d1, k2, d2, size, rot, tr, r1, r2, p1, p2, q, cv::CALIB_ZERO_DISPARITY, alpha,
-                    size);
+  cv::stereoRectify(k1, d1, k2, d2, size, rot, tr, r1, r2, p1, p2, q, cv::CALIB_ZERO_DISPARITY,
+                    alpha, size);
 
   sm::CalibFile cal;
   cal.width = width;
@@ -247,7 +255,8 @@ int run(int argc, char** argv) {
 
   {
     cv::FileStorage y(out_yaml, cv::FileStorage::WRITE);
-    if (!y.isOpened()) throw std::runtime_error(fmt::format("{}: cannot open for writing", out_yaml));
+    if (!y.isOpened())
+      throw std::runtime_error(fmt::format("{}: cannot open for writing", out_yaml));
     y << "image_width" << width << "image_height" << height << "source_width" << src_size.width
       << "source_height" << src_size.height << "board" << board << "square" << square
       << "pairs_used" << static_cast<int>(obj.size()) << "rms_left" << rms_l << "rms_right" << rms_r
@@ -255,8 +264,9 @@ int run(int argc, char** argv) {
       << "T" << tr << "E" << e << "F" << f << "R1" << r1 << "R2" << r2 << "P1" << p1 << "P2" << p2
       << "Q" << q << "rect_radius_needed" << cal.rect_radius_needed;
   }
-  fmt::print("pairs used {} of {}; RMS reprojection error: left {:.4f}, right {:.4f}, stereo {:.4f} px\n",
-             obj.size(), pairs.size(), rms_l, rms_r, rms);
+  fmt::print(
+      "pairs used {} of {}; RMS reprojection error: left {:.4f}, right {:.4f}, stereo {:.4f} px\n",
+      obj.size(), pairs.size(), rms_l, rms_r, rms);
   fmt::print("line-buffer radius needed: left {}, right {} (configured RECT_RADIUS {})\n", need_l,
              need_r, rect_radius);
 
@@ -274,7 +284,8 @@ int run(int argc, char** argv) {
     if (!save_dir.empty()) {
       cv::Mat both;
       cv::hconcat(rl, rr, both);
-      const std::string path = (fs::path(save_dir) / fmt::format("rectified_{:02d}.png", i)).string();
+      const std::string path =
+          (fs::path(save_dir) / fmt::format("rectified_{:02d}.png", i)).string();
       if (!cv::imwrite(path, both)) throw std::runtime_error(fmt::format("{}: cannot write", path));
     }
     std::vector<cv::Point2f> cl, cr;
@@ -302,13 +313,16 @@ int run(int argc, char** argv) {
         "vertical disparity of chessboard corners on the model-rectified images (RECT_RADIUS {}): "
         "mean |dy| {:.3f} px, max {:.3f} px over {} corners in {} pairs\n",
         hw.rect_radius, sum_dy / static_cast<double>(n_dy), max_dy, n_dy, n_pairs);
-    fmt::print("(the IP's RECT_RADIUS must be at least {} for this calibration)\n", cal.rect_radius_needed);
+    fmt::print("(the IP's RECT_RADIUS must be at least {} for this calibration)\n",
+               cal.rect_radius_needed);
   }
 
   const double mean_dy = n_dy ? sum_dy / static_cast<double>(n_dy) : 0.0;
   if (check_vdisp > 0 && (n_dy == 0 || mean_dy > check_vdisp)) {
-    fmt::print(stderr, "error: mean |vertical disparity| {:.3f} px over {} corners exceeds --check-vdisp {}\n",
-               mean_dy, n_dy, check_vdisp);
+    fmt::print(
+        stderr,
+        "error: mean |vertical disparity| {:.3f} px over {} corners exceeds --check-vdisp {}\n",
+        mean_dy, n_dy, check_vdisp);
     return 1;
   }
   if (cal.rect_radius_needed > rect_radius) {

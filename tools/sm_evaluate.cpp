@@ -42,15 +42,15 @@ cv::Mat from_fixed16(const cv::Mat& d16) {
 
 int round16(int levels) { return (levels + 15) / 16 * 16; }
 
-std::vector<Method> all_methods(bool quiet_model) {
-  (void)quiet_model;
+std::vector<Method> all_methods(int occ) {
   std::vector<Method> m;
-  m.push_back({"model", [](const cv::Mat& l, const cv::Mat& r, int levels) {
+  m.push_back({"model", [occ](const cv::Mat& l, const cv::Mat& r, int levels) {
                  sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
                  hw.disp = levels;
                  hw.max_width = l.cols;
                  hw.max_height = l.rows;
                  sm::Regs regs = sm::Regs::defaults(hw);
+                 if (occ >= 0) regs.occ = static_cast<uint8_t>(occ);
                  const auto res = sm::run_pipeline(sm::tools::to_image8(l), sm::tools::to_image8(r),
                                                    hw, regs, false);
                  return sm::tools::disp_to_float(res.post);
@@ -91,7 +91,7 @@ std::vector<std::string> split(const std::string& s) {
 int run(int argc, char** argv) {
   std::string dataset, scenes_opt, json_path, disp_dir, methods_opt = "model,bm,sgbm,binsgbm";
   std::string synth_size = "320x240";
-  int levels = 128, synthetic = 0;
+  int levels = 128, synthetic = 0, occ = -1;
   bool quiet = false;
   CLI::App app{"bad-1.0 and run time of the model and OpenCV matchers on a stereo dataset"};
   app.add_option(
@@ -110,6 +110,8 @@ int run(int argc, char** argv) {
                  "evaluate N synthetic scenes (sm_scene seeds 1..N) instead of a dataset");
   app.add_option("--synthetic-size", synth_size, "WxH of the synthetic scenes")
       ->capture_default_str();
+  app.add_option("--occ", occ, "model: DP occlusion penalty register (default: Regs default)")
+      ->check(CLI::Range(0, 255));
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   try {
     app.parse(argc, argv);
@@ -123,7 +125,7 @@ int run(int argc, char** argv) {
 
   std::vector<Method> methods;
   {
-    const auto all = all_methods(quiet);
+    const auto all = all_methods(occ);
     for (const auto& n : split(methods_opt)) {
       auto it = std::find_if(all.begin(), all.end(), [&](const Method& m) { return m.name == n; });
       if (it == all.end()) throw ToolError(fmt::format("--methods: unknown method '{}'", n));

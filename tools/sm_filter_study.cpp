@@ -2,9 +2,9 @@
 // scenes with the post-processing off, then measures bad-1.0 of the raw DP output and
 // of candidate streak filters and chains, so each filter of the chain earns its place.
 //   sm_filter_study [--datasets DIR] [--synthetic N] [--disp 128] [--json out.json]
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
   std::string json_out;
   std::string dump_dir;
   app.add_option("--datasets", datasets, "folder of scene folders (e.g. ../shared/datasets)");
-  app.add_option("--synthetic", synthetic, "number of synthetic 320x240 scenes")->check(CLI::Range(0, 100));
+  app.add_option("--synthetic", synthetic, "number of synthetic 320x240 scenes")
+      ->check(CLI::Range(0, 100));
   app.add_option("--disp", disp, "disparity levels (DISP)")->check(CLI::Range(4, 254));
   app.add_option("--json", json_out, "write the table as JSON");
   app.add_option("--dump", dump_dir, "write <scene>_dp.png and <scene>_err.png (bad pixels) here");
@@ -94,8 +95,8 @@ int main(int argc, char** argv) {
       p.seed = 100 + i;
       p.noise = 2.0;
       SyntheticScene s = render_scene(p);
-      inputs.push_back({fmt::format("synthetic{}", i), to_image8(s.left), to_image8(s.right),
-                        s.gt, s.nonocc});
+      inputs.push_back(
+          {fmt::format("synthetic{}", i), to_image8(s.left), to_image8(s.right), s.gt, s.nonocc});
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "sm_filter_study: {}\n", e.what());
@@ -145,7 +146,9 @@ int main(int argc, char** argv) {
       const BadStats ba = bad1(disp_to_float(d), in.gt, cv::Mat());
       table[c].push_back(b.bad_pct());
       table_all[c].push_back(ba.bad_pct());
-      js.push_back({{"scene", in.name}, {"chain", cands[c].name}, {"bad1", b.bad_pct()},
+      js.push_back({{"scene", in.name},
+                    {"chain", cands[c].name},
+                    {"bad1", b.bad_pct()},
                     {"bad1_all", ba.bad_pct()}});
     }
     fmt::print(stderr, "{} done\n", in.name);

@@ -3,7 +3,7 @@
 //   sm_synth_report report   --stat S.json --netlist N.json --top MOD ... -o R.json
 //       Yosys `stat -json` (hierarchy kept) -> resources per block and in total;
 //       the flattened mapped netlist (`write_json`) -> LUT levels between registers.
-//   sm_synth_report combine  -o R.json PART.json...   sum of separately mapped blocks
+//   sm_synth_report combine  -o R.json PART.json[@N]... sum of separately mapped blocks
 //   sm_synth_report children --stat ELAB.json --top MOD  direct submodules (blocks mode)
 //   sm_synth_report show     R.json... [--markdown] [--require-bram]
 //
@@ -20,10 +20,10 @@
 // combinational; data/write-enable inputs end paths). MUXF7/MUXF8 count 0 (they extend
 // a LUT inside the slice), CARRY4 counts 0 (reported separately as carry_on_path),
 // INV counts 0 (absorbed into the neighbouring LUT by place and route).
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
@@ -48,6 +48,24 @@ json load(const std::string& path) {
   std::ifstream f(path);
   if (!f) fail(fmt::format("{}: cannot open", path));
   json j = json::parse(f, nullptr, false);
+  if (j.is_discarded()) fail(fmt::format("{}: not valid JSON", path));
+  return j;
+}
+
+// Yosys 0.23's `stat -json` prints lines of its text "design hierarchy" listing into the
+// JSON when a module is instantiated more than once; such lines never start like JSON.
+json load_stat(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) fail(fmt::format("{}: cannot open", path));
+  std::string text, line;
+  while (std::getline(f, line)) {
+    auto p = line.find_first_not_of(" \t\r");
+    if (p != std::string::npos && std::string("\"{}[]").find(line[p]) == std::string::npos)
+      continue;
+    text += line;
+    text += '\n';
+  }
+  json j = json::parse(text, nullptr, false);
   if (j.is_discarded()) fail(fmt::format("{}: not valid JSON", path));
   return j;
 }
@@ -82,11 +100,11 @@ std::string strip_clk_suffix(const std::string& t) {  // RAM64X1D_1 (falling edg
 // LUTs occupied by one distributed-RAM primitive.
 int lutram_luts(const std::string& type) {
   static const std::map<std::string, int> k = {
-      {"RAM16X1S", 1}, {"RAM32X1S", 1},  {"RAM64X1S", 1},  {"RAM128X1S", 2}, {"RAM256X1S", 4},
-      {"RAM512X1S", 8}, {"RAM16X1D", 2}, {"RAM32X1D", 2},  {"RAM64X1D", 2},  {"RAM128X1D", 4},
-      {"RAM256X1D", 8}, {"RAM32M", 4},   {"RAM64M", 4},    {"RAM32M16", 8},  {"RAM64M8", 8},
-      {"RAM16X2S", 2}, {"RAM16X4S", 4},  {"RAM16X8S", 8},  {"RAM32X2S", 2},  {"RAM32X4S", 4},
-      {"RAM32X8S", 8}, {"RAM64X2S", 2}};
+      {"RAM16X1S", 1},  {"RAM32X1S", 1}, {"RAM64X1S", 1}, {"RAM128X1S", 2}, {"RAM256X1S", 4},
+      {"RAM512X1S", 8}, {"RAM16X1D", 2}, {"RAM32X1D", 2}, {"RAM64X1D", 2},  {"RAM128X1D", 4},
+      {"RAM256X1D", 8}, {"RAM32M", 4},   {"RAM64M", 4},   {"RAM32M16", 8},  {"RAM64M8", 8},
+      {"RAM16X2S", 2},  {"RAM16X4S", 4}, {"RAM16X8S", 8}, {"RAM32X2S", 2},  {"RAM32X4S", 4},
+      {"RAM32X8S", 8},  {"RAM64X2S", 2}};
   auto it = k.find(strip_clk_suffix(type));
   return it == k.end() ? 1 : it->second;
 }
@@ -107,8 +125,8 @@ int lut_size(const std::string& t) {  // 1..6 for LUTn / LUT6_2, 0 otherwise
 
 struct Res {
   std::map<std::string, int64_t> lut_by_size, bram_cells, other;
-  int64_t luts_logic = 0, ffs = 0, latches = 0, lutram = 0, srl = 0, dsp = 0, muxf = 0,
-          carry = 0, unmapped = 0;
+  int64_t luts_logic = 0, ffs = 0, latches = 0, lutram = 0, srl = 0, dsp = 0, muxf = 0, carry = 0,
+          unmapped = 0;
   double bram36 = 0;
 
   void add_cell(const std::string& t, int64_t n) {
@@ -154,11 +172,20 @@ struct Res {
   }
   int64_t luts() const { return luts_logic + lutram + srl; }
   json to_json() const {
-    return json{{"luts", luts()},     {"luts_logic", luts_logic}, {"lut_by_size", lut_by_size},
-                {"ffs", ffs},         {"latches", latches},       {"bram36", bram36},
-                {"bram_cells", bram_cells}, {"lutram", lutram},   {"srl", srl},
-                {"dsp", dsp},         {"muxf", muxf},             {"carry", carry},
-                {"unmapped", unmapped}, {"other", other}};
+    return json{{"luts", luts()},
+                {"luts_logic", luts_logic},
+                {"lut_by_size", lut_by_size},
+                {"ffs", ffs},
+                {"latches", latches},
+                {"bram36", bram36},
+                {"bram_cells", bram_cells},
+                {"lutram", lutram},
+                {"srl", srl},
+                {"dsp", dsp},
+                {"muxf", muxf},
+                {"carry", carry},
+                {"unmapped", unmapped},
+                {"other", other}};
   }
   static Res from_json(const json& j) {
     Res r;
@@ -242,8 +269,8 @@ Depth logic_depth(const json& net, const std::string& top) {
   const json* mod = nullptr;
   for (auto& [name, m] : net["modules"].items()) {
     auto a = m.value("attributes", json::object());
-    bool is_top = a.contains("top") && a["top"] != "00000000000000000000000000000000" &&
-                  a["top"] != 0;
+    bool is_top =
+        a.contains("top") && a["top"] != "00000000000000000000000000000000" && a["top"] != 0;
     if (is_top || (!mod && norm(name) == norm(top))) mod = &m;
     if (is_top) break;
   }
@@ -261,7 +288,7 @@ Depth logic_depth(const json& net, const std::string& top) {
     int state = 0;              // 0 new, 1 on stack, 2 done
   };
   std::vector<Cell> cells;
-  std::unordered_map<int64_t, int> driver;  // bit -> comb cell index
+  std::unordered_map<int64_t, int> driver;   // bit -> comb cell index
   std::unordered_map<int64_t, int> seq_out;  // bit -> 1: boundary output (register)
   std::vector<std::pair<int, std::vector<int64_t>>> endpoints;  // (cell or -1, bits)
   auto bits_of = [](const json& conn) {
@@ -275,12 +302,15 @@ Depth logic_depth(const json& net, const std::string& top) {
     Cell cl{&c, c.value("type", std::string()), SEQ, 0, {}};
     std::string t = cl.type;
     bool lram = is_lutram(t);
-    if (lut_size(t)) cl.kind = COMB, cl.weight = 1;
-    else if (lram) cl.kind = COMB, cl.weight = 1;
-    else if (starts(t, "MUXF") || t == "CARRY4" || t == "CARRY8" || t == "MUXCY" ||
-             t == "XORCY" || t == "INV" || t == "BUF")
+    if (lut_size(t))
+      cl.kind = COMB, cl.weight = 1;
+    else if (lram)
+      cl.kind = COMB, cl.weight = 1;
+    else if (starts(t, "MUXF") || t == "CARRY4" || t == "CARRY8" || t == "MUXCY" || t == "XORCY" ||
+             t == "INV" || t == "BUF")
       cl.kind = COMB, cl.weight = 0;
-    else if (t == "GND" || t == "VCC") cl.kind = SRC;
+    else if (t == "GND" || t == "VCC")
+      cl.kind = SRC;
     else if (starts(t, "$_") && !starts(t, "$_DFF") && !starts(t, "$_SDFF") &&
              !starts(t, "$_DLATCH"))
       cl.kind = COMB, cl.weight = 1;  // unmapped gate: count it like a LUT
@@ -292,14 +322,18 @@ Depth logic_depth(const json& net, const std::string& top) {
       auto b = bits_of(conn);
       if (d == "output") {
         for (auto x : b) {
-          if (cl.kind == COMB) driver[x] = idx;
-          else seq_out[x] = 1;
+          if (cl.kind == COMB)
+            driver[x] = idx;
+          else
+            seq_out[x] = 1;
         }
       } else if (cl.kind == COMB) {
         // LUT-RAM: only the read addresses are combinational to the data outputs.
         bool thru = !lram || starts(p, "A") || starts(p, "DPRA");
-        if (thru) cl.thru.insert(cl.thru.end(), b.begin(), b.end());
-        else ends.insert(ends.end(), b.begin(), b.end());
+        if (thru)
+          cl.thru.insert(cl.thru.end(), b.begin(), b.end());
+        else
+          ends.insert(ends.end(), b.begin(), b.end());
       } else if (cl.kind == SEQ) {
         ends.insert(ends.end(), b.begin(), b.end());
       }
@@ -426,13 +460,13 @@ std::string num(double v) {
 
 void print_report(const json& r, bool md) {
   auto row = [&](const std::string& name, const json& b, int64_t inst) {
-    std::string lv = b.contains("lut_levels") ? fmt::format("{}", b["lut_levels"].get<int>())
-                                              : std::string("-");
+    std::string lv =
+        b.contains("lut_levels") ? fmt::format("{}", b["lut_levels"].get<int>()) : std::string("-");
     std::string in = inst > 0 ? fmt::format("{}", inst) : std::string("");
     if (md)
-      fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", name, in,
-                 b.value("luts", 0), b.value("ffs", 0), num(b.value("bram36", 0.0)),
-                 b.value("lutram", 0), b.value("srl", 0), b.value("dsp", 0), lv);
+      fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", name, in, b.value("luts", 0),
+                 b.value("ffs", 0), num(b.value("bram36", 0.0)), b.value("lutram", 0),
+                 b.value("srl", 0), b.value("dsp", 0), lv);
     else
       fmt::print("{:<24} {:>4} {:>9} {:>9} {:>7} {:>7} {:>6} {:>4} {:>6}\n", name, in,
                  b.value("luts", 0), b.value("ffs", 0), num(b.value("bram36", 0.0)),
@@ -442,23 +476,24 @@ void print_report(const json& r, bool md) {
              r.value("config", ""), r.value("family", ""), r.value("mode", ""),
              r.value("seconds", 0.0));
   if (r.contains("missing_blocks") && !r["missing_blocks"].empty())
-    fmt::print("{}INCOMPLETE: not synthesized: {}\n", md ? "\n" : "",
-               r["missing_blocks"].dump());
+    fmt::print("{}INCOMPLETE: not synthesized: {}\n", md ? "\n" : "", r["missing_blocks"].dump());
   if (md)
-    fmt::print("\n| block | inst | LUTs | FFs | BRAM36 | LUT-RAM | SRL | DSP | LUT levels |\n"
-               "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    fmt::print(
+        "\n| block | inst | LUTs | FFs | BRAM36 | LUT-RAM | SRL | DSP | LUT levels |\n"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   else
-    fmt::print("{:<24} {:>4} {:>9} {:>9} {:>7} {:>7} {:>6} {:>4} {:>6}\n", "block", "inst",
-               "LUTs", "FFs", "BRAM36", "LUTRAM", "SRL", "DSP", "levels");
+    fmt::print("{:<24} {:>4} {:>9} {:>9} {:>7} {:>7} {:>6} {:>4} {:>6}\n", "block", "inst", "LUTs",
+               "FFs", "BRAM36", "LUTRAM", "SRL", "DSP", "levels");
   for (auto& [name, b] : r["blocks"].items()) row(name, b, b.value("instances", int64_t{0}));
   row(md ? "**total**" : "total", r["total"], 0);
   const json& t = r["total"];
-  fmt::print("{}LUTs by size {}; MUXF {}; CARRY {}; reg-to-reg levels {}; carry cells on "
-             "the longest path {}{}\n",
-             md ? "\n" : "", t["lut_by_size"].dump(), t.value("muxf", 0), t.value("carry", 0),
-             t.value("lut_levels_reg2reg", 0), t.value("carry_on_path", 0),
-             t.value("unmapped", 0) ? fmt::format("; UNMAPPED cells {}", t["unmapped"].get<int>())
-                                    : std::string());
+  fmt::print(
+      "{}LUTs by size {}; MUXF {}; CARRY {}; reg-to-reg levels {}; carry cells on "
+      "the longest path {}{}\n",
+      md ? "\n" : "", t["lut_by_size"].dump(), t.value("muxf", 0), t.value("carry", 0),
+      t.value("lut_levels_reg2reg", 0), t.value("carry_on_path", 0),
+      t.value("unmapped", 0) ? fmt::format("; UNMAPPED cells {}", t["unmapped"].get<int>())
+                             : std::string());
 }
 
 }  // namespace
@@ -492,14 +527,14 @@ int main(int argc, char** argv) {
   comb->add_option("--config", config, "configuration name")->required();
   comb->add_option("--param", params, "NAME=VALUE of the configuration");
   comb->add_option("-o", out, "output JSON")->required();
-  comb->add_option("parts", inputs, "part reports")->required()->check(CLI::ExistingFile);
+  comb->add_option("parts", inputs, "part reports; report.json@N counts a part N times")
+      ->required();
   comb->add_flag("--quiet", quiet, "no table on stdout");
   std::vector<std::string> missing;
   comb->add_option("--missing", missing, "blocks that could not be synthesized");
 
   auto* kids = app.add_subcommand("children", "direct submodules of a module (elaborated)");
-  kids->add_option("--stat", stat_path, "Yosys `stat -json` of the elaborated design")
-      ->required();
+  kids->add_option("--stat", stat_path, "Yosys `stat -json` of the elaborated design")->required();
   kids->add_option("--top", top, "parent module")->required();
 
   auto* show = app.add_subcommand("show", "print reports as a table");
@@ -510,7 +545,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   if (*rep) {
-    json stat = load(stat_path);
+    json stat = load_stat(stat_path);
     StatResult s = parse_stat(stat, top, instances);
     json r;
     r["tool"] = "sm_synth_report";
@@ -550,14 +585,25 @@ int main(int argc, char** argv) {
     double secs = 0;
     json parts = json::array(), path = json::array();
     std::string yosys;
-    for (auto& in : inputs) {
+    for (auto& arg : inputs) {
+      // "report.json@N": a block used N times (its report was made for one instance).
+      std::string in = arg;
+      int64_t k = 1;
+      if (auto at = arg.rfind('@'); at != std::string::npos && at > arg.rfind('/')) {
+        in = arg.substr(0, at);
+        try {
+          k = std::stoll(arg.substr(at + 1));
+        } catch (...) {
+          fail(fmt::format("{}: bad instance count", arg));
+        }
+      }
       json p = load(in);
       if (!p.contains("total") || !p.contains("blocks")) fail(fmt::format("{}: not a report", in));
       yosys = p.value("yosys", "");
-      total.add(Res::from_json(p["total"]));
+      total.add(Res::from_json(p["total"]), k);
       for (auto& [b, j] : p["blocks"].items()) {
-        blocks[b].add(Res::from_json(j));
-        inst[b] += j.value("instances", int64_t{0});
+        blocks[b].add(Res::from_json(j), k);
+        inst[b] += j.value("instances", int64_t{0}) * k;
         if (j.contains("lut_levels")) levels[b] = std::max(levels[b], j["lut_levels"].get<int>());
       }
       int l = p["total"].value("lut_levels", 0);
@@ -569,7 +615,8 @@ int main(int argc, char** argv) {
       lv_r = std::max(lv_r, p["total"].value("lut_levels_reg2reg", 0));
       loops += p.value("comb_loops", 0);
       secs += p.value("seconds", 0.0);
-      parts.push_back({{"top", p.value("top", "")}, {"seconds", p.value("seconds", 0.0)},
+      parts.push_back({{"top", p.value("top", "")},
+                       {"seconds", p.value("seconds", 0.0)},
                        {"command", p.value("command", "")}});
     }
     r["tool"] = "sm_synth_report";
@@ -597,7 +644,7 @@ int main(int argc, char** argv) {
     save(out, r);
     if (!quiet) print_report(r, false);
   } else if (*kids) {
-    json stat = load(stat_path);
+    json stat = load_stat(stat_path);
     if (!stat.contains("modules")) fail(fmt::format("{}: no \"modules\"", stat_path));
     std::map<std::string, std::string> mods;  // normalized -> as named
     for (auto& [name, m] : stat["modules"].items()) mods[norm(name)] = name;

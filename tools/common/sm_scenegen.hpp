@@ -45,7 +45,8 @@ struct SyntheticScene {
 SyntheticScene render_scene(const SceneParams& p);
 
 // Writes left.png right.png gt.png (16-bit, value = d * 256) nonocc.png scale.txt
-// ("256 levels") and camera.json (homographies, gains) into dir (created). Every file
+// ("256 levels"), camera.json (homographies, gains) and calib.json (the right camera's
+// homography as rectifier grids, model/calib_file.hpp) into dir (created). Every file
 // is written under a temporary name and renamed.
 constexpr int kGtScale = 256;
 void write_scene(const SyntheticScene& s, const SceneParams& p, const std::string& dir,

@@ -1,0 +1,34 @@
+# Census transform, matching cost, line buffer and the shared window controller.
+
+# sm_win_ctrl at two parameter points (square window with a column delay; rows only).
+sm_rtl_test(NAME tb_win_ctrl_3x3 TOP sm_win_ctrl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_win_ctrl.cpp
+            PARAMS MAX_WIDTH=64 D_ROWS=3 D_COLS=3 R_UP=3 R_DN=3 R_L=3 R_R=3)
+sm_rtl_test(NAME tb_win_ctrl_rows TOP sm_win_ctrl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_win_ctrl.cpp
+            PARAMS MAX_WIDTH=64 D_ROWS=4 D_COLS=0 R_UP=3 R_DN=3 R_L=0 R_R=0)
+
+# Census and cost at a small point, width 37 (odd, below MAX_WIDTH).
+sm_rtl_test(NAME tb_census TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_census.cpp
+            PARAMS MAX_WIDTH=64 CENSUS=7)
+sm_rtl_test(NAME tb_census_3 TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_census.cpp
+            PARAMS MAX_WIDTH=64 CENSUS=3)
+sm_rtl_test(NAME tb_cost TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7)
+
+# Paper configuration, few rows, odd width below MAX_WIDTH.
+sm_rtl_test(NAME tb_census_paper TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_census.cpp
+            PARAMS MAX_WIDTH=320 CENSUS=15 LABELS rtl slow)
+target_compile_definitions(tb_census_paper PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
+sm_rtl_test(NAME tb_cost_paper TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 LABELS rtl slow)
+target_compile_definitions(tb_cost_paper PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
+
+# Model unit tests.
+add_executable(test_census_model ${CMAKE_CURRENT_LIST_DIR}/test_census_model.cpp)
+target_link_libraries(test_census_model PRIVATE sm_model Catch2::Catch2)
+target_compile_options(test_census_model PRIVATE ${SM_WARNINGS})
+target_compile_definitions(test_census_model PRIVATE CATCH_CONFIG_MAIN)
+add_test(NAME test_census_model COMMAND test_census_model)
+set_tests_properties(test_census_model PROPERTIES LABELS unit TIMEOUT 120)
+# The paper-point cost model is ~100 large generated files: optimise them lightly, the
+# few rows it simulates run in seconds anyway.
+target_compile_options(tb_cost_paper PRIVATE -O1)

@@ -1,0 +1,162 @@
+// Block test of sm_cost against the model's hamming_cost. The census inputs come from
+// the model's census images of random image pairs (the right image a shifted copy of
+// the left with noise, so low costs occur); virtual beats and idle cycles carry
+// garbage. Every level of every real output pixel is compared.
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <random>
+#include <type_traits>
+#include <vector>
+
+#include SM_VTOP_H
+#include "beat_schedule.hpp"
+#include "census.hpp"
+#include "sm_tb.hpp"
+
+namespace {
+
+constexpr int kMaxWidth = SM_P_MAX_WIDTH;
+constexpr int kCensus = SM_P_CENSUS;
+constexpr int kDisp = SM_P_DISP;
+#ifndef SM_TB_WIDTH
+#define SM_TB_WIDTH 37
+#endif
+#ifndef SM_TB_H0
+#define SM_TB_H0 9
+#endif
+
+// Write a census vector to a Verilated input port.
+template <typename T>
+void set_port(T& sig, const sm::CensusVec& v, int bits) {
+  if constexpr (std::is_integral_v<T>) {
+    sig = static_cast<T>(bits < 64 ? v[0] & ((uint64_t{1} << bits) - 1) : v[0]);
+  } else {
+    for (int i = 0; i < (bits + 31) / 32; ++i) {
+      uint32_t word = static_cast<uint32_t>(v[i / 2] >> (32 * (i % 2)));
+      if (32 * (i + 1) > bits) word &= (uint32_t{1} << (bits - 32 * i)) - 1;
+      sig[i] = word;
+    }
+  }
+}
+
+// Field [lo, lo + n) of a Verilated output port, n <= 32.
+template <typename T>
+unsigned port_bits(const T& sig, int lo, int n) {
+  uint64_t v;
+  if constexpr (std::is_integral_v<T>) {
+    v = static_cast<uint64_t>(sig) >> lo;
+  } else {
+    const int i = lo / 32;
+    v = sig[i];
+    if (static_cast<size_t>(i + 1) < sizeof(sig) / sizeof(sig[0]) && lo % 32 + n > 32)
+      v |= static_cast<uint64_t>(sig[i + 1]) << 32;
+    v >>= lo % 32;
+  }
+  return static_cast<unsigned>(v & ((uint64_t{1} << n) - 1));
+}
+
+sm::CensusVec garbage(std::mt19937& rng) {
+  auto w = [&] { return (static_cast<uint64_t>(rng()) << 32) | rng(); };
+  return {w(), w(), w(), w()};
+}
+
+}  // namespace
+
+int main() {
+  const int w = SM_TB_WIDTH;
+  static_assert(kMaxWidth >= SM_TB_WIDTH, "test width above MAX_WIDTH");
+  const std::vector<int> heights = {SM_TB_H0, 3, 5};
+  sm::HwConfig hw;
+  hw.max_width = kMaxWidth;
+  hw.census = kCensus;
+  hw.disp = kDisp;
+  const int cb = hw.census_bits();
+  int hwb = 0;  // HW = clog2(CB + 1)
+  while ((1 << hwb) < cb + 1) ++hwb;
+
+  std::mt19937 rng(4321);
+  std::vector<sm::Image8> left;
+  std::vector<sm::CensusImage> cl, cr;
+  std::vector<sm::CostVolume> cost;
+  for (size_t f = 0; f < heights.size(); ++f) {
+    const int h = heights[f];
+    const int shift = static_cast<int>(3 + 5 * f) % kDisp;
+    sm::Image8 l(w, h), r(w, h);
+    for (auto& p : l.px) p = static_cast<uint8_t>(rng());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        r.at(x, y) =
+            (x + shift < w && rng() % 8) ? l.at(x + shift, y) : static_cast<uint8_t>(rng());
+    left.push_back(l);
+    cl.push_back(sm::census_transform(l, hw));
+    cr.push_back(sm::census_transform(r, hw));
+    cost.push_back(sm::hamming_cost(cl.back(), cr.back(), hw));
+  }
+  const auto sched = sm::test::make_schedule(w, heights, 1);
+
+  sm::Testbench<SM_VTOP> tb;
+  sm::test::CeGen ce_gen(0xc057u, 30);
+  sm::test::OutputOrder order(w, heights);
+  tb->width = w;
+  tb->ce = 1;
+  tb->s_side = 0;
+  tb->rst_n = 0;
+  for (int i = 0; i < 3; ++i) tb.tick();
+  tb->rst_n = 1;
+
+  long passed = 0, failed = 0;
+  for (size_t n = 0; n < sched.size();) {
+    const bool ce = ce_gen.next();
+    tb->ce = ce;
+    if (ce && sched[n].frame >= 0) {
+      const auto& b = sched[n];
+      tb->s_side = b.side;
+      set_port(tb->s_cl, cl[b.frame].at(b.x, b.y), cb);
+      set_port(tb->s_cr, cr[b.frame].at(b.x, b.y), cb);
+      tb->s_left = left[b.frame].at(b.x, b.y);
+    } else {
+      tb->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
+      set_port(tb->s_cl, garbage(rng), cb);
+      set_port(tb->s_cr, garbage(rng), cb);
+      tb->s_left = static_cast<uint8_t>(rng());
+    }
+    tb.tick();
+    if (!ce) continue;
+    ++n;
+    if (!(tb->m_side & sm::test::kReal)) continue;
+    sm::test::BeatInfo p;
+    try {
+      p = order.next(tb->m_side);
+    } catch (const std::exception& e) {
+      fmt::print("FAIL: {}\n", e.what());
+      ++failed;
+      break;
+    }
+    bool ok = tb->m_left == left[p.frame].at(p.x, p.y);
+    if (!ok && failed == 0)
+      fmt::print("FIRST MISMATCH frame {} x {} y {}: left expected {} got {}\n", p.frame, p.x, p.y,
+                 left[p.frame].at(p.x, p.y), tb->m_left);
+    for (int d = 0; d < kDisp && ok; ++d) {
+      const unsigned got = port_bits(tb->m_cost, d * hwb, hwb);
+      const unsigned exp = cost[p.frame].at(p.x, p.y, d);
+      if (got != exp) {
+        if (failed == 0)
+          fmt::print("FIRST MISMATCH frame {} x {} y {} d {}: expected {} got {}\n", p.frame, p.x,
+                     p.y, d, exp, got);
+        ok = false;
+      }
+    }
+    if (ok)
+      ++passed;
+    else
+      ++failed;
+  }
+  if (!order.done()) {
+    fmt::print("FAIL: not every pixel came out\n");
+    ++failed;
+  }
+  fmt::print("tb_cost MAX_WIDTH={} CENSUS={} DISP={} W={}: {} passed, {} failed\n", kMaxWidth,
+             kCensus, kDisp, w, passed, failed);
+  return failed == 0 && passed > 0 ? 0 : 1;
+}
