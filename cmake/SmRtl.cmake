@@ -8,12 +8,6 @@ set(SM_VERILATOR_ARGS --x-assign fast --x-initial fast -O3 --assert -Wno-fatal
     -y ${SM_RTL_DIR} -y ${SM_GEN_DIR} -I${SM_GEN_DIR})
 function(sm_verilated)
   cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS" "PARAMS" ${ARGN})
-  # TEMPORARY while blocks are written in parallel: skip targets whose top is missing.
-  if(NOT EXISTS ${SM_RTL_DIR}/${V_TOP}.v)
-    message(WARNING "rtl/${V_TOP}.v missing: ${V_TARGET} not verilated")
-    set_target_properties(${V_TARGET} PROPERTIES EXCLUDE_FROM_ALL TRUE)
-    return()
-  endif()
   set(args ${SM_VERILATOR_ARGS})
   set(defs SM_VTOP=V${V_TARGET} SM_VTOP_H="V${V_TARGET}.h")
   foreach(p ${V_PARAMS})

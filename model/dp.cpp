@@ -5,6 +5,14 @@
 #include <algorithm>
 #include <stdexcept>
 
+// Speed (docs/performance.md): on x86-64 with GCC the forward pass is also compiled for
+// AVX2 and picked at run time (target_clones); integer arithmetic only, same bits.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SM_HOT __attribute__((target_clones("avx2", "default")))
+#else
+#define SM_HOT
+#endif
+
 namespace sm {
 
 namespace {
@@ -21,7 +29,7 @@ int dp_acc_bits(const HwConfig& hw) {
   return clog2(mw * cmax + 2 * mw * 255 + 1) + 1;
 }
 
-void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
+SM_HOT void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
                   DpLine& out) {
   const int nd = hw.disp;
   const int acc_w = dp_acc_bits(hw);
@@ -38,27 +46,49 @@ void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, Dp
     const uint32_t* up = s.u0.data();
     uint32_t* uc = s.u1.data();
     uint8_t* dec = &s.dec[static_cast<size_t>(i) * nd];
-    // matched nodes: i + d odd
-    for (int d = (i & 1) ? 0 : 1; d < nd; d += 2) {
+    // matched nodes: i + d odd; their left pixel xl = (i - 1 + d) / 2 is inside the
+    // line for d < 2n - i + 1 (beyond it the cost is 0). Branch-free loops: speed only.
+    const int dm0 = (i & 1) ? 0 : 1;
+    const int dlim = std::min(nd, sites - i + 1);
+    int d = dm0;
+    for (; d < dlim; d += 2) {
       const int xl = (i - 1 + d) / 2;
-      const uint32_t a = (xl < n) ? agg[static_cast<size_t>(xl) * nd + d] : 0u;
-      uc[d] = (up[d] + a) & mask;
+      uc[d] = (up[d] + agg[static_cast<size_t>(xl) * nd + d]) & mask;
     }
-    // occlusion nodes: i + d even; first of choice 0, 1, 2 reaching the minimum
-    for (int d = (i & 1) ? 1 : 0; d < nd; d += 2) {
-      uint32_t best = up[d];
+    for (; d < nd; d += 2) uc[d] = up[d] & mask;
+    // occlusion nodes: i + d even; first of choice 0, 1, 2 reaching the minimum. The
+    // edge levels (no d - 1 / no d + 1) are peeled so the inner loop has no branches.
+    const int do0 = (i & 1) ? 1 : 0;
+    auto occ_node = [&](int dd, bool has_lo, bool has_hi) {
+      uint32_t best = up[dd];
       uint8_t ch = 0;
-      if (d >= 1) {
-        const uint32_t c1 = (up[d - 1] + occ) & mask;
+      if (has_lo) {
+        const uint32_t c1 = (up[dd - 1] + occ) & mask;
         if (c1 < best) best = c1, ch = 1;
       }
-      if (d <= nd - 2) {
-        const uint32_t c2 = (up[d + 1] + occ) & mask;
+      if (has_hi) {
+        const uint32_t c2 = (up[dd + 1] + occ) & mask;
         if (c2 < best) best = c2, ch = 2;
       }
-      uc[d] = best;
-      dec[d] = ch;
+      uc[dd] = best;
+      dec[dd] = ch;
+    };
+    d = do0;
+    if (d == 0 && d < nd) {
+      occ_node(0, false, nd >= 2);
+      d = 2;
     }
+    for (; d <= nd - 2; d += 2) {
+      const uint32_t b0 = up[d];
+      const uint32_t c1 = (up[d - 1] + occ) & mask;
+      const uint32_t c2 = (up[d + 1] + occ) & mask;
+      const bool t1 = c1 < b0;
+      const uint32_t b1 = t1 ? c1 : b0;
+      const bool t2 = c2 < b1;
+      uc[d] = t2 ? c2 : b1;
+      dec[d] = static_cast<uint8_t>(t2 ? 2 : (t1 ? 1 : 0));
+    }
+    if (d == nd - 1 && d >= 1) occ_node(d, true, false);
     std::swap(s.u0, s.u1);
   }
   out.end_cost = s.u0[0];

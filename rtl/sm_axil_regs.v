@@ -476,5 +476,25 @@ module sm_axil_regs #(
     end
     if (rd_stage_q == 2'd2) s_axil_rdata <= obj_ok ? obj_rd_data : host_value(ar_a_q);
   end
+
+`ifndef SYNTHESIS
+  // Simulation-only AXI4-Lite rules (Verilator --assert builds): B and R stay valid with
+  // the same response until the master takes them.
+  reg        chk_b_q, chk_r_q;
+  reg [1:0]  chk_bresp_q;
+  reg [33:0] chk_r_word_q;
+  always @(posedge aclk) begin
+    chk_b_q      <= aresetn && s_axil_bvalid && !s_axil_bready;
+    chk_r_q      <= aresetn && s_axil_rvalid && !s_axil_rready;
+    chk_bresp_q  <= s_axil_bresp;
+    chk_r_word_q <= {s_axil_rresp, s_axil_rdata};
+    if (aresetn) begin
+      if (chk_b_q && (!s_axil_bvalid || s_axil_bresp != chk_bresp_q))
+        $error("sm_axil_regs: B response withdrawn or changed before bready");
+      if (chk_r_q && (!s_axil_rvalid || {s_axil_rresp, s_axil_rdata} != chk_r_word_q))
+        $error("sm_axil_regs: R response withdrawn or changed before rready");
+    end
+  end
+`endif
 endmodule
 `default_nettype wire

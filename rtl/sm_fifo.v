@@ -63,5 +63,17 @@ module sm_fifo #(
       else if (rd_en) dout_valid <= 1'b0;
     end
   end
+
+`ifndef SYNTHESIS
+  // Simulation-only invariants (Verilator --assert builds): the pointers never run more
+  // than DEPTH apart (overflow), and the output register is only refilled from an entry
+  // that is really in the RAM (underflow).
+  always @(posedge clk) begin
+    if (rst_n) begin
+      if (ram_count > DEPTH[AW:0]) $error("sm_fifo: %0d entries in a %0d-entry RAM", ram_count, DEPTH);
+      if (load && !ram_has) $error("sm_fifo: read of an empty RAM");
+    end
+  end
+`endif
 endmodule
 `default_nettype wire

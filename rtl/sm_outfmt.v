@@ -81,5 +81,18 @@ module sm_outfmt #(
       end
     end
   end
+
+`ifndef SYNTHESIS
+  // Simulation-only AXI4-Stream rule (Verilator --assert builds): once tvalid is high it
+  // stays high, with the same beat, until the sink takes it.
+  reg        chk_wait_q;
+  reg [17:0] chk_beat_q;
+  always @(posedge clk) begin
+    chk_wait_q <= rst_n && m_axis_tvalid && !m_axis_tready;
+    chk_beat_q <= {m_axis_tuser, m_axis_tlast, m_axis_tdata};
+    if (rst_n && chk_wait_q && (!m_axis_tvalid || chk_beat_q != {m_axis_tuser, m_axis_tlast, m_axis_tdata}))
+      $error("sm_outfmt: m_axis beat withdrawn or changed before tready");
+  end
+`endif
 endmodule
 `default_nettype wire

@@ -228,5 +228,22 @@ module sm_seq #(
       end
     end
   end
+
+`ifndef SYNTHESIS
+  // Simulation-only invariants (Verilator --assert builds): the top's ce contract, the
+  // beat register holding still until taken, and no pop of an empty FIFO head.
+  reg         chk_hold_q;
+  reg [20:0]  chk_beat_q;
+  always @(posedge clk) begin
+    chk_hold_q <= rst_n && beat_valid && !ce;
+    chk_beat_q <= {beat_side, beat_left, beat_right};
+    if (rst_n) begin
+      if (ce && !beat_valid) $error("sm_seq: ce without a beat");
+      if (pop && !h_valid) $error("sm_seq: pop of an empty input FIFO");
+      if (chk_hold_q && (!beat_valid || chk_beat_q != {beat_side, beat_left, beat_right}))
+        $error("sm_seq: beat changed before it was taken");
+    end
+  end
+`endif
 endmodule
 `default_nettype wire

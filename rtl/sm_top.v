@@ -77,7 +77,6 @@ module sm_top #(
   localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + 5 +
                           (DISP / 2 + 64 + 15) / 16 + 1;
 
-  wire rst_n = aresetn;
 
   // ---------------------------------------------------------------- registers
   wire [XW-1:0] cfg_width, host_width;

@@ -1,22 +1,32 @@
 if(NOT SM_WITH_TOP)
   return()
 endif()
-# stereo_sim: the Verilated IP at a configuration plus the harness. The paper
-# configuration is the main target; a small one serves the fast system tests.
+# The Verilated IP, once per configuration, as a static library that stereo_sim and the
+# system tests share (the paper configuration is ~150 MB of generated C++).
 set(SM_SIM_THREADS 1 CACHE STRING "Verilator threads of the stereo_sim model")
 
-# sm_add_sim(<target> <params...>)
-function(sm_add_sim target)
+# sm_vtop(<library> <params...>): sm_top verilated at a configuration, with tracing.
+function(sm_vtop lib)
+  add_library(${lib} STATIC ${CMAKE_SOURCE_DIR}/sim/sm_vtop_anchor.cpp)
+  sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE THREADS ${SM_SIM_THREADS})
+  add_dependencies(${lib} sm_regmap_gen_files)
+  get_target_property(defs ${lib} COMPILE_DEFINITIONS)
+  target_compile_definitions(${lib} INTERFACE ${defs})
+  get_target_property(incs ${lib} INCLUDE_DIRECTORIES)
+  target_include_directories(${lib} INTERFACE ${incs})
+endfunction()
+sm_vtop(vtop_paper ${SM_PAPER_PARAMS})
+sm_vtop(vtop_small ${SM_SMALL_PARAMS})
+
+# sm_add_sim(<target> <vtop library>)
+function(sm_add_sim target lib)
   add_executable(${target} ${CMAKE_CURRENT_SOURCE_DIR}/stereo_sim.cpp)
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR})
-  target_link_libraries(${target} PRIVATE sm_model sm_toolio fmt::fmt CLI11::CLI11
+  target_link_libraries(${target} PRIVATE ${lib} sm_model sm_toolio fmt::fmt CLI11::CLI11
                                           nlohmann_json::nlohmann_json ${OpenCV_LIBS})
-  string(REPLACE ";" "_" cfg "${ARGN}")
   target_compile_definitions(${target} PRIVATE
     SM_DEFAULT_SCENE="${CMAKE_BINARY_DIR}/scene"
     SM_SYNTH_JSON="${CMAKE_BINARY_DIR}/synth/sm_top_${target}.json")
-  sm_verilated(TARGET ${target} TOP sm_top PARAMS ${ARGN} TRACE THREADS ${SM_SIM_THREADS})
-  add_dependencies(${target} sm_regmap_gen_files)
 endfunction()
-sm_add_sim(stereo_sim ${SM_PAPER_PARAMS})
-sm_add_sim(stereo_sim_small ${SM_SMALL_PARAMS})
+sm_add_sim(stereo_sim vtop_paper)
+sm_add_sim(stereo_sim_small vtop_small)

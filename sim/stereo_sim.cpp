@@ -136,7 +136,10 @@ int main(int argc, char** argv) {
       cv::Mat f, g;
       while (static_cast<int>(in.frames.size()) < frames_n && cap.read(f)) {
         if (f.cols < 2) fail(fmt::format("{}: frame too narrow", video));
-        cv::cvtColor(f, g, f.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_GRAY2GRAY);
+        if (f.channels() == 3)
+          cv::cvtColor(f, g, cv::COLOR_BGR2GRAY);
+        else
+          g = f;
         const int hw2 = g.cols / 2;
         in.frames.emplace_back(to_size(g(cv::Rect(0, 0, hw2, g.rows)), width, height, video, &resized),
                                to_size(g(cv::Rect(hw2, 0, hw2, g.rows)), width, height, video, &resized));

@@ -3,20 +3,28 @@ if(NOT SM_WITH_TOP)
 endif()
 # Whole-IP tests (label system): the Verilated sm_top at the small configuration with
 # stress timing, and at the paper configuration for the 30 frames/s budget.
-function(sm_top_test name params)
+function(sm_top_test name lib)
   add_executable(${name} ${CMAKE_SOURCE_DIR}/tests/tb_top.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOURCE_DIR}/tests/common ${SM_GEN_DIR})
-  target_link_libraries(${name} PRIVATE sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
-  sm_verilated(TARGET ${name} TOP sm_top PARAMS ${params} TRACE)
-  add_dependencies(${name} sm_regmap_gen_files)
+  target_link_libraries(${name} PRIVATE ${lib} sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
 endfunction()
-sm_top_test(tb_top_small "${SM_SMALL_PARAMS}")
-sm_top_test(tb_top_paper "${SM_PAPER_PARAMS}")
+sm_top_test(tb_top_small vtop_small)
+sm_top_test(tb_top_paper vtop_paper)
 
-add_test(NAME system_small_stress COMMAND tb_top_small ${CMAKE_BINARY_DIR}/scene_small stress)
-add_test(NAME system_small_vcd COMMAND tb_top_small ${CMAKE_BINARY_DIR}/scene_small vcd
-                                       ${CMAKE_BINARY_DIR}/waves/system_small.vcd)
-add_test(NAME system_paper_budget COMMAND tb_top_paper ${CMAKE_BINARY_DIR}/scene budget)
-set_tests_properties(system_small_stress system_small_vcd PROPERTIES LABELS "system" TIMEOUT 600)
+set(_w ${CMAKE_BINARY_DIR}/waves)
+file(MAKE_DIRECTORY ${_w})
+add_test(NAME system_small_stress COMMAND tb_top_small ${SM_SCENE_SMALL_DIR} stress)
+add_test(NAME system_small_vcd COMMAND tb_top_small ${SM_SCENE_SMALL_DIR} vcd ${_w}/system_small.vcd)
+add_test(NAME system_small_budget COMMAND tb_top_small ${SM_SCENE_SMALL_DIR} budget)
+# Calibration round trip: a small pair whose right camera is rotated and shifted; its
+# calibration registers (rectifier grids) go over AXI4-Lite before the frame.
+set(_rot ${CMAKE_BINARY_DIR}/scene_small_rot)
+add_custom_command(OUTPUT ${_rot}/calib.json ${_rot}/left.png ${_rot}/right.png
+  COMMAND sm_scene --width 64 --height 48 --levels 16 --seed 3 --objects 3 --rot-deg 1.5 --vshift 1.5 --out ${_rot}
+  DEPENDS sm_scene COMMENT "Generating a distorted small stereo scene")
+add_custom_target(sm_scene_small_rot ALL DEPENDS ${_rot}/calib.json)
+add_test(NAME system_small_calib COMMAND tb_top_small ${_rot} calib ${_rot}/calib.json)
+add_test(NAME system_paper_budget COMMAND tb_top_paper ${SM_SCENE_DIR} budget)
+set_tests_properties(system_small_stress system_small_vcd system_small_budget system_small_calib
+                     PROPERTIES LABELS "system" TIMEOUT 600)
 set_tests_properties(system_paper_budget PROPERTIES LABELS "system;slow" TIMEOUT 1800)
-file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/waves)

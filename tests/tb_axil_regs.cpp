@@ -14,6 +14,8 @@
 #include <vector>
 
 #include <fmt/format.h>
+
+#include "calib_file.hpp"
 #include <verilated.h>
 
 #include SM_VTOP_H
@@ -412,15 +414,20 @@ int main() {
   }
   check(rm::obj_addr(1, 2) == rm::kObjBase + 4 * (rm::kObjFirstIdx + rm::kObjWords + 2), "obj_addr()");
 
-  // 6. grid window: forwarded writes, bad points, partial strobes, reads
-  const int points = rm::grid_points(hw);
+  // 6. grid window: forwarded writes, bad points, partial strobes, reads. A point is the
+  // rectifier's grid address {gy, gx} with a power-of-two row (model/calib_file.hpp).
+  const int gw_pts = sm::RectGrid::points_w(hw.max_width), gh_pts = sm::RectGrid::points_h(hw.max_height);
+  const int gwmax = sm::grid_gwmax(hw.max_width), ghmax = sm::grid_ghmax(hw.max_height);
+  const int pb = [&] { int b = 0; while ((1 << b) < gwmax * ghmax) ++b; return b; }();
+  auto point_of = [&](int gx, int gy) { return gy * gwmax + gx; };
   for (int i = 0; i < 200; ++i) {
     const int cam = static_cast<int>(rng() % 2), bank = static_cast<int>(rng() % 2);
-    const int point = i < 4 ? (i < 2 ? 0 : points - 1) : static_cast<int>(rng() % points);
+    const int gx = i < 4 ? (i % 2 ? gw_pts - 1 : 0) : static_cast<int>(rng() % gw_pts);
+    const int gy = i < 4 ? (i < 2 ? 0 : gh_pts - 1) : static_cast<int>(rng() % gh_pts);
+    const int point = point_of(gx, gy);
     const uint32_t data = rng();
     d.grid_writes.clear();
     check(d.write(rm::grid_addr(cam, bank, point), data) == 0, "grid write resp");
-    const int pb = [&] { int b = 0; while ((1 << b) < points) ++b; return b; }();
     const uint32_t want_addr = (static_cast<uint32_t>(cam) << (pb + 1)) | (static_cast<uint32_t>(bank) << pb) |
                                static_cast<uint32_t>(point);
     check(d.grid_writes.size() == 1 && d.grid_writes[0].first == want_addr && d.grid_writes[0].second == data,
@@ -429,9 +436,16 @@ int main() {
                       d.grid_writes.empty() ? 0 : d.grid_writes[0].first, want_addr));
   }
   for (int i = 0; i < 20; ++i) {
-    const int point = points + static_cast<int>(rng() % ((1 << rm::kGridPointBits) - points));
+    // outside the grid: a column past the last point, a row past the last, or above PB bits
+    int point;
+    if (i % 3 == 0 && gw_pts < gwmax)
+      point = point_of(gw_pts + static_cast<int>(rng() % (gwmax - gw_pts)), static_cast<int>(rng() % gh_pts));
+    else if (i % 3 == 1 && gh_pts < ghmax)
+      point = point_of(static_cast<int>(rng() % gw_pts), gh_pts + static_cast<int>(rng() % (ghmax - gh_pts)));
+    else
+      point = (1 << pb) + static_cast<int>(rng() % ((1 << rm::kGridPointBits) - (1 << pb)));
     expect_err(rm::grid_addr(static_cast<int>(rng() % 2), static_cast<int>(rng() % 2), point), true, true);
-    const uint32_t good = rm::grid_addr(0, 1, static_cast<int>(rng() % points));
+    const uint32_t good = rm::grid_addr(0, 1, point_of(static_cast<int>(rng() % gw_pts), static_cast<int>(rng() % gh_pts)));
     expect_err(good, true, false);  // write-only window
     d.grid_writes.clear();
     check(d.write(good, 5, 0x7) == 2 && d.grid_writes.empty(), "partial grid write accepted");

@@ -1,0 +1,177 @@
+// bench_model_speed: single-thread run time of the reference model (sm::run_pipeline,
+// per stage) against OpenCV's StereoSGBM and the census StereoBinarySGBM (contrib) on
+// the same 320x240 pair with the same number of levels, in the same run; medians over
+// --runs repetitions, interleaved so machine load hits every method alike.
+// docs/performance.md, "Model speed".
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/stereo.hpp>
+
+#include "common/sm_io.hpp"
+#include "pipeline.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// FNV-1a over the disparity words: a fingerprint to show that a speed change left every
+// output bit alone (compare the printed value before and after).
+template <class T>
+uint64_t fnv(const std::vector<T>& v) {
+  uint64_t h = 1469598103934665603ull;
+  for (auto p : v) {
+    for (size_t b = 0; b < sizeof(T); ++b) {
+      h ^= (static_cast<uint64_t>(p) >> (8 * b)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  }
+  return h;
+}
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+int run(int argc, char** argv) {
+  std::string scene_dir = SM_BENCH_DEFAULT_SCENE, json_path;
+  int runs = 5, levels = 128, width = 320, height = 240;
+  int census = 15, sw = 5;
+  bool no_opencv = false;
+  CLI::App app{"Model speed vs OpenCV StereoSGBM / StereoBinarySGBM (single thread, medians)"};
+  app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")
+      ->capture_default_str();
+  app.add_option("--runs", runs, "repetitions (median)")->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--levels", levels, "disparity levels of every method (even, 4..254)")
+      ->capture_default_str();
+  app.add_option("--width", width, "frame width")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--height", height, "frame height")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--census", census, "model census window (paper: 15)")->capture_default_str();
+  app.add_option("--sw", sw, "model support-weight window (paper: 5)")->capture_default_str();
+  app.add_option("--json", json_path, "write the medians as JSON");
+  app.add_flag("--no-opencv", no_opencv, "time the model only");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (levels < 4 || levels > 254 || levels % 2)
+    throw sm::tools::ToolError(fmt::format("--levels {}: must be even, 4..254", levels));
+  sm::tools::quiet_opencv();
+  cv::setNumThreads(1);
+
+  const sm::tools::Scene sc = sm::tools::load_scene(scene_dir);
+  cv::Mat l = sc.left, r = sc.right;
+  if (l.cols != width || l.rows != height) {
+    cv::resize(sc.left, l, cv::Size(width, height), 0, 0, cv::INTER_AREA);
+    cv::resize(sc.right, r, cv::Size(width, height), 0, 0, cv::INTER_AREA);
+  }
+  const sm::Image8 li = sm::tools::to_image8(l), ri = sm::tools::to_image8(r);
+
+  sm::HwConfig hw;  // paper configuration: CENSUS 15, SW 5
+  hw.max_width = width;
+  hw.max_height = height;
+  hw.disp = levels;
+  hw.census = census;
+  hw.sw = sw;
+  hw.validate();
+  const sm::Regs regs = [&] {
+    sm::Regs g = sm::Regs::defaults(hw);
+    g.width = width;
+    g.height = height;
+    return g;
+  }();
+  const int nd16 = (levels + 15) / 16 * 16;  // OpenCV needs a multiple of 16
+  auto sgbm = cv::StereoSGBM::create(0, nd16, 5, 8 * 25, 32 * 25, 1, 63, 10, 100, 32,
+                                     cv::StereoSGBM::MODE_SGBM);
+  auto bsgbm = cv::stereo::StereoBinarySGBM::create(0, nd16, 9, 100, 1000, 1, 0, 5, 400, 200);
+
+  std::map<std::string, std::vector<double>> t;
+  std::vector<std::string> stage_order;
+  // Fingerprints of every intermediate (outside the timed runs, volumes kept).
+  uint64_t h_raw = 0, h_agg = 0, h_dp = 0, h_post = 0;
+  {
+    const sm::PipelineResult res = sm::run_pipeline(li, ri, hw, regs, true);
+    h_raw = fnv(res.raw.v);
+    h_agg = fnv(res.agg.v);
+    h_dp = fnv(res.dp.px);
+    h_post = fnv(res.post.px);
+  }
+  cv::Mat d;
+  for (int k = 0; k < runs; ++k) {
+    auto t0 = Clock::now();
+    const sm::PipelineResult res = sm::run_pipeline(li, ri, hw, regs, false);
+    t["model"].push_back(ms_since(t0));
+    if (k == 0)
+      for (const auto& [n, ms] : res.stage_ms) stage_order.push_back(n);
+    if (fnv(res.post.px) != h_post) {
+      throw sm::tools::ToolError("model output differs between runs");
+    }
+    for (const auto& [n, ms] : res.stage_ms) t["model." + n].push_back(ms);
+    if (no_opencv) continue;
+    t0 = Clock::now();
+    sgbm->compute(l, r, d);
+    t["sgbm"].push_back(ms_since(t0));
+    t0 = Clock::now();
+    bsgbm->compute(l, r, d);
+    t["binsgbm"].push_back(ms_since(t0));
+  }
+
+  nlohmann::json js;
+  js["scene"] = scene_dir;
+  js["size"] = fmt::format("{}x{}", width, height);
+  js["levels"] = levels;
+  js["runs"] = runs;
+  js["threads"] = 1;
+  js["fingerprint_raw"] = fmt::format("{:016x}", h_raw);
+  js["fingerprint_agg"] = fmt::format("{:016x}", h_agg);
+  js["fingerprint_dp"] = fmt::format("{:016x}", h_dp);
+  js["fingerprint_post"] = fmt::format("{:016x}", h_post);
+  fmt::print("model speed: {} {}x{}, {} levels, 1 thread, median of {} runs (ms / frame)\n",
+             scene_dir, width, height, levels, runs);
+  fmt::print("| method | ms / frame | frames/s | vs model |\n|---|---|---|---|\n");
+  const double m = median(t["model"]);
+  for (const char* n : {"model", "sgbm", "binsgbm"}) {
+    if (!t.count(n)) continue;
+    const double v = median(t[n]);
+    const char* label = std::string(n) == "model"  ? "reference model (run_pipeline)"
+                        : std::string(n) == "sgbm" ? "OpenCV StereoSGBM (block 5)"
+                                                   : "OpenCV StereoBinarySGBM (census, block 9)";
+    fmt::print("| {} | {:.1f} | {:.2f} | {:.2f}x |\n", label, v, 1000.0 / v, v / m);
+    js["ms"][n] = v;
+  }
+  fmt::print("\nmodel stages (median ms):\n| stage | ms | share |\n|---|---|---|\n");
+  for (const auto& n : stage_order) {
+    const double v = median(t["model." + n]);
+    fmt::print("| {} | {:.2f} | {:.0f} % |\n", n, v, 100.0 * v / m);
+    js["stage_ms"][n] = v;
+  }
+  fmt::print("\nfingerprints (FNV-1a): cost {:016x} aggregate {:016x} dp {:016x} post {:016x}\n",
+             h_raw, h_agg, h_dp, h_post);
+  if (!json_path.empty()) sm::tools::write_text_atomic(json_path, js.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "bench_model_speed: error: {}\n", e.what());
+    return 1;
+  }
+}

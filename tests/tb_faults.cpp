@@ -1,0 +1,856 @@
+// Randomized robustness test of the whole IP (sm_top, small configuration): a fixed-seed
+// generator mixes well-formed frames with every stream fault class of docs/streams.md
+// (short / long lines, too few / too many lines, missing / doubled sof, sof mid-line,
+// tvalid gaps of any length, output back-pressure patterns, aresetn and soft reset mid
+// frame, disabled frames) and with register faults (out-of-range sizes, thresholds,
+// gains, offsets, wild rectification grids). docs/robustness.md describes the checks:
+//  - progress: no deadlock (a handshake on some stream within a bound while input is
+//    offered and the output is ready; every frame out within a bound after the input),
+//  - output framing: every frame starts with tuser, every line ends with tlast, W x H,
+//  - every output frame (faulty or not) is bit-exact with sm::run_pipeline run on the
+//    image the stream rules of docs/streams.md make of the input (padding = 0 pixels),
+//    the object packets too,
+//  - ERR_FLAGS and ERR_CNT_* (read over AXI4-Lite) equal the faults a reference model
+//    of the sequencer's rules counted; register reads return the documented clamp.
+//
+// Usage: tb_faults <scene dir> [frames] [seed] [nosoft]
+//   nosoft: no CONTROL.SOFT_RESET steps (aresetn steps instead)
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "common/sm_io.hpp"
+#include "pipeline.hpp"
+#include "post.hpp"
+#include "sm_axil.hpp"
+#include "sm_regmap.hpp"
+#include "sm_regs_io.hpp"
+#include "sm_tb.hpp"
+#include SM_VTOP_H
+
+namespace {
+
+using Top = SM_VTOP;
+
+sm::HwConfig compiled_config() {
+  sm::HwConfig hw;
+  hw.max_width = SM_P_MAX_WIDTH;
+  hw.max_height = SM_P_MAX_HEIGHT;
+  hw.disp = SM_P_DISP;
+  hw.census = SM_P_CENSUS;
+  hw.sw = SM_P_SW;
+  hw.rect_radius = SM_P_RECT_RADIUS;
+  return hw;
+}
+
+int failures = 0, passes = 0;
+bool check(bool ok, const std::string& what) {
+  if (ok) {
+    ++passes;
+  } else {
+    ++failures;
+    if (failures <= 20) fmt::print("FAIL: {}\n", what);
+  }
+  return ok;
+}
+
+// ERR_FLAGS bit order.
+enum Fault { kShort = 0, kLong, kMissing, kExtra, kFew, kMany, kOverflow, kClamped, kNumFlags };
+const char* const kFaultName[kNumFlags] = {"SHORT_LINE", "LONG_LINE", "MISSING_SOF", "EXTRA_SOF",
+                                           "FEW_LINES",  "MANY_LINES", "OUT_OVERFLOW", "CLAMPED"};
+
+struct Pixel {
+  uint16_t data = 0;  // {right, left}
+  bool user = false, last = false;
+  int gap = 0;  // idle cycles before the pixel is offered
+};
+
+// A frame as the IP must output it: the stream rules turn whatever arrived into W x H.
+struct ExpFrame {
+  int w = 0, h = 0;
+  sm::Image8 l, r;
+  sm::Regs regs;
+  bool faulty = false;  // the input of this frame was malformed
+  bool closed = false;  // all its pixels are known
+  int id = 0;           // frames started since reset
+  std::shared_ptr<sm::PipelineResult> model;  // computed once (frame or packet first)
+  const sm::PipelineResult& result(const sm::HwConfig& hw) {
+    if (!model) model = std::make_shared<sm::PipelineResult>(sm::run_pipeline(l, r, hw, regs, false));
+    return *model;
+  }
+};
+
+// Reference model of the sequencer's stream rules (docs/streams.md, "Stream faults"),
+// fed with the accepted camera pixels in order. It does not model timing: the rules'
+// outcome does not depend on it (padding needs no input, drops need no output).
+class SeqModel {
+ public:
+  std::array<uint32_t, kNumFlags> cnt{};  // events since the last CLEAR_ERRORS (counters)
+  std::array<uint32_t, kNumFlags> ev{};   // events since the flags were last cleared
+  std::deque<ExpFrame> frames;            // started, not yet output
+  sm::Regs host;                          // host copy of the registers
+  bool enable = true;
+
+  void reset(bool counters) {
+    mode_frame_ = false;
+    drop_line_ = dropping_ = after_frame_ = false;
+    x_ = y_ = 0;
+    next_id_ = 0;
+    frames.clear();
+    if (counters) {
+      cnt.fill(0);
+      ev.fill(0);
+    }
+  }
+  void bump(int k) {
+    ++cnt[k];
+    ++ev[k];
+  }
+
+  void push(const Pixel& p) {
+    if (drop_line_) {
+      if (!p.user) {
+        if (p.last) drop_line_ = false;
+        return;
+      }
+      drop_line_ = false;
+    }
+    if (!mode_frame_) {
+      if (!p.user) {
+        if (!dropping_) bump(after_frame_ ? kMany : kMissing);
+        dropping_ = true;
+        return;
+      }
+      if (!enable) {
+        dropping_ = true;
+        return;
+      }
+      ExpFrame f;
+      f.w = host.width;
+      f.h = host.height;
+      f.l = sm::Image8(f.w, f.h, 0);
+      f.r = sm::Image8(f.w, f.h, 0);
+      f.regs = host;
+      f.id = next_id_++;
+      frames.push_back(std::move(f));
+      mode_frame_ = true;
+      dropping_ = false;
+      x_ = y_ = 0;
+      take(p);
+      return;
+    }
+    ExpFrame& f = frames.back();
+    if (p.user) {
+      bump(x_ == 0 ? kFew : kExtra);
+      f.faulty = true;
+      close();
+      push(p);
+      return;
+    }
+    take(p);
+  }
+
+ private:
+  void take(const Pixel& p) {
+    ExpFrame& f = frames.back();
+    f.l.at(x_, y_) = static_cast<uint8_t>(p.data & 0xff);
+    f.r.at(x_, y_) = static_cast<uint8_t>(p.data >> 8);
+    const bool last_col = (x_ == f.w - 1);
+    if (p.last && !last_col) {
+      bump(kShort);
+      f.faulty = true;
+      x_ = f.w - 1;  // the rest of the row is padded with 0
+    } else if (!p.last && last_col) {
+      bump(kLong);
+      f.faulty = true;
+      drop_line_ = true;
+    }
+    if (x_ == f.w - 1) {
+      x_ = 0;
+      if (++y_ == f.h) {
+        mode_frame_ = false;
+        after_frame_ = true;
+        f.closed = true;
+      }
+    } else {
+      ++x_;
+    }
+  }
+  void close() {  // early sof: the open frame is completed with 0 pixels
+    frames.back().closed = true;
+    mode_frame_ = false;
+    after_frame_ = true;
+  }
+
+  bool mode_frame_ = false, drop_line_ = false, dropping_ = false, after_frame_ = false;
+  int x_ = 0, y_ = 0;
+  int next_id_ = 0;
+};
+
+// Output back-pressure patterns.
+enum class Ready { kAlways, kRandom, kBursty, kSlow };
+
+class FaultTb {
+ public:
+  FaultTb(const sm::HwConfig& hw, uint32_t seed)
+      : hw_(hw), rng_(seed), axil_(tb_.top(), [this] { cycle(); }) {}
+
+  sm::AxilMaster<Top>& axil() { return axil_; }
+  SeqModel& model() { return model_; }
+  std::mt19937& rng() { return rng_; }
+  uint64_t cycles() const { return tb_.cycles(); }
+  int frames_out() const { return frames_out_; }
+  int clean_out() const { return clean_out_; }
+  int faulty_out() const { return faulty_out_; }
+  int recovered() const { return recovered_; }
+  size_t queued() const { return cam_.size(); }
+  void set_ready(Ready r) { ready_ = r; }
+  void set_gap_percent(int p) { gap_percent_ = p; }
+
+  void queue(const std::vector<Pixel>& px) { cam_.insert(cam_.end(), px.begin(), px.end()); }
+
+  // One clock: camera, output sinks, checks.
+  void cycle() {
+    auto& t = tb_.top();
+    t.aresetn = in_reset_ ? 0 : 1;
+    bool present = false;
+    if (!cam_.empty() && !paused_) {
+      Pixel& p = cam_.front();
+      if (p.gap > 0) {
+        --p.gap;
+      } else if (!(gap_percent_ > 0 && static_cast<int>(rng_() % 100) < gap_percent_)) {
+        present = true;
+      }
+      // Garbage on the data lines while tvalid is low.
+      t.s_axis_tdata = present ? p.data : static_cast<uint16_t>(rng_());
+      t.s_axis_tuser = present ? p.user : (rng_() & 1);
+      t.s_axis_tlast = present ? p.last : (rng_() & 1);
+    }
+    t.s_axis_tvalid = present;
+    bool ready = true;
+    switch (ready_) {
+      case Ready::kAlways: ready = true; break;
+      case Ready::kRandom: ready = rng_() % 100 >= 40; break;
+      case Ready::kSlow: ready = rng_() % 100 < 10; break;
+      case Ready::kBursty:
+        if (burst_left_ == 0) {
+          burst_ready_ = !burst_ready_;
+          burst_left_ = 1 + static_cast<int>(rng_() % (burst_ready_ ? 400 : 1500));
+        }
+        --burst_left_;
+        ready = burst_ready_;
+        break;
+    }
+    if (force_ready_) ready = true;
+    t.m_axis_tready = ready;
+    t.m_axis_obj_tready = force_ready_ || rng_() % 100 >= 20;
+    t.eval();
+    const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
+    const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
+    const uint16_t od = static_cast<uint16_t>(t.m_axis_tdata);
+    const bool ou = t.m_axis_tuser, ol = t.m_axis_tlast;
+    const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
+    const uint32_t objd = t.m_axis_obj_tdata;
+    const bool objl = t.m_axis_obj_tlast;
+    // A pixel accepted while the core is in reset (aresetn low now or in the previous
+    // clock: the core's reset is registered) is lost.
+    const bool lost = in_reset_ || reset_prev_;
+    reset_prev_ = in_reset_;
+    tb_.tick();
+
+    if (in_hs) {
+      Pixel p = cam_.front();
+      cam_.pop_front();
+      if (!lost) model_.push(p);
+    }
+    if (out_hs) out_beat(od, ou, ol);
+    if (obj_hs) {
+      pkt_.push_back(objd);
+      if (objl) {
+        check_packet();
+        pkt_.clear();
+      }
+    }
+    // Progress: with input offered and the output ready, some stream must move.
+    if ((present && ready && !in_hs && !out_hs) && !in_reset_) {
+      if (++stuck_ > kStuckBound) {
+        check(false, fmt::format("no progress for {} cycles at cycle {} (input offered, output ready)",
+                                 kStuckBound, tb_.cycles()));
+        throw std::runtime_error("deadlock");
+      }
+    } else if (in_hs || out_hs) {
+      stuck_ = 0;
+    }
+  }
+
+  // Runs until the camera queue is empty.
+  void run_camera() {
+    const uint64_t start = tb_.cycles();
+    while (!cam_.empty()) {
+      cycle();
+      if (tb_.cycles() - start > 2000000) throw std::runtime_error("camera queue never drained");
+    }
+  }
+
+  // Camera idle and the output ready until nothing has moved for a while: every accepted
+  // pixel has been through the sequencer (the counters are final) and whatever the
+  // pipeline can push out is out.
+  void drain(int min_cycles = 800) {
+    paused_ = true;
+    force_ready_ = true;
+    const uint64_t start = tb_.cycles();
+    uint64_t last_move = start;
+    int seen = beats_;
+    while (tb_.cycles() - start < static_cast<uint64_t>(min_cycles) || tb_.cycles() - last_move < 400) {
+      cycle();
+      if (beats_ != seen) {
+        seen = beats_;
+        last_move = tb_.cycles();
+      }
+      if (tb_.cycles() - start > 100000) throw std::runtime_error("output never went quiet");
+    }
+    paused_ = false;
+    force_ready_ = false;
+  }
+
+  // Every closed frame must come out within a bound once the camera is idle (flush rows).
+  void expect_all_out() {
+    drain(3000);
+    size_t pending = 0;
+    for (const auto& f : model_.frames)
+      if (f.closed) ++pending;
+    check(pending == 0, fmt::format("{} complete frames still inside the core after the flush", pending));
+  }
+
+  void areset(int len) {
+    in_reset_ = true;
+    axil_.idle();
+    for (int i = 0; i < len; ++i) cycle();
+    in_reset_ = false;
+    cycle();
+    model_.reset(true);
+    model_.host = sm::Regs::defaults(hw_);
+    model_.host.width = hw_.max_width;
+    model_.host.height = hw_.max_height;
+    model_.enable = true;
+    clamped_ = false;
+    out_reset();
+  }
+  // After a soft reset the core is back to its post-reset state except the registers.
+  void after_soft_reset() {
+    model_.reset(false);
+    out_reset();
+    // The pulse reaches the core two clocks after the write response; a pixel offered
+    // before that would be lost in the reset of the input FIFO.
+    paused_ = true;
+    for (int i = 0; i < 4; ++i) cycle();
+    paused_ = false;
+  }
+  void pause(bool p) { paused_ = p; }
+  bool& clamped() { return clamped_; }
+
+  // Compares ERR_FLAGS / ERR_CNT_* with the model (call after drain()).
+  void check_errors(const std::string& when) {
+    uint32_t flags = axil_.read(sm::regmap::kERR_FLAGS);
+    const uint32_t line = axil_.read(sm::regmap::kERR_CNT_LINE);
+    const uint32_t sof = axil_.read(sm::regmap::kERR_CNT_SOF);
+    const uint32_t rows = axil_.read(sm::regmap::kERR_CNT_ROWS);
+    const uint32_t out = axil_.read(sm::regmap::kERR_CNT_OUT);
+    const std::array<uint32_t, 7> got = {line & 0xffff, line >> 16, sof & 0xffff, sof >> 16,
+                                         rows & 0xffff, rows >> 16, out & 0xffff};
+    for (int k = 0; k < 7; ++k) {
+      const uint32_t want = std::min<uint32_t>(model_.cnt[k], 0xffff);
+      check(got[k] == want, fmt::format("{}: ERR_CNT {} = {}, expected {}", when, kFaultName[k], got[k], want));
+      const bool fl = (flags >> k) & 1u;
+      check(fl == (model_.ev[k] > 0),
+            fmt::format("{}: ERR_FLAGS.{} = {}, expected {}", when, kFaultName[k], fl, model_.ev[k] > 0));
+      fault_total_[k] += model_.ev[k];
+    }
+    check(((flags >> kClamped) & 1u) == (clamped_ ? 1u : 0u),
+          fmt::format("{}: ERR_FLAGS.CLAMPED = {}, expected {}", when, (flags >> kClamped) & 1u, clamped_));
+    // Alternate the two ways of clearing.
+    if (rng_() & 1) {
+      axil_.write(sm::regmap::kCONTROL, control_word() | (1u << sm::regmap::kCONTROL_CLEAR_ERRORS_LSB));
+      flags = axil_.read(sm::regmap::kERR_FLAGS);
+      check(flags == 0, fmt::format("{}: ERR_FLAGS 0x{:x} after CLEAR_ERRORS", when, flags));
+      check(axil_.read(sm::regmap::kERR_CNT_LINE) == 0 && axil_.read(sm::regmap::kERR_CNT_ROWS) == 0,
+            when + ": counters cleared by CLEAR_ERRORS");
+      model_.cnt.fill(0);
+    } else {
+      axil_.write(sm::regmap::kERR_FLAGS, 0xff);
+      flags = axil_.read(sm::regmap::kERR_FLAGS);
+      check(flags == 0, fmt::format("{}: ERR_FLAGS 0x{:x} after writing 1s", when, flags));
+      check(axil_.read(sm::regmap::kERR_CNT_LINE) == ((got[1] << 16) | got[0]),
+            when + ": writing ERR_FLAGS keeps the counters");
+    }
+    model_.ev.fill(0);
+    clamped_ = false;
+  }
+  uint32_t control_word() const {
+    return model_.enable ? (1u << sm::regmap::kCONTROL_ENABLE_LSB) : 0u;
+  }
+  const std::array<uint64_t, kNumFlags>& fault_total() const { return fault_total_; }
+
+ private:
+  void out_reset() {
+    ox_ = oy_ = 0;
+    in_frame_ = false;
+    pkt_.clear();
+    next_pkt_ = 0;
+    out_id_ = 0;
+  }
+
+  void out_beat(uint16_t d, bool user, bool last) {
+    ++beats_;
+    if (!in_frame_) {
+      if (!check(user, fmt::format("output frame {}: first beat without tuser", frames_out_))) {
+        return;
+      }
+      if (model_.frames.empty()) {
+        check(false, fmt::format("output frame {} started but no input frame is pending", frames_out_));
+        return;
+      }
+      in_frame_ = true;
+      ox_ = oy_ = 0;
+      cur_ = sm::DispImage(model_.frames.front().w, model_.frames.front().h);
+    } else {
+      check(!user, fmt::format("output frame {}: tuser at x {} y {}", frames_out_, ox_, oy_));
+    }
+    ExpFrame& f = model_.frames.front();
+    check(last == (ox_ == f.w - 1),
+          fmt::format("output frame {}: tlast {} at x {} y {} (width {})", frames_out_, last, ox_, oy_, f.w));
+    cur_.at(ox_, oy_) = d;
+    if (++ox_ < f.w) return;
+    ox_ = 0;
+    if (++oy_ < f.h) return;
+    in_frame_ = false;
+    oy_ = 0;
+    if (!check(f.closed, fmt::format("output frame {} complete before its input", frames_out_))) {
+      model_.frames.pop_front();
+      return;
+    }
+    const auto& m = model_.frames.front().result(hw_);
+    int n = 0;
+    for (int y = 0; y < f.h; ++y)
+      for (int x = 0; x < f.w; ++x)
+        if (m.post.at(x, y) != cur_.at(x, y) && n++ == 0)
+          fmt::print("first mismatch: output frame {} ({}x{}, {}) x {} y {}: expected 0x{:04x} got 0x{:04x}\n",
+                     frames_out_, f.w, f.h, f.faulty ? "faulty input" : "well-formed input", x, y,
+                     m.post.at(x, y), cur_.at(x, y));
+    check(n == 0, fmt::format("output frame {} bit-exact ({} pixels differ)", frames_out_, n));
+    if (f.faulty) {
+      ++faulty_out_;
+    } else {
+      ++clean_out_;
+      if (prev_faulty_) ++recovered_;
+    }
+    prev_faulty_ = f.faulty;
+    done_pkts_[f.id % kKeep] = sm::object_packet(m.objects, false);
+    out_id_ = f.id + 1;
+    if (verbose_) fmt::print("  out frame id {} {}x{} {} at cycle {}\n", f.id, f.w, f.h, f.faulty ? "faulty" : "ok", tb_.cycles());
+    ++frames_out_;
+    model_.frames.pop_front();
+  }
+
+  void check_packet() {
+    // Packet n belongs to frame n since reset; it may leave before the frame's last pixel.
+    const int id = next_pkt_++;
+    for (auto& f : model_.frames)
+      if (f.id == id) {
+        if (!check(f.closed, fmt::format("object packet of frame {} before its input was complete", id))) return;
+        const auto want = sm::object_packet(f.result(hw_).objects, false);
+        check(pkt_ == want, fmt::format("object packet of frame {} ({} words, expected {})", id, pkt_.size(),
+                                        want.size()));
+        return;
+      }
+    if (id < out_id_) {
+      check(pkt_ == done_pkts_[id % kKeep], fmt::format("object packet of frame {} (after the frame)", id));
+      return;
+    }
+    check(false, fmt::format("object packet {} without a frame", id));
+  }
+
+  static constexpr int kStuckBound = 6000;
+  sm::HwConfig hw_;
+  sm::Testbench<Top> tb_;
+  std::mt19937 rng_;
+  sm::AxilMaster<Top> axil_;
+  SeqModel model_;
+  std::deque<Pixel> cam_;
+  bool paused_ = false, force_ready_ = false, in_reset_ = false, reset_prev_ = false;
+  Ready ready_ = Ready::kAlways;
+  int burst_left_ = 0;
+  bool burst_ready_ = true;
+  int gap_percent_ = 0;
+  int stuck_ = 0;
+  // output side
+  bool in_frame_ = false;
+  int ox_ = 0, oy_ = 0;
+  sm::DispImage cur_;
+  static constexpr int kKeep = 64;
+  std::array<std::vector<uint32_t>, kKeep> done_pkts_;  // packets of output frames
+  int next_pkt_ = 0, out_id_ = 0;
+  std::vector<uint32_t> pkt_;
+  int beats_ = 0, frames_out_ = 0, clean_out_ = 0, faulty_out_ = 0, recovered_ = 0;
+  bool prev_faulty_ = false;
+ public:
+  bool verbose_ = getenv("SM_VERBOSE") != nullptr;
+  bool clamped_ = false;
+  std::array<uint64_t, kNumFlags> fault_total_{};
+};
+
+// Camera pixels of a W x H frame cut from the scene at (ox, oy).
+std::vector<Pixel> frame_pixels(const sm::Image8& l, const sm::Image8& r, int w, int h, int ox, int oy) {
+  std::vector<Pixel> px;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      Pixel p;
+      p.data = static_cast<uint16_t>(l.at(ox + x, oy + y) | (r.at(ox + x, oy + y) << 8));
+      p.user = (x == 0 && y == 0);
+      p.last = (x == w - 1);
+      px.push_back(p);
+    }
+  return px;
+}
+
+uint32_t clamp_u(uint32_t v, uint32_t lo, uint32_t hi) { return std::min(std::max(v, lo), hi); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fmt::print(stderr, "usage: tb_faults <scene dir> [frames] [seed]\n");
+    return 2;
+  }
+  const int n_frames = argc > 2 ? std::stoi(argv[2]) : 400;
+  const uint32_t seed = argc > 3 ? static_cast<uint32_t>(std::stoul(argv[3])) : 20240611u;
+  const bool soft_reset = !(argc > 4 && std::string(argv[4]) == "nosoft");
+  try {
+    const sm::HwConfig hw = compiled_config();
+    const sm::tools::Scene sc = sm::tools::load_scene(argv[1]);
+    const sm::Image8 sl = sm::tools::to_image8(sc.left), sr = sm::tools::to_image8(sc.right);
+    if (sl.w < hw.max_width || sl.h < hw.max_height)
+      throw std::runtime_error(fmt::format("{}: scene {}x{} smaller than the configuration {}x{}", argv[1], sl.w,
+                                           sl.h, hw.max_width, hw.max_height));
+    FaultTb tb(hw, seed);
+    auto& rng = tb.rng();
+    auto& axil = tb.axil();
+    using namespace sm::regmap;
+
+    // Well-formed operating points (W >= DISP/2 + 3, H >= 16).
+    const std::vector<std::pair<int, int>> sizes = {{24, 16}, {24, 16}, {24, 16}, {17, 16}, {32, 20}};
+    int cur = 0;
+    auto regs_for = [&](int w, int h) {
+      sm::Regs r = sm::Regs::defaults(hw);
+      r.width = w;
+      r.height = h;
+      r.grid_l = r.grid_r = sm::RectGrid{};  // identity for the active size
+      return r;
+    };
+    auto program = [&](const sm::Regs& r) {
+      tb.pause(true);
+      sm::write_registers(axil, r, hw);
+      tb.model().host = r;
+      tb.model().enable = true;
+      tb.pause(false);
+    };
+    tb.areset(8);
+    program(regs_for(24, 16));
+
+    auto W = [&] { return tb.model().host.width; };
+    auto H = [&] { return tb.model().host.height; };
+    auto good = [&] {
+      const int w = W(), h = H();
+      const int ox = static_cast<int>(rng() % (hw.max_width - w + 1));
+      const int oy = static_cast<int>(rng() % (hw.max_height - h + 1));
+      return frame_pixels(sl, sr, w, h, ox, oy);
+    };
+    auto idx = [&](int x, int y) { return static_cast<size_t>(y) * W() + x; };
+
+    std::array<int, 24> injected{};
+    const char* const kind_name[] = {"well-formed", "short line", "long line", "too few lines",
+                                     "too many lines", "missing sof", "doubled sof", "sof mid-line",
+                                     "long tvalid gap", "back-pressure burst", "aresetn mid-frame",
+                                     "soft reset mid-frame", "frame while disabled", "size change",
+                                     "register faults", "rectification grid faults", "truncated stream"};
+    const int n_kinds = 17;
+
+    for (int f = 0; f < n_frames; ++f) {
+      // Per-frame stream character.
+      tb.set_gap_percent(rng() % 4 == 0 ? static_cast<int>(rng() % 50) : 0);
+      const int rp = static_cast<int>(rng() % 8);
+      tb.set_ready(rp < 3 ? Ready::kAlways : rp < 6 ? Ready::kRandom : rp < 7 ? Ready::kBursty : Ready::kSlow);
+
+      int kind = (rng() % 100 < 35) ? 0 : 1 + static_cast<int>(rng() % (n_kinds - 1));
+      if (kind == 11 && !soft_reset) kind = 10;
+      ++injected[kind];
+      if (tb.verbose_) fmt::print("step {}: {} at cycle {}\n", f, kind_name[kind], tb.cycles());
+      std::vector<Pixel> px = good();
+      const int w = W(), h = H();
+      switch (kind) {
+        case 0: break;
+        case 1: {  // short line: tlast early
+          const int y = static_cast<int>(rng() % h), x = static_cast<int>(rng() % (w - 1));
+          std::vector<Pixel> out;
+          for (int yy = 0; yy < h; ++yy)
+            for (int xx = 0; xx < w; ++xx) {
+              if (yy == y && xx > x) continue;
+              Pixel p = px[idx(xx, yy)];
+              if (yy == y && xx == x) p.last = true;
+              out.push_back(p);
+            }
+          px = out;
+          break;
+        }
+        case 2: {  // long line: extra pixels before tlast (sometimes on the last line)
+          const int y = (rng() & 1) ? h - 1 : static_cast<int>(rng() % h);
+          const int extra = 1 + static_cast<int>(rng() % (2 * w));
+          std::vector<Pixel> out;
+          for (int yy = 0; yy < h; ++yy)
+            for (int xx = 0; xx < w; ++xx) {
+              Pixel p = px[idx(xx, yy)];
+              if (yy == y && xx == w - 1) {
+                p.last = false;
+                out.push_back(p);
+                for (int e = 0; e < extra; ++e) {
+                  Pixel q;
+                  q.data = static_cast<uint16_t>(rng());
+                  q.last = (e == extra - 1);
+                  out.push_back(q);
+                }
+                continue;
+              }
+              out.push_back(p);
+            }
+          px = out;
+          break;
+        }
+        case 3:  // too few lines: the next frame's tuser comes early
+          px.resize(static_cast<size_t>(w) * (1 + rng() % (h - 1)));
+          break;
+        case 4: {  // too many lines
+          const int extra = 1 + static_cast<int>(rng() % 4);
+          for (int e = 0; e < extra * w; ++e) {
+            Pixel q;
+            q.data = static_cast<uint16_t>(rng());
+            q.last = (e % w == w - 1);
+            px.push_back(q);
+          }
+          break;
+        }
+        case 5:  // missing sof: the whole frame without tuser (counts as MANY_LINES after a frame)
+          px[0].user = false;
+          break;
+        case 6: {  // doubled sof: the camera restarts the frame after a few pixels
+          const int k = 1 + static_cast<int>(rng() % (2 * w));
+          std::vector<Pixel> out(px.begin(), px.begin() + k);
+          out.insert(out.end(), px.begin(), px.end());
+          px = out;
+          break;
+        }
+        case 7: {  // sof mid-line: the frame is cut inside a line by the next frame
+          const int y = static_cast<int>(rng() % h), x = 1 + static_cast<int>(rng() % (w - 1));
+          px.resize(idx(x, y));
+          break;
+        }
+        case 8:  // a long tvalid gap somewhere in the frame
+          px[rng() % px.size()].gap = static_cast<int>(rng() % 20000);
+          break;
+        case 9:  // a long output stall
+          tb.set_ready(Ready::kBursty);
+          break;
+        case 10: {  // aresetn mid-frame, the camera keeps going afterwards (mid-frame)
+          const size_t cut = rng() % px.size();
+          tb.queue(std::vector<Pixel>(px.begin(), px.begin() + cut));
+          // Let part of it in, then pull the reset while the stream is still flowing.
+          for (int i = 0, n = static_cast<int>(rng() % (2 * cut + 2)); i < n; ++i) tb.cycle();
+          tb.areset(1 + static_cast<int>(rng() % 20));
+          tb.pause(true);
+          const sm::Regs keep = regs_for(w, h);
+          program(keep);
+          px.clear();  // the rest of the camera queue continues mid-frame
+          break;
+        }
+        case 11: {  // soft reset mid-frame
+          const size_t cut = 1 + rng() % (px.size() - 1);
+          tb.queue(std::vector<Pixel>(px.begin(), px.begin() + cut));
+          tb.run_camera();
+          tb.drain();
+          axil.write(kCONTROL, tb.control_word() | (1u << kCONTROL_SOFT_RESET_LSB));
+          tb.after_soft_reset();
+          px.assign(px.begin() + cut, px.end());  // rest of the frame: no tuser -> MISSING_SOF
+          break;
+        }
+        case 12: {  // frames while disabled are dropped silently
+          tb.run_camera();
+          tb.drain();
+          axil.write(kCONTROL, 0);
+          tb.model().enable = false;
+          tb.queue(px);
+          tb.queue(good());
+          tb.run_camera();
+          tb.drain();
+          axil.write(kCONTROL, 1u << kCONTROL_ENABLE_LSB);
+          tb.model().enable = true;
+          px = good();
+          break;
+        }
+        case 13: {  // legal size change (flush rows of the old width first)
+          tb.run_camera();
+          tb.drain();
+          cur = (cur + 1 + static_cast<int>(rng() % (sizes.size() - 1))) % static_cast<int>(sizes.size());
+          program(regs_for(sizes[cur].first, sizes[cur].second));
+          px = good();
+          break;
+        }
+        case 14: {  // register faults: out-of-range values are clamped and flagged
+          tb.run_camera();
+          tb.drain();
+          tb.check_errors(fmt::format("before register faults (frame {})", f));
+          sm::Regs r = tb.model().host;
+          struct Wr { uint32_t addr; uint32_t v; };
+          std::vector<Wr> wr;
+          const uint32_t big[] = {0u, 1u, 15u, 65u, 1000u, 0x10000u, 0xffffffffu, 0x80000000u};
+          const uint32_t ws = big[rng() % 8], hs = big[rng() % 8];
+          const bool size_fault = rng() % 3 == 0;
+          uint32_t wv = size_fault ? ws : static_cast<uint32_t>(r.width);
+          uint32_t hv = size_fault ? hs : static_cast<uint32_t>(r.height);
+          const uint32_t occ = 200u + rng() % 1000u, gain = 900u + rng() % 2000u;
+          const int32_t off = static_cast<int32_t>(rng() % 2000u) - 1000;
+          const uint32_t near = rng() % 600u, tol = rng() % 600u, minpix = rng() % 0x20000u;
+          bool expect_clamp = false;
+          auto ck = [&](uint32_t addr, uint32_t v, uint32_t want, const char* name) {
+            check(axil.write(addr, v) == 0, fmt::format("{} write accepted", name));
+            const uint32_t got = axil.read(addr);
+            check(got == want, fmt::format("{} write 0x{:x} reads 0x{:x}, expected 0x{:x}", name, v, got, want));
+          };
+          const uint32_t wc = clamp_u(wv, 16, static_cast<uint32_t>(hw.max_width));
+          const uint32_t hc = clamp_u(hv, 16, static_cast<uint32_t>(hw.max_height));
+          expect_clamp |= (wc != wv) || (hc != hv);
+          ck(kWIDTH, wv, wc, "WIDTH");
+          ck(kHEIGHT, hv, hc, "HEIGHT");
+          r.width = static_cast<int>(wc);
+          r.height = static_cast<int>(hc);
+          ck(kOCC, occ, std::min(occ, 255u), "OCC");
+          r.occ = static_cast<uint8_t>(std::min(occ, 255u));
+          ck(kGAIN_L, gain, std::min(gain, 1023u), "GAIN_L");
+          r.gain_l = static_cast<uint16_t>(std::min(gain, 1023u));
+          const int32_t offc = std::min(std::max(off, -256), 255);
+          ck(kOFFSET_R, static_cast<uint32_t>(off), static_cast<uint32_t>(offc), "OFFSET_R");
+          r.offset_r = static_cast<int16_t>(offc);
+          ck(kOBJ_NEAR, near, std::min(near, 255u), "OBJ_NEAR");
+          r.obj_near = static_cast<uint8_t>(std::min(near, 255u));
+          ck(kOBJ_TOL, tol, std::min(tol, 255u), "OBJ_TOL");
+          r.obj_tol = static_cast<uint8_t>(std::min(tol, 255u));
+          ck(kOBJ_MIN_PIXELS, minpix, std::min(minpix, 65535u), "OBJ_MIN_PIXELS");
+          r.obj_min_pixels = static_cast<uint16_t>(std::min(minpix, 65535u));
+          expect_clamp |= occ > 255 || gain > 1023 || off != offc || near > 255 || tol > 255 || minpix > 65535;
+          // Bit fields ignore bits outside their fields (no clamp).
+          ck(kFILTER_ENABLE, 0xfffffff8u | r.filter_enable, r.filter_enable, "FILTER_ENABLE");
+          // Unmapped and read-only addresses answer SLVERR and change nothing.
+          check(axil.write(0x3c, 0x1234) == 2, "write to an unmapped address answers SLVERR");
+          check(axil.write(kSTATUS, 0xffffffffu) == 2, "write to STATUS answers SLVERR");
+          unsigned resp = 0;
+          axil.read(0x7ffc, &resp);
+          check(resp == 2, "read of an unmapped address answers SLVERR");
+          // Identity grids for a new size (the old ones do not cover it).
+          const sm::RectGrid idl = sm::RectGrid::identity(r.width, r.height);
+          sm::write_grid(axil, hw, 0, 0, idl);
+          sm::write_grid(axil, hw, 1, 0, idl);
+          r.grid_l = r.grid_r = sm::RectGrid{};
+          tb.model().host = r;
+          if (expect_clamp) tb.clamped() = true;
+          tb.check_errors(fmt::format("register faults (frame {})", f));
+          px = good();
+          tb.queue(px);
+          px = good();
+          // Back to a sane operating point afterwards.
+          tb.queue(px);
+          tb.run_camera();
+          tb.drain();
+          cur = 0;
+          program(regs_for(sizes[0].first, sizes[0].second));
+          px = good();
+          break;
+        }
+        case 15: {  // wild / singular rectification grids (any Q.5 value is legal input)
+          tb.run_camera();
+          tb.drain();
+          sm::Regs r = tb.model().host;
+          for (sm::RectGrid* g : {&r.grid_l, &r.grid_r}) {
+            *g = sm::RectGrid::identity(r.width, r.height);
+            const int mode = static_cast<int>(rng() % 3);
+            for (size_t i = 0; i < g->sx.size(); ++i) {
+              if (mode == 0) {  // everything from one point (singular)
+                g->sx[i] = static_cast<int16_t>(5 * 32);
+                g->sy[i] = static_cast<int16_t>(3 * 32);
+              } else if (mode == 1) {  // anything
+                g->sx[i] = static_cast<int16_t>(rng());
+                g->sy[i] = static_cast<int16_t>(rng());
+              } else {  // extreme values
+                g->sx[i] = (rng() & 1) ? INT16_MAX : INT16_MIN;
+                g->sy[i] = (rng() & 1) ? INT16_MAX : INT16_MIN;
+              }
+            }
+          }
+          program(r);
+          tb.queue(px);
+          px = good();  // then identity grids again
+          tb.run_camera();
+          tb.drain();
+          program(regs_for(w, h));
+          break;
+        }
+        case 16: {  // the camera stops mid-frame for good (cable pulled), then restarts
+          const size_t cut = 1 + rng() % (px.size() - 1);
+          px.resize(cut);
+          tb.queue(px);
+          tb.run_camera();
+          tb.drain(2000);
+          px = good();  // next tuser completes the open frame with padding (FEW/EXTRA)
+          break;
+        }
+      }
+      tb.queue(px);
+      // Follow a fault with a well-formed frame (the recovery frame).
+      if (kind != 0) tb.queue(good());
+      tb.run_camera();
+      if (rng() % 6 == 0 || kind == 10 || kind == 11) {
+        tb.drain();
+        tb.check_errors(fmt::format("after frame {} ({})", f, kind_name[kind]));
+      }
+      if (f % 50 == 49)
+        fmt::print("{} input steps, {} frames out ({} faulty, {} well-formed), {} cycles\n", f + 1,
+                   tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.cycles());
+    }
+    // One last well-formed frame and the flush: every complete frame must be out.
+    tb.queue(good());
+    tb.run_camera();
+    tb.expect_all_out();
+    tb.check_errors("end");
+
+    fmt::print("injected:");
+    for (int k = 0; k < n_kinds; ++k) fmt::print(" {}={}", kind_name[k], injected[k]);
+    fmt::print("\nfault events counted by the model and matched in ERR_CNT:");
+    for (int k = 0; k < 7; ++k) fmt::print(" {}={}", kFaultName[k], tb.fault_total()[k]);
+    fmt::print("\n{} frames out: {} from faulty input, {} well-formed ({} right after a fault), all compared "
+               "bit-exactly; {} cycles\n",
+               tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.recovered(), tb.cycles());
+    check(tb.recovered() >= n_frames / 10, fmt::format("{} recovery frames (at least {})", tb.recovered(), n_frames / 10));
+    for (int k = 0; k < 6; ++k)
+      check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", kFaultName[k]));
+  } catch (const std::exception& e) {
+    fmt::print("FAIL: exception: {}\n", e.what());
+    ++failures;
+  }
+  fmt::print("{} passed, {} failed\n", passes, failures);
+  return failures ? 1 : 0;
+}
