@@ -54,11 +54,17 @@ int run(int argc, char** argv) {
   CLI::App app{"Model speed vs OpenCV StereoSGBM / StereoBinarySGBM (single thread, medians)"};
   app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")
       ->capture_default_str();
-  app.add_option("--runs", runs, "repetitions (median)")->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--runs", runs, "repetitions (median)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   app.add_option("--levels", levels, "disparity levels of every method (even, 4..254)")
       ->capture_default_str();
-  app.add_option("--width", width, "frame width")->check(CLI::Range(16, 4096))->capture_default_str();
-  app.add_option("--height", height, "frame height")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--width", width, "frame width")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
+  app.add_option("--height", height, "frame height")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
   app.add_option("--census", census, "model census window (paper: 15)")->capture_default_str();
   app.add_option("--sw", sw, "model support-weight window (paper: 5)")->capture_default_str();
   app.add_option("--json", json_path, "write the medians as JSON");

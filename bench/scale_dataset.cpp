@@ -22,8 +22,12 @@ int run(int argc, char** argv) {
   CLI::App app{"Resize a stereo dataset to the IP's active size (for RTL-vs-model accuracy)"};
   app.add_option("dataset", dataset, "dataset folder or one scene folder")->required();
   app.add_option("--out", out, "output folder (one subfolder per scene)")->required();
-  app.add_option("--width", width, "target width")->check(CLI::Range(16, 4096))->capture_default_str();
-  app.add_option("--height", height, "target height")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--width", width, "target width")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
+  app.add_option("--height", height, "target height")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -51,7 +51,8 @@ int run(int argc, char** argv) {
     if (*st.back() != r.post) throw sm::tools::ToolError("last step differs from the output");
     std::string row = fmt::format("| {} | {}x{} |", sc.name, sc.left.cols, sc.left.rows);
     for (int k = 0; k < 4; ++k) {
-      const double b = sm::tools::bad1(sm::tools::disp_to_float(*st[k]), sc.gt, sc.nonocc).bad_pct();
+      const double b =
+          sm::tools::bad1(sm::tools::disp_to_float(*st[k]), sc.gt, sc.nonocc).bad_pct();
       sum[k] += b;
       row += fmt::format(" {:.2f} |", b);
       js[sc.name][names[k]] = b;

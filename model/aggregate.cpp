@@ -38,8 +38,8 @@ typedef uint16_t V16 __attribute__((vector_size(32)));
 typedef uint8_t V8 __attribute__((vector_size(16)));
 
 template <int NV>
-inline void agg_levels(const size_t* nb_off, const uint16_t* nb_w, int cnt, int d0,
-                       uint32_t rec, const AggArgs& a, uint8_t* o) {
+inline void agg_levels(const size_t* nb_off, const uint16_t* nb_w, int cnt, int d0, uint32_t rec,
+                       const AggArgs& a, uint8_t* o) {
   V16 acc[NV] = {};
   for (int k = 0; k < cnt; ++k) {
     const uint8_t* cq = a.c + nb_off[k] + d0;
@@ -88,16 +88,13 @@ SM_HOT void agg_image(const AggArgs& a) {
       uint8_t* __restrict o = a.out + (static_cast<size_t>(y) * w + x) * nd;
 #if defined(__GNUC__)
       if (kVecLevels && nd % 16 == 0) {
-        for (int d0 = 0; d0 < nd;) {
-          const int nv = std::min(8, (nd - d0) / 16);
-          switch (nv) {
-            case 8: agg_levels<8>(nb_off.data(), nb_w.data(), cnt, d0, rec, a, o); break;
-            case 4: agg_levels<4>(nb_off.data(), nb_w.data(), cnt, d0, rec, a, o); break;
-            case 2: agg_levels<2>(nb_off.data(), nb_w.data(), cnt, d0, rec, a, o); break;
-            default: agg_levels<1>(nb_off.data(), nb_w.data(), cnt, d0, rec, a, o); break;
-          }
-          d0 += 16 * (nv == 8 || nv == 4 || nv == 2 ? nv : 1);
-        }
+        const size_t* off = nb_off.data();
+        const uint16_t* wt = nb_w.data();
+        int d0 = 0;  // widest blocks first; each block of levels is independent
+        for (; d0 + 128 <= nd; d0 += 128) agg_levels<8>(off, wt, cnt, d0, rec, a, o);
+        for (; d0 + 64 <= nd; d0 += 64) agg_levels<4>(off, wt, cnt, d0, rec, a, o);
+        for (; d0 + 32 <= nd; d0 += 32) agg_levels<2>(off, wt, cnt, d0, rec, a, o);
+        for (; d0 < nd; d0 += 16) agg_levels<1>(off, wt, cnt, d0, rec, a, o);
         continue;
       }
 #endif
@@ -119,7 +116,7 @@ SM_HOT void agg_image(const AggArgs& a) {
 }  // namespace
 
 SM_HOT CostVolume sw_aggregate(const CostVolume& raw, const Image8& left,
-                        const std::array<uint8_t, 32>& table, const HwConfig& hw) {
+                               const std::array<uint8_t, 32>& table, const HwConfig& hw) {
   if (raw.w != left.w || raw.h != left.h)
     throw std::invalid_argument(fmt::format("sw_aggregate: cost volume {}x{} but left image {}x{}",
                                             raw.w, raw.h, left.w, left.h));

@@ -30,7 +30,7 @@ int dp_acc_bits(const HwConfig& hw) {
 }
 
 SM_HOT void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
-                  DpLine& out) {
+                         DpLine& out) {
   const int nd = hw.disp;
   const int acc_w = dp_acc_bits(hw);
   const uint32_t mask = (acc_w >= 32) ? 0xffffffffu : ((1u << acc_w) - 1);

@@ -20,23 +20,13 @@
 #include "common/sm_io.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
+#include "sm_vconfig.hpp"
 #include SM_VTOP_H
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
-
-sm::HwConfig compiled_config() {
-  sm::HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.max_height = SM_P_MAX_HEIGHT;
-  hw.disp = SM_P_DISP;
-  hw.census = SM_P_CENSUS;
-  hw.sw = SM_P_SW;
-  hw.rect_radius = SM_P_RECT_RADIUS;
-  return hw;
-}
 
 struct Input {
   std::vector<std::pair<sm::Image8, sm::Image8>> frames;
@@ -61,7 +51,7 @@ sm::Image8 to_size(const cv::Mat& grey, int w, int h, const std::string& what, b
 
 int main(int argc, char** argv) {
   CLI::App app{"Cycle-accurate simulation of the census stereo IP (Verilator)"};
-  const sm::HwConfig hw = compiled_config();
+  const sm::HwConfig hw = sm::verilated_config();
   std::string left, right, seq_dir, video, scene_dir = SM_DEFAULT_SCENE, calib, out_dir = "out",
                                             synth_json, vcd_path;
   int frames_n = 2, width = hw.max_width, height = hw.max_height;

@@ -29,6 +29,3 @@ target_compile_options(test_census_model PRIVATE ${SM_WARNINGS})
 target_compile_definitions(test_census_model PRIVATE CATCH_CONFIG_MAIN)
 add_test(NAME test_census_model COMMAND test_census_model)
 set_tests_properties(test_census_model PROPERTIES LABELS unit TIMEOUT 120)
-# The paper-point cost model is ~100 large generated files: optimise them lightly, the
-# few rows it simulates run in seconds anyway.
-target_compile_options(tb_cost_paper PRIVATE -O1)

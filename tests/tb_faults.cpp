@@ -34,22 +34,12 @@
 #include "sm_regmap.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_tb.hpp"
+#include "sm_vconfig.hpp"
 #include SM_VTOP_H
 
 namespace {
 
 using Top = SM_VTOP;
-
-sm::HwConfig compiled_config() {
-  sm::HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.max_height = SM_P_MAX_HEIGHT;
-  hw.disp = SM_P_DISP;
-  hw.census = SM_P_CENSUS;
-  hw.sw = SM_P_SW;
-  hw.rect_radius = SM_P_RECT_RADIUS;
-  return hw;
-}
 
 int failures = 0, passes = 0;
 bool check(bool ok, const std::string& what) {
@@ -534,7 +524,7 @@ int main(int argc, char** argv) {
   const uint32_t seed = argc > 3 ? static_cast<uint32_t>(std::stoul(argv[3])) : 20240611u;
   const bool soft_reset = !(argc > 4 && std::string(argv[4]) == "nosoft");
   try {
-    const sm::HwConfig hw = compiled_config();
+    const sm::HwConfig hw = sm::verilated_config();
     const sm::tools::Scene sc = sm::tools::load_scene(argv[1]);
     const sm::Image8 sl = sm::tools::to_image8(sc.left), sr = sm::tools::to_image8(sc.right);
     if (sl.w < hw.max_width || sl.h < hw.max_height)

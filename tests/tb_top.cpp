@@ -20,20 +20,10 @@
 #include "common/sm_io.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
+#include "sm_vconfig.hpp"
 #include SM_VTOP_H
 
 namespace {
-
-sm::HwConfig compiled_config() {
-  sm::HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.max_height = SM_P_MAX_HEIGHT;
-  hw.disp = SM_P_DISP;
-  hw.census = SM_P_CENSUS;
-  hw.sw = SM_P_SW;
-  hw.rect_radius = SM_P_RECT_RADIUS;
-  return hw;
-}
 
 int failures = 0, passes = 0;
 void check(bool ok, const std::string& what) {
@@ -78,7 +68,7 @@ int main(int argc, char** argv) {
   const std::string mode = argc > 2 ? argv[2] : "stress";
   const std::string arg = argc > 3 ? argv[3] : "";
   try {
-    const sm::HwConfig hw = compiled_config();
+    const sm::HwConfig hw = sm::verilated_config();
     const sm::tools::Scene sc = sm::tools::load_scene(argv[1]);
     const sm::Image8 l = sm::tools::to_image8(sc.left), r = sm::tools::to_image8(sc.right);
     if (l.w > hw.max_width || l.h > hw.max_height)
