@@ -11,7 +11,10 @@ function(sm_vtop lib)
   sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE THREADS ${SM_SIM_THREADS})
   add_dependencies(${lib} sm_regmap_gen_files)
   get_target_property(defs ${lib} COMPILE_DEFINITIONS)
-  target_compile_definitions(${lib} INTERFACE ${defs})
+  # The copy taken here still has verilate()'s tracing-off defaults: the harness must see
+  # the library's real VM_TRACE to open VCDs.
+  list(FILTER defs EXCLUDE REGEX "^VM_TRACE")
+  target_compile_definitions(${lib} INTERFACE ${defs} VM_TRACE=1 VM_TRACE_VCD=1 VM_TRACE_FST=0)
   get_target_property(incs ${lib} INCLUDE_DIRECTORIES)
   target_include_directories(${lib} INTERFACE ${incs})
 endfunction()
