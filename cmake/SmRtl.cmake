@@ -7,8 +7,11 @@
 set(SM_VERILATOR_ARGS --x-assign fast --x-initial fast -O3 --assert -Wno-fatal
     -y ${SM_RTL_DIR} -y ${SM_GEN_DIR} -I${SM_GEN_DIR})
 function(sm_verilated)
-  cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS" "PARAMS" ${ARGN})
+  cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS;TRACE_DEPTH" "PARAMS" ${ARGN})
   set(args ${SM_VERILATOR_ARGS})
+  if(V_TRACE_DEPTH)
+    list(APPEND args --trace-depth ${V_TRACE_DEPTH})
+  endif()
   set(defs SM_VTOP=V${V_TARGET} SM_VTOP_H="V${V_TARGET}.h")
   foreach(p ${V_PARAMS})
     list(APPEND args -G${p})

@@ -5,10 +5,12 @@ endif()
 # system tests share (the paper configuration is ~150 MB of generated C++).
 set(SM_SIM_THREADS 1 CACHE STRING "Verilator threads of the stereo_sim model")
 
-# sm_vtop(<library> <params...>): sm_top verilated at a configuration, with tracing.
+# sm_vtop(<library> <params...>): sm_top verilated at a configuration, with tracing of
+# sm_top's ports and inter-stage wires (depth 2: a full-depth trace of the paper
+# configuration is ~0.5 MB per cycle).
 function(sm_vtop lib)
   add_library(${lib} STATIC ${CMAKE_SOURCE_DIR}/sim/sm_vtop_anchor.cpp)
-  sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE THREADS ${SM_SIM_THREADS})
+  sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE TRACE_DEPTH 2 THREADS ${SM_SIM_THREADS})
   add_dependencies(${lib} sm_regmap_gen_files)
   get_target_property(defs ${lib} COMPILE_DEFINITIONS)
   # The copy taken here still has verilate()'s tracing-off defaults: the harness must see

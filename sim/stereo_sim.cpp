@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   int hblank = 80, vblank = 22;
   bool continuous = false, quiet = false, no_check = false;
   double pixel_clock = 0, clock_mhz = 100.0;
-  int vcd_frame = 0, vcd_line = 0, vcd_lines = 4, vcd_depth = 2;
+  int vcd_frame = 0, vcd_line = 0, vcd_lines = 4;
   uint64_t vcd_cycles = 0;
   int occ = -1, filters = -1;
   app.add_option("--left", left, "left image (with --right)");
@@ -85,9 +85,6 @@ int main(int argc, char** argv) {
   app.add_option("--vcd-line", vcd_line, "VCD window: input line")->capture_default_str();
   app.add_option("--vcd-lines", vcd_lines, "VCD window: line periods to dump")->capture_default_str();
   app.add_option("--vcd-cycles", vcd_cycles, "VCD window: cycles to dump (overrides lines)");
-  app.add_option("--vcd-depth", vcd_depth, "VCD: hierarchy levels (2 = sm_top ports and stage wires)")
-      ->check(CLI::Range(1, 99))
-      ->capture_default_str();
   app.add_option("--out", out_dir, "output folder (disparity, panel, report.json)")->capture_default_str();
   app.add_option("--synth-json", synth_json, "synthesis report JSON (default: the one built for this configuration)");
   app.add_flag("--no-check", no_check, "skip the reference-model comparison");
@@ -182,7 +179,6 @@ int main(int argc, char** argv) {
       vw.line = vcd_line;
       vw.lines = vcd_lines;
       vw.cycles = vcd_cycles;
-      vw.depth = vcd_depth;
     }
     const auto t0 = std::chrono::steady_clock::now();
     sim.on_frame = [&](size_t done, size_t total) {
