@@ -110,6 +110,15 @@ class SimEngine {
     int ox = 0, oy = 0;
     size_t oframe = 0;
     std::vector<uint32_t> pkt;
+    // One word of the object stream taken at this edge; a packet ends at tlast.
+    auto take_obj = [&](bool hs, uint32_t word, bool last) {
+      if (!hs) return;
+      pkt.push_back(word);
+      if (last) {
+        res.object_packets.push_back({pkt});
+        pkt.clear();
+      }
+    };
     bool vcd_on = false;
     uint64_t vcd_end = 0;
 
@@ -171,13 +180,7 @@ class SimEngine {
           due = std::max(due + 1, now + 1);
         }
       }
-      if (obj_hs) {
-        pkt.push_back(objd);
-        if (objl) {
-          res.object_packets.push_back({pkt});
-          pkt.clear();
-        }
-      }
+      take_obj(obj_hs, objd, objl);
       if (out_hs) {
         if (ox == 0 && oy == 0) {
           if (!ou && res.framing_error.empty())
@@ -211,13 +214,7 @@ class SimEngine {
       const uint32_t objd = t.m_axis_obj_tdata;
       const bool objl = t.m_axis_obj_tlast;
       tb_.tick();
-      if (obj_hs) {
-        pkt.push_back(objd);
-        if (objl) {
-          res.object_packets.push_back({pkt});
-          pkt.clear();
-        }
-      }
+      take_obj(obj_hs, objd, objl);
     }
     if (vcd_on) tb_.close_trace();
     res.cycles = tb_.cycles() - start;
