@@ -49,7 +49,8 @@ double ms_since(Clock::time_point t0) {
 int run(int argc, char** argv) {
   std::string scene_dir = SM_BENCH_DEFAULT_SCENE, json_path;
   int runs = 5, levels = 128, width = 320, height = 240;
-  int census = 15, sw = 5;
+  int census = 15, sw = 5, cost_shift = 2, occ = -1;
+  std::vector<int> sw_table;
   bool no_opencv = false;
   CLI::App app{"Model speed vs OpenCV StereoSGBM / StereoBinarySGBM (single thread, medians)"};
   app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")
@@ -67,6 +68,14 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--census", census, "model census window (paper: 15)")->capture_default_str();
   app.add_option("--sw", sw, "model support-weight window (paper: 5)")->capture_default_str();
+  // The three options below only widen the bit-exactness check (other arithmetic ranges,
+  // weight sets including all-zero and all-4 windows); the speed figures use the defaults.
+  app.add_option("--cost-shift", cost_shift, "model COST_SHIFT (paper: 2)")->capture_default_str();
+  app.add_option("--sw-table", sw_table, "model weight codes 0..3 by |dI| >> 3 (up to 32; the "
+                                         "rest 0; default: the register defaults)")
+      ->delimiter(',');
+  app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")
+      ->check(CLI::Range(0, 255));
   app.add_option("--json", json_path, "write the medians as JSON");
   app.add_flag("--no-opencv", no_opencv, "time the model only");
   try {
@@ -93,11 +102,21 @@ int run(int argc, char** argv) {
   hw.disp = levels;
   hw.census = census;
   hw.sw = sw;
+  hw.cost_shift = cost_shift;
   hw.validate();
+  if (sw_table.size() > 32) throw sm::tools::ToolError("--sw-table: at most 32 codes");
+  for (int c : sw_table)
+    if (c < 0 || c > 3) throw sm::tools::ToolError("--sw-table: codes are 0..3");
   const sm::Regs regs = [&] {
     sm::Regs g = sm::Regs::defaults(hw);
     g.width = width;
     g.height = height;
+    if (!sw_table.empty()) {
+      g.sw_table.fill(0);
+      for (size_t k = 0; k < sw_table.size(); ++k)
+        g.sw_table[k] = static_cast<uint8_t>(sw_table[k]);
+    }
+    if (occ >= 0) g.occ = static_cast<uint8_t>(occ);
     return g;
   }();
   const int nd16 = (levels + 15) / 16 * 16;  // OpenCV needs a multiple of 16
@@ -115,6 +134,15 @@ int run(int argc, char** argv) {
     h_agg = fnv(res.agg.v);
     h_dp = fnv(res.dp.px);
     h_post = fnv(res.post.px);
+    // run_pipeline streams rows through the stage kernels; the whole-frame stage
+    // functions (what the RTL block tests compare against) must give the same bits.
+    const sm::CostVolume raw = sm::hamming_cost(sm::census_transform(res.rl, hw),
+                                                sm::census_transform(res.rr, hw), hw);
+    const sm::CostVolume agg = sm::sw_aggregate(raw, res.rl, regs.sw_table, hw);
+    const sm::DispImage dp = sm::trellis_dp(agg, regs.occ, hw);
+    if (!(raw == res.raw) || !(agg == res.agg) || dp != res.dp ||
+        sm::post_process(dp, regs, hw) != res.post)
+      throw sm::tools::ToolError("run_pipeline and the stage functions differ");
   }
   cv::Mat d;
   for (int k = 0; k < runs; ++k) {
@@ -123,9 +151,8 @@ int run(int argc, char** argv) {
     t["model"].push_back(ms_since(t0));
     if (k == 0)
       for (const auto& [n, ms] : res.stage_ms) stage_order.push_back(n);
-    if (fnv(res.post.px) != h_post) {
+    if (fnv(res.dp.px) != h_dp || fnv(res.post.px) != h_post)
       throw sm::tools::ToolError("model output differs between runs");
-    }
     for (const auto& [n, ms] : res.stage_ms) t["model." + n].push_back(ms);
     if (no_opencv) continue;
     t0 = Clock::now();

@@ -8,137 +8,228 @@
 #include <stdexcept>
 #include <vector>
 
-// Speed (docs/performance.md): on x86-64 with GCC the function is also compiled for AVX2
-// and picked at run time (target_clones); integer arithmetic only, so both clones give
-// the same bits.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define SM_HOT __attribute__((target_clones("avx2", "default")))
-#else
-#define SM_HOT
-#endif
+#include "kernels.hpp"
 
 namespace sm {
 
+namespace detail {
+
+AggRow::AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& table,
+               const HwConfig& hw)
+    : w(w_), h(h_), nd(nd_), r((sw - 1) / 2), out_max((1u << hw.cost_bits()) - 1),
+      // Byte sums of `group` costs cannot wrap: group * (255 >> COST_SHIFT) <= 255, for
+      // any 8-bit input, not only legal Hamming costs (4 at COST_SHIFT 2, 1 at 0).
+      group(255 / (255 >> std::clamp(hw.cost_shift, 0, 7))),
+      code{} {
+  for (int k = 0; k < 256; ++k) {
+    const uint32_t wq = sw_weight(table, k);
+    code[static_cast<size_t>(k)] = static_cast<uint8_t>(wq == 4 ? 3 : wq == 2 ? 2 : wq);
+  }
+}
+
+// The level loop uses GCC/Clang vector extensions; its zero-extension (bytes interleaved
+// with zero bytes, read as 16-bit lanes) assumes a little-endian target.
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define SM_AGG_VECTORS 1
+#endif
+
+// The weight codes of 16 pixels at a time are looked up with GCC's variable
+// __builtin_shuffle (one byte shuffle on x86); Clang has no such builtin.
+#if defined(__GNUC__) && !defined(__clang__)
+#define SM_AGG_CODE_SHUFFLE 1
+#endif
+
 namespace {
 
-struct AggArgs {
-  const uint8_t* c;     // C = H >> COST_SHIFT, w x h x nd
-  const uint8_t* left;  // w x h
-  const std::array<uint8_t, 32>* table;
-  int w, h, nd, r;
-  uint32_t out_max, half;
-  uint8_t* out;
-};
+#if defined(SM_AGG_CODE_SHUFFLE)
+typedef uint8_t VB16 __attribute__((vector_size(16)));  // 16 pixels (weight codes)
+#endif
 
-#if defined(__GNUC__)
-// 16 levels per vector: the accumulators of up to 128 levels stay in registers while the
-// pixel's neighbours are summed (GCC/Clang vector extensions; 16-bit lanes wrap exactly
-// like the reference's uint16_t sums).
-typedef uint16_t V16 __attribute__((vector_size(32)));
-typedef uint8_t V8 __attribute__((vector_size(16)));
+#if defined(SM_AGG_VECTORS)
+// 32 levels per byte vector (32 bytes). Costs are summed in bytes over groups of
+// neighbours with the same weight, then widened once per group, shifted by the weight's
+// exponent and added in 16 bits: one widening per `group` neighbours instead of a
+// widening and a multiply per neighbour. The 16-bit sums are exact: the largest,
+// 4*SW*SW*CMAX (43904 at SW 7, CENSUS 15, COST_SHIFT 0; 49980 for any 8-bit input),
+// fits, and a byte sum is at most group * (255 >> COST_SHIFT) <= 255.
+typedef uint8_t VB __attribute__((vector_size(32)));
+typedef uint16_t VH __attribute__((vector_size(32)));
 
-template <int NV>
-inline void agg_levels(const size_t* nb_off, const uint16_t* nb_w, int cnt, int d0, uint32_t rec,
-                       const AggArgs& a, uint8_t* o) {
-  V16 acc[NV] = {};
-  for (int k = 0; k < cnt; ++k) {
-    const uint8_t* cq = a.c + nb_off[k] + d0;
-    const V16 wv = V16{} + nb_w[k];
-    for (int v = 0; v < NV; ++v) {
-      V8 b;
-      std::memcpy(&b, cq + 16 * v, sizeof b);
-      acc[v] += __builtin_convertvector(b, V16) * wv;
-    }
-  }
-  uint16_t t[16 * NV];
-  std::memcpy(t, acc, sizeof t);
-  for (int d = 0; d < 16 * NV; ++d) {
-    const uint32_t v = (t[d] * rec + a.half) >> kRecipShift;
-    o[d0 + d] = static_cast<uint8_t>(std::min(v, a.out_max));
-  }
+// (Vectors are passed by reference: by value they would change the ABI between clones.)
+inline void load_add(VB& s, const uint8_t* p) {
+  VB v;
+  std::memcpy(&v, p, sizeof v);
+  s += v;
 }
-constexpr bool kVecLevels = true;
-#else
-constexpr bool kVecLevels = false;
-#endif
 
-SM_HOT void agg_image(const AggArgs& a) {
-  const int w = a.w, h = a.h, r = a.r, nd = a.nd;
-  const int nmax = (2 * r + 1) * (2 * r + 1);
-  std::vector<size_t> nb_off(static_cast<size_t>(nmax));
-  std::vector<uint16_t> nb_w(static_cast<size_t>(nmax));
-  std::vector<uint16_t> acc_v(static_cast<size_t>(nd));
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const int p = a.left[static_cast<size_t>(y) * w + x];
-      // The window's neighbours with a non-zero weight.
-      int cnt = 0;
-      uint32_t wsum = 0;
-      for (int j = std::max(-r, -y); j <= std::min(r, h - 1 - y); ++j) {
-        const uint8_t* lrow = a.left + static_cast<size_t>(y + j) * w;
-        for (int i = std::max(-r, -x); i <= std::min(r, w - 1 - x); ++i) {
-          const uint32_t wq = sw_weight(*a.table, std::abs(lrow[x + i] - p));
-          if (wq == 0) continue;
-          wsum += wq;
-          nb_w[cnt] = static_cast<uint16_t>(wq);
-          nb_off[cnt++] = (static_cast<size_t>(y + j) * w + (x + i)) * nd;
-        }
+// A_raw of the 32 * NB levels d0 .. d0 + 32*NB - 1 of one pixel into sum[0 .. 32*NB-1].
+// Bit q of mask[c] marks window position q as a neighbour of weight 1 << c; its costs
+// start at base[q] + xoff.
+template <int NB>
+inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* mask, int group,
+                      int d0, uint16_t* sum) {
+  const VB zero = {};
+  VH lo[NB], hi[NB];  // levels 0-7 and 16-23 / 8-15 and 24-31 of each block of 32
+  for (int v = 0; v < NB; ++v) lo[v] = hi[v] = VH{};
+  for (int c = 0; c < 3; ++c) {
+    uint64_t bits = mask[c];
+    while (bits) {
+      VB s[NB];
+      for (int v = 0; v < NB; ++v) s[v] = zero;
+      for (int k = 0; k < group && bits; ++k) {
+        const uint8_t* q = base[__builtin_ctzll(bits)] + xoff + d0;
+        bits &= bits - 1;
+        for (int v = 0; v < NB; ++v) load_add(s[v], q + 32 * v);
       }
-      const uint32_t rec = sw_recip(wsum);
-      uint8_t* __restrict o = a.out + (static_cast<size_t>(y) * w + x) * nd;
-#if defined(__GNUC__)
-      if (kVecLevels && nd % 16 == 0) {
-        const size_t* off = nb_off.data();
-        const uint16_t* wt = nb_w.data();
-        int d0 = 0;  // widest blocks first; each block of levels is independent
-        for (; d0 + 128 <= nd; d0 += 128) agg_levels<8>(off, wt, cnt, d0, rec, a, o);
-        for (; d0 + 64 <= nd; d0 += 64) agg_levels<4>(off, wt, cnt, d0, rec, a, o);
-        for (; d0 + 32 <= nd; d0 += 32) agg_levels<2>(off, wt, cnt, d0, rec, a, o);
-        for (; d0 < nd; d0 += 16) agg_levels<1>(off, wt, cnt, d0, rec, a, o);
-        continue;
-      }
-#endif
-      uint16_t* __restrict acc = acc_v.data();
-      for (int d = 0; d < nd; ++d) acc[d] = 0;
-      for (int k = 0; k < cnt; ++k) {
-        const uint8_t* __restrict cq = a.c + nb_off[k];
-        const uint16_t wm = nb_w[k];
-        for (int d = 0; d < nd; ++d) acc[d] = static_cast<uint16_t>(acc[d] + cq[d] * wm);
-      }
-      for (int d = 0; d < nd; ++d) {
-        const uint32_t v = (acc[d] * rec + a.half) >> kRecipShift;
-        o[d] = static_cast<uint8_t>(std::min(v, a.out_max));
+      // Zero-extension by interleaving with zero bytes within each 16-byte half (one
+      // instruction each on x86); the level order is restored when storing.
+      for (int v = 0; v < NB; ++v) {
+        const VB l = __builtin_shufflevector(s[v], zero, 0, 32, 1, 32, 2, 32, 3, 32, 4, 32, 5,
+                                             32, 6, 32, 7, 32, 16, 32, 17, 32, 18, 32, 19, 32,
+                                             20, 32, 21, 32, 22, 32, 23, 32);
+        const VB h = __builtin_shufflevector(s[v], zero, 8, 32, 9, 32, 10, 32, 11, 32, 12, 32,
+                                             13, 32, 14, 32, 15, 32, 24, 32, 25, 32, 26, 32, 27,
+                                             32, 28, 32, 29, 32, 30, 32, 31, 32);
+        lo[v] += reinterpret_cast<const VH&>(l) << c;
+        hi[v] += reinterpret_cast<const VH&>(h) << c;
       }
     }
   }
+  for (int v = 0; v < NB; ++v) {
+    uint16_t* o = sum + 32 * v;
+    std::memcpy(o, &lo[v], 16);
+    std::memcpy(o + 8, &hi[v], 16);
+    std::memcpy(o + 16, reinterpret_cast<const char*>(&lo[v]) + 16, 16);
+    std::memcpy(o + 24, reinterpret_cast<const char*>(&hi[v]) + 16, 16);
+  }
 }
+#endif  // SM_AGG_VECTORS
 
 }  // namespace
 
-SM_HOT CostVolume sw_aggregate(const CostVolume& raw, const Image8& left,
-                               const std::array<uint8_t, 32>& table, const HwConfig& hw) {
+// One row in three steps: (1) the weight code of every (centre, window position) pair,
+// one window position at a time across the row (vectorizes), kept per centre as bit
+// masks; (2) per centre, the weight sum from the masks; (3) per centre and block of
+// levels, the neighbours' costs summed by weight (agg_block), then the normalisation.
+SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t* left, int y,
+                    uint8_t* out) {
+  const int w = a.w, h = a.h, nd = a.nd, r = a.r, side = 2 * r + 1, nq = side * side;
+  // (1) Window position q = (j + r) * side + (i + r) is neighbour (x + i, y + j) of
+  // centre (x, y). Bit q of b0[x] / b1[x] is bit 0 / 1 of its weight code (0 outside
+  // the image); SW <= 7 gives at most 49 positions per 64-bit word.
+  std::vector<uint64_t> bits(2 * static_cast<size_t>(w), 0);
+  uint64_t* b0 = bits.data();
+  uint64_t* b1 = b0 + w;
+  std::vector<uint8_t> code(static_cast<size_t>(w));
+#if defined(SM_AGG_CODE_SHUFFLE)
+  // The code only depends on |dI| >> 3 (0..31): two 16-entry tables for a byte shuffle.
+  VB16 tab0, tab1;
+  for (int k = 0; k < 16; ++k) {
+    tab0[k] = a.code[static_cast<size_t>(8 * k)];
+    tab1[k] = a.code[static_cast<size_t>(8 * (k + 16))];
+  }
+#endif
+  const uint8_t* centre = left + static_cast<size_t>(y) * w;
+  for (int j = -r; j <= r; ++j) {
+    if (y + j < 0 || y + j >= h) continue;  // codes stay 0
+    const uint8_t* nrow = left + static_cast<size_t>(y + j) * w;
+    for (int i = -r; i <= r; ++i) {
+      const int x0 = std::max(0, -i), x1 = std::min(w, w - i);  // neighbour inside
+      std::fill(code.begin(), code.begin() + x0, 0);
+      std::fill(code.begin() + x1, code.end(), 0);
+      int x = x0;
+#if defined(SM_AGG_CODE_SHUFFLE)
+      for (; x + 16 <= x1; x += 16) {
+        VB16 pq, pc;
+        std::memcpy(&pq, nrow + x + i, 16);
+        std::memcpy(&pc, centre + x, 16);
+        const VB16 diff = pq > pc ? pq - pc : pc - pq;
+        const VB16 k = (diff >> 3) & 15;  // |dI| >> 3 is k, or k + 16 when |dI| >= 128
+        const VB16 c = diff >= 128 ? __builtin_shuffle(tab1, k) : __builtin_shuffle(tab0, k);
+        std::memcpy(&code[static_cast<size_t>(x)], &c, 16);
+      }
+#endif
+      for (; x < x1; ++x)
+        code[static_cast<size_t>(x)] =
+            a.code[static_cast<size_t>(std::abs(nrow[x + i] - centre[x]))];
+      const int q = (j + r) * side + (i + r);
+      for (x = 0; x < w; ++x) {
+        b0[x] |= static_cast<uint64_t>(code[static_cast<size_t>(x)] & 1) << q;
+        b1[x] |= static_cast<uint64_t>(code[static_cast<size_t>(x)] >> 1) << q;
+      }
+    }
+  }
+  // Costs of window position q for the centre x start at base[q] + x * nd.
+  std::vector<const uint8_t*> base(static_cast<size_t>(nq), nullptr);
+  for (int j = -r; j <= r; ++j)
+    if (y + j >= 0 && y + j < h)
+      for (int i = -r; i <= r; ++i)
+        base[static_cast<size_t>((j + r) * side + (i + r))] =
+            c_rows[j + r] + static_cast<ptrdiff_t>(i) * nd;
+
+  std::vector<uint16_t> sum(static_cast<size_t>(nd) + 128);  // A_raw, whole blocks
+  uint16_t* su = sum.data();
+  for (int x = 0; x < w; ++x) {
+    // (2) Window positions of weight 1, 2, 4 (codes 1, 2, 3) and the weight sum.
+    const uint64_t m[3] = {b0[x] & ~b1[x], b1[x] & ~b0[x], b0[x] & b1[x]};
+    const auto wsum = static_cast<uint32_t>(__builtin_popcountll(m[0]) +
+                                            2 * __builtin_popcountll(m[1]) +
+                                            4 * __builtin_popcountll(m[2]));
+    const uint32_t rec = sw_recip(wsum);
+    const size_t xoff = static_cast<size_t>(x) * nd;
+    // (3) A_raw, widest blocks of levels first (each block is independent; the last one
+    // may read past level nd - 1, into kCostPad, and those lanes are not used).
+#if defined(SM_AGG_VECTORS)
+    int d0 = 0;
+    for (; d0 + 128 <= nd; d0 += 128) agg_block<4>(base.data(), xoff, m, a.group, d0, su + d0);
+    for (; d0 + 64 <= nd; d0 += 64) agg_block<2>(base.data(), xoff, m, a.group, d0, su + d0);
+    for (; d0 < nd; d0 += 32) agg_block<1>(base.data(), xoff, m, a.group, d0, su + d0);
+#else
+    for (int d = 0; d < nd; ++d) {
+      uint32_t s = 0;
+      for (int c = 0; c < 3; ++c)
+        for (int q = 0; q < nq; ++q)
+          if (m[c] >> q & 1) s += static_cast<uint32_t>(base[q][xoff + d]) << c;
+      su[d] = static_cast<uint16_t>(s);
+    }
+#endif
+    // A = min((A_raw * RECIP(wsum) + 2048) >> 12, 2^CW - 1); the product needs 32 bits.
+    uint8_t* o = out + xoff;
+    for (int d = 0; d < nd; ++d) {
+      const uint32_t v = (su[d] * rec + (1u << (kRecipShift - 1))) >> kRecipShift;
+      o[d] = static_cast<uint8_t>(std::min(v, a.out_max));
+    }
+  }
+}
+
+}  // namespace detail
+
+CostVolume sw_aggregate(const CostVolume& raw, const Image8& left,
+                        const std::array<uint8_t, 32>& table, const HwConfig& hw) {
   if (raw.w != left.w || raw.h != left.h)
     throw std::invalid_argument(fmt::format("sw_aggregate: cost volume {}x{} but left image {}x{}",
                                             raw.w, raw.h, left.w, left.h));
   if (raw.d != hw.disp)
     throw std::invalid_argument(
         fmt::format("sw_aggregate: cost volume has {} levels, DISP is {}", raw.d, hw.disp));
-  if (hw.sw < 1 || hw.sw % 2 == 0)
-    throw std::invalid_argument(fmt::format("sw_aggregate: SW {} must be odd", hw.sw));
+  if (hw.sw < 1 || hw.sw > 7 || hw.sw % 2 == 0)  // (a window position per bit of a word)
+    throw std::invalid_argument(fmt::format("sw_aggregate: SW {} must be odd, 1..7", hw.sw));
 
-  const int w = raw.w, h = raw.h, nd = raw.d, r = (hw.sw - 1) / 2;
-  const uint32_t out_max = (1u << hw.cost_bits()) - 1;
-  const uint32_t half = 1u << (kRecipShift - 1);
-
-  // C = H >> COST_SHIFT once for the whole volume; the inner loops then only shift by
-  // the weight's exponent. The largest sum, 4*SW*SW*CMAX (43904 at SW 7, CENSUS 15,
-  // COST_SHIFT 0), fits 16 bits, which keeps the level loop narrow and vectorizable.
-  std::vector<uint8_t> c(raw.v.size());
-  for (size_t i = 0; i < c.size(); ++i) c[i] = static_cast<uint8_t>(raw.v[i] >> hw.cost_shift);
+  const int w = raw.w, h = raw.h, nd = raw.d;
+  const detail::AggRow a(w, h, nd, hw.sw, table, hw);
+  // C = H >> COST_SHIFT once for the whole volume (padded for the block reads).
+  std::vector<uint8_t> c(raw.v.size() + detail::kCostPad);
+  for (size_t i = 0; i < raw.v.size(); ++i) c[i] = static_cast<uint8_t>(raw.v[i] >> hw.cost_shift);
 
   CostVolume out(w, h, nd);
-  const AggArgs a{c.data(), left.px.data(), &table, w, h, nd, r, out_max, half, out.v.data()};
-  agg_image(a);
+  const size_t row = static_cast<size_t>(w) * nd;
+  std::vector<const uint8_t*> rows(static_cast<size_t>(2 * a.r + 1));
+  for (int y = 0; y < h; ++y) {
+    for (int j = -a.r; j <= a.r; ++j)
+      rows[static_cast<size_t>(j + a.r)] =
+          (y + j >= 0 && y + j < h) ? c.data() + (y + j) * row : nullptr;
+    detail::agg_row(a, rows.data(), left.px.data(), y, out.v.data() + y * row);
+  }
   return out;
 }
 

@@ -27,7 +27,7 @@ constexpr uint32_t sw_weight(const std::array<uint8_t, 32>& table, int abs_diff)
 // raw: Hamming costs (raw.d == hw.disp levels, values 0..CB); left: the left
 // rectified image (same size), source of the weights; table: 2-bit weight codes by
 // |dI| >> 3. Returns the CW-bit aggregated costs A(x, y, d). Throws
-// std::invalid_argument when the sizes do not match.
+// std::invalid_argument when the sizes do not match or SW is not odd, 1..7.
 CostVolume sw_aggregate(const CostVolume& raw, const Image8& left,
                         const std::array<uint8_t, 32>& table, const HwConfig& hw);
 

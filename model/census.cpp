@@ -3,48 +3,90 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
 #include <vector>
 
-// Speed (docs/performance.md): the hot loops are written so the compiler vectorizes
-// them, and on x86-64 with GCC each is also compiled for AVX2 (with POPCNT) and picked
-// at run time (target_clones). Integer arithmetic only, so every clone computes the
-// same bits; the baseline clone is the portable definition.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define SM_HOT __attribute__((target_clones("avx2", "default")))
-#else
-#define SM_HOT
+#include "kernels.hpp"
+
+#if defined(SM_X86_DISPATCH)
+#include <immintrin.h>
 #endif
 
 namespace sm {
 
-namespace {
+namespace detail {
 
-// Census bits in word-major bit planes (plane[word][y * w + x]): one neighbour offset
-// at a time over the whole image, the inner loop a contiguous compare-shift-or that
-// vectorizes; the column range is clipped instead of tested.
-SM_HOT void census_planes(const uint8_t* in, int w, int h, int r, uint64_t* planes) {
-  const size_t wh = static_cast<size_t>(w) * h;
-  int k = 0;
-  for (int dy = -r; dy <= r; ++dy) {
-    for (int dx = -r; dx <= r; ++dx) {
-      if (dx == 0 && dy == 0) continue;
-      uint64_t* plane = planes + static_cast<size_t>(k >> 6) * wh;
-      const int sh = k & 63;
-      const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
-      for (int y = std::max(0, -dy); y < std::min(h, h - dy); ++y) {
-        const uint8_t* __restrict c = in + static_cast<size_t>(y) * w;
-        const uint8_t* __restrict n = in + static_cast<size_t>(y + dy) * w + dx;
-        uint64_t* __restrict o = plane + static_cast<size_t>(y) * w;
-        for (int x = x0; x < x1; ++x) o[x] |= static_cast<uint64_t>(n[x] < c[x]) << sh;
+namespace {
+constexpr int kBlock = SM_VEC_BYTES;  // pixels per vector of the census compare loop
+}
+
+CensusPad::CensusPad(const Image8& in, int r_)
+    : w(in.w), h(in.h), r(r_), stride(static_cast<size_t>(in.w + 2 * r_ + kBlock)),
+      px(stride * static_cast<size_t>(in.h + 2 * r_), 255) {
+  for (int y = 0; y < h; ++y)
+    std::memcpy(px.data() + static_cast<size_t>(y + r) * stride + r,
+                &in.px[static_cast<size_t>(y) * w], static_cast<size_t>(w));
+}
+
+#if defined(__GNUC__)
+typedef uint8_t VB __attribute__((vector_size(kBlock)));
+#endif
+
+// Eight census bits at a time: bit k of byte plane g is neighbour 8g + k (raster order,
+// centre skipped), computed for a whole row with one compare per neighbour and block of
+// pixels (the compare loop vectorizes); then each pixel's four words are assembled
+// from its plane bytes ((CENSUS^2 - 1) / 8, 28 at CENSUS 15; the others are 0). The
+// border of 255 replaces the in-image tests.
+SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
+  const int r = in.r, w = in.w, side = 2 * r + 1;
+  const int nbits = side * side - 1, ngroups = (nbits + 7) / 8;
+  const size_t wr = static_cast<size_t>((w + kBlock - 1) / kBlock * kBlock);
+  std::vector<uint8_t> planes(32 * wr, 0);
+  const uint8_t* c = in.row(y);
+  for (int g = 0; g < ngroups; ++g) {
+    const uint8_t* nrow[8];
+    const int nb = std::min(8, nbits - 8 * g);
+    for (int b = 0; b < nb; ++b) {
+      int k = 8 * g + b;
+      if (k >= nbits / 2) ++k;  // skip the centre (window position nbits / 2)
+      nrow[b] = in.row(y + k / side - r) + (k % side - r);
+    }
+    uint8_t* pl = &planes[static_cast<size_t>(g) * wr];
+#if defined(__GNUC__)
+    for (size_t x = 0; x < wr; x += kBlock) {
+      VB cv, p = VB{};
+      std::memcpy(&cv, c + x, sizeof cv);
+      for (int b = 0; b < nb; ++b) {
+        VB nv;
+        std::memcpy(&nv, nrow[b] + x, sizeof nv);
+        p |= reinterpret_cast<VB>(nv < cv) & static_cast<uint8_t>(1u << b);
       }
-      ++k;
+      std::memcpy(pl + x, &p, sizeof p);
+    }
+#else
+    for (size_t x = 0; x < wr; ++x) {
+      unsigned p = 0;
+      for (int b = 0; b < nb; ++b) p |= static_cast<unsigned>(nrow[b][x] < c[x]) << b;
+      pl[x] = static_cast<uint8_t>(p);
+    }
+#endif
+  }
+  for (int x = 0; x < w; ++x) {
+    for (int i = 0; i < 4; ++i) {
+      uint64_t v = 0;
+      for (int b = 0; b < 8; ++b)
+        v |= static_cast<uint64_t>(planes[(8 * i + b) * wr + x]) << (8 * b);
+      out[x][static_cast<size_t>(i)] = v;
     }
   }
 }
 
-// One row of Hamming costs (all four words: exact for any input vector).
-inline void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb,
-                     uint8_t* out) {
+namespace {
+
+// popcount(a ^ b) of all four words: exact for any input vector. The sum is taken
+// modulo 256 (an 8-bit H) before the shift, as H >> COST_SHIFT of an 8-bit volume.
+void cost_row_portable(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb,
+                       int shift, uint8_t* out) {
   for (int x = 0; x < w; ++x) {
     uint8_t* o = out + static_cast<size_t>(x) * nd;
     const CensusVec a = l[x];
@@ -53,37 +95,89 @@ inline void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uin
       const CensusVec& b = rr[x - d];
       int s = 0;
       for (int i = 0; i < 4; ++i) s += __builtin_popcountll(a[i] ^ b[i]);
-      o[d] = static_cast<uint8_t>(s);
+      o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
     }
-    for (int d = dmax + 1; d < nd; ++d) o[d] = cb;
+    for (int d = dmax + 1; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
   }
 }
 
-SM_HOT void cost_rows(const CensusImage& cl, const CensusImage& cr, int nd, uint8_t cb,
-                      uint8_t* out) {
-  const int w = cl.w;
-  for (int y = 0; y < cl.h; ++y) {
-    const CensusVec* l = &cl.px[static_cast<size_t>(y) * w];
-    const CensusVec* rr = &cr.px[static_cast<size_t>(y) * w];
-    uint8_t* o = out + static_cast<size_t>(y) * w * nd;
-    cost_row(l, rr, w, nd, cb, o);
+#if defined(SM_X86_DISPATCH)
+// The same with AVX2, eight levels at a time: the 256-bit XOR of a level is counted per
+// byte with a nibble table (two byte shuffles; the nibbles of a ^ b are those of a XOR
+// those of b, so each vector is split into nibbles once), the 32 byte counts summed per
+// 64-bit quarter (psadbw, <= 64 each), the quarters of eight levels packed one byte per
+// level and added bytewise: modulo 256 like the portable sum.
+__attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, const CensusVec* rr,
+                                                          int w, int nd, uint8_t cb, int shift,
+                                                          uint8_t* out) {
+  const __m256i low4 = _mm256_set1_epi8(0x0f);
+  const __m256i count4 = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4,  //
+                                          0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
+  const __m256i zero = _mm256_setzero_si256();
+  // Right vectors split into low / high nibbles, 32 bytes each per pixel.
+  std::vector<uint8_t> nib(64 * static_cast<size_t>(w));
+  for (int x = 0; x < w; ++x) {
+    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&rr[x]));
+    uint8_t* n = &nib[64 * static_cast<size_t>(x)];
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(n), _mm256_and_si256(v, low4));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(n + 32),
+                        _mm256_and_si256(_mm256_srli_epi16(v, 4), low4));
+  }
+  const __m128i sh = _mm_cvtsi32_si128(shift);
+  const __m128i keep = _mm_set1_epi8(static_cast<char>(0xff >> shift));  // 16-bit shift: mask
+  for (int x = 0; x < w; ++x) {
+    uint8_t* o = out + static_cast<size_t>(x) * nd;
+    const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&l[x]));
+    const __m256i al = _mm256_and_si256(a, low4);
+    const __m256i ah = _mm256_and_si256(_mm256_srli_epi16(a, 4), low4);
+    const int dn = std::min(nd, x + 1);  // levels with x - d >= 0
+    int d = 0;
+    for (; d + 8 <= dn; d += 8) {
+      __m256i packed = zero;  // byte k of each quarter: level d + k
+      for (int k = 0; k < 8; ++k) {
+        const uint8_t* b = &nib[64 * static_cast<size_t>(x - d - k)];
+        const __m256i bl = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b));
+        const __m256i bh = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + 32));
+        const __m256i c = _mm256_add_epi8(_mm256_shuffle_epi8(count4, _mm256_xor_si256(al, bl)),
+                                          _mm256_shuffle_epi8(count4, _mm256_xor_si256(ah, bh)));
+        packed = _mm256_or_si256(packed, _mm256_slli_epi64(_mm256_sad_epu8(c, zero), 8 * k));
+      }
+      __m128i s = _mm_add_epi8(_mm256_castsi256_si128(packed), _mm256_extracti128_si256(packed, 1));
+      s = _mm_add_epi8(s, _mm_unpackhi_epi64(s, s));
+      s = _mm_and_si128(_mm_srl_epi16(s, sh), keep);
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(o + d), s);
+    }
+    for (; d < dn; ++d) {  // the last levels one at a time
+      const CensusVec &p = l[x], &q = rr[x - d];
+      int s = 0;
+      for (size_t i = 0; i < 4; ++i) s += __builtin_popcountll(p[i] ^ q[i]);
+      o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
+    }
+    for (; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
   }
 }
+#endif
 
 }  // namespace
+
+void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift,
+              uint8_t* out) {
+#if defined(SM_X86_DISPATCH)
+  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+  if (avx2) return cost_row_avx2(l, rr, w, nd, cb, shift, out);
+#endif
+  cost_row_portable(l, rr, w, nd, cb, shift, out);
+}
+
+}  // namespace detail
 
 CensusImage census_transform(const Image8& in, const HwConfig& hw) {
   if (hw.census < 3 || hw.census > 15 || hw.census % 2 == 0)
     throw std::invalid_argument(
         fmt::format("census_transform: census {} must be odd, 3..15", hw.census));
-  const int r = (hw.census - 1) / 2;
-  const int w = in.w, h = in.h;
-  const size_t wh = static_cast<size_t>(w) * h;
-  std::vector<uint64_t> planes(4 * wh, 0);
-  census_planes(in.px.data(), w, h, r, planes.data());
-  CensusImage out(w, h, CensusVec{0, 0, 0, 0});
-  for (size_t i = 0; i < wh; ++i)
-    out.px[i] = CensusVec{planes[i], planes[wh + i], planes[2 * wh + i], planes[3 * wh + i]};
+  const detail::CensusPad pad(in, (hw.census - 1) / 2);
+  CensusImage out(in.w, in.h, CensusVec{0, 0, 0, 0});
+  for (int y = 0; y < in.h; ++y) detail::census_row(pad, y, &out.px[static_cast<size_t>(y) * in.w]);
   return out;
 }
 
@@ -93,10 +187,13 @@ CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwCo
         fmt::format("hamming_cost: left {}x{} and right {}x{} differ", cl.w, cl.h, cr.w, cr.h));
   if (hw.disp < 1 || hw.disp > 256)
     throw std::invalid_argument(fmt::format("hamming_cost: disp {} outside 1..256", hw.disp));
-  const int nd = hw.disp;
+  const int nd = hw.disp, w = cl.w;
   const auto cb = static_cast<uint8_t>(hw.census_bits());
-  CostVolume out(cl.w, cl.h, nd);
-  cost_rows(cl, cr, nd, cb, out.v.data());
+  CostVolume out(w, cl.h, nd);
+  for (int y = 0; y < cl.h; ++y) {
+    const size_t row = static_cast<size_t>(y) * w;
+    detail::cost_row(&cl.px[row], &cr.px[row], w, nd, cb, 0, out.v.data() + row * nd);
+  }
   return out;
 }
 

@@ -3,15 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
-// Speed (docs/performance.md): on x86-64 with GCC the forward pass is also compiled for
-// AVX2 and picked at run time (target_clones); integer arithmetic only, same bits.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define SM_HOT __attribute__((target_clones("avx2", "default")))
-#else
-#define SM_HOT
-#endif
+// Speed (docs/performance.md): the forward pass is vectorized over levels, and on x86-64
+// with GCC also compiled for AVX2 and picked at run time (SM_HOT in kernels.hpp);
+// integer arithmetic only, same bits.
+#include "kernels.hpp"
 
 namespace sm {
 
@@ -29,69 +27,177 @@ int dp_acc_bits(const HwConfig& hw) {
   return clog2(mw * cmax + 2 * mw * 255 + 1) + 1;
 }
 
-SM_HOT void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
-                         DpLine& out) {
+namespace {
+
+// The forward pass works on U split by parity: ue[m] = U(i, 2m), uo[m] = U(i, 2m+1).
+// cm: the matched costs in site order (see trellis_line), stride entries per row; dec:
+// the choice of occlusion node (i, d) at i * stride + d / 2.
+struct Fwd {
+  int n, ne, no, stride;
+  uint32_t occ, mask;
+  const uint16_t* cm;
+  uint32_t* ue;
+  uint32_t* uo;
+  uint32_t* dec;
+};
+
+// One level at a time, straight from the recurrence (also the fallback for ACC_W > 30).
+void forward_scalar(const Fwd& f) {
+  // The first of choice 0 (u), 1 (c1) and 2 (c2) that reaches the minimum; a missing
+  // choice is passed as 0xffffffff, which no sum below 2^ACC_W beats.
+  auto occ_node = [](uint32_t& u, uint32_t c1, uint32_t c2, uint32_t& ch) {
+    const bool t1 = c1 < u;
+    const uint32_t b1 = t1 ? c1 : u;
+    const bool t2 = c2 < b1;
+    u = t2 ? c2 : b1;
+    ch = t2 ? 2 : (t1 ? 1 : 0);
+  };
+  const uint32_t none = 0xffffffffu, occ = f.occ, mask = f.mask;
+  uint32_t* ue = f.ue;
+  uint32_t* uo = f.uo;
+  for (int t = 0; t < f.n; ++t) {
+    // Site 2t+1: occlusion nodes d = 2m+1 (d - 1 = 2m always exists, d + 1 = 2m+2
+    // while m + 1 < ne) from the site-2t values, then the matched nodes d = 2m.
+    uint32_t* dec = f.dec + static_cast<size_t>(2 * t + 1) * f.stride;
+    for (int m = 0; m < f.no; ++m)
+      occ_node(uo[m], (ue[m] + occ) & mask, m + 1 < f.ne ? (ue[m + 1] + occ) & mask : none, dec[m]);
+    const uint16_t* c = f.cm + static_cast<size_t>(t) * f.stride;
+    for (int m = 0; m < f.ne; ++m) ue[m] = (ue[m] + (c[m] & 0xffu)) & mask;
+    // Site 2t+2: occlusion nodes d = 2m (d - 1 = 2m-1 for m >= 1, d + 1 = 2m+1 while
+    // m < no) from the site-2t+1 values, then the matched nodes d = 2m+1.
+    dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
+    for (int m = 0; m < f.ne; ++m)
+      occ_node(ue[m], m >= 1 ? (uo[m - 1] + occ) & mask : none,
+               m < f.no ? (uo[m] + occ) & mask : none, dec[m]);
+    c += f.stride;
+    for (int m = 0; m < f.no; ++m) uo[m] = (uo[m] + (c[m] >> 8)) & mask;
+  }
+}
+
+#if defined(__GNUC__)
+// The same, eight (or four) levels of one parity per vector (GCC/Clang vector
+// extensions, SM_VEC_BYTES wide). U
+// stays below 2^30 here, so signed 32-bit compares are exact and a missing choice can
+// be INT32_MAX. Every lane of the last vector is computed (lanes past the last level
+// hold don't-care values in the padding of ue, uo and dec and never reach a real lane:
+// a real lane reads a neighbour lane only where that choice exists).
+constexpr int kLanes = SM_VEC_BYTES / 4;
+typedef int32_t VI __attribute__((vector_size(SM_VEC_BYTES)));
+typedef uint16_t VHL __attribute__((vector_size(SM_VEC_BYTES / 2)));
+
+inline void load(VI& v, const uint32_t* p) { std::memcpy(&v, p, sizeof v); }
+inline void store(uint32_t* p, const VI& v) { std::memcpy(p, &v, sizeof v); }
+
+// Occlusion nodes from m, one vector: u = the first of choice 0 (u), 1 (lo + occ) and 2 (hi +
+// occ) that reaches the minimum; lanes set in lo_absent / hi_absent lack that choice.
+inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, int32_t occ,
+                      int32_t mask, const VI& lo_absent, const VI& hi_absent, uint32_t* dec) {
+  VI b0, c1, c2;
+  load(b0, u);
+  load(c1, lo);
+  load(c2, hi);
+  // (Selections as and/or of the compare masks, which every vector unit has.)
+  c1 = ((c1 + occ) & mask) | (lo_absent & INT32_MAX);
+  c2 = ((c2 + occ) & mask) | (hi_absent & INT32_MAX);
+  const VI t1 = c1 < b0;  // -1 where true
+  const VI b1 = (c1 & t1) | (b0 & ~t1);
+  const VI t2 = c2 < b1;
+  store(u, (c2 & t2) | (b1 & ~t2));
+  store(dec, (t2 & 2) | (t1 & ~t2 & 1));
+}
+
+// u[m] = (u[m] + cost) & mask for one vector of lanes from m; cost = the low (odd =
+// false) or high bytes of the 16-bit pairs at c.
+inline void add_block(uint32_t* u, const uint16_t* c, bool odd, int32_t mask) {
+  VHL c16;
+  std::memcpy(&c16, c, sizeof c16);
+  const VI cv = __builtin_convertvector(odd ? c16 >> 8 : c16 & 0xff, VI);
+  VI v;
+  load(v, u);
+  store(u, (v + cv) & mask);
+}
+
+SM_HOT void forward_vector(const Fwd& f) {
+  VI lane;  // 0, 1, 2, ...
+  for (int k = 0; k < kLanes; ++k) lane[k] = k;
+  const VI no_lane = {};
+  const VI first = lane == 0;
+  const auto occ = static_cast<int32_t>(f.occ), mask = static_cast<int32_t>(f.mask);
+  uint32_t* ue = f.ue;
+  uint32_t* uo = f.uo;
+  for (int t = 0; t < f.n; ++t) {
+    uint32_t* dec = f.dec + static_cast<size_t>(2 * t + 1) * f.stride;
+    for (int m = 0; m < f.no; m += kLanes)
+      occ_block(uo + m, ue + m, ue + m + 1, occ, mask, no_lane, lane + (m + 1) >= f.ne, dec + m);
+    const uint16_t* c = f.cm + static_cast<size_t>(t) * f.stride;
+    for (int m = 0; m < f.ne; m += kLanes) add_block(ue + m, c + m, false, mask);
+    dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
+    for (int m = 0; m < f.ne; m += kLanes)
+      occ_block(ue + m, uo + m - 1, uo + m, occ, mask, m == 0 ? first : no_lane, lane + m >= f.no,
+                dec + m);
+    c += f.stride;
+    for (int m = 0; m < f.no; m += kLanes) add_block(uo + m, c + m, true, mask);
+  }
+}
+#endif
+
+// Matched costs in site order, levels 2p and 2p+1 as one 16-bit pair: row t holds
+// A(t+p, 2p) | A(t+p, 2p+1) << 8, the cost of node (2t+1, 2p) in the low byte and of
+// node (2t, 2p+1) in the high byte (so site 2t+2 takes the high bytes of row t+1);
+// beyond the line (xl = t + p >= n) the cost is 0. Rows 0..n, stride pairs each. (A
+// strided gather; the forward pass then reads consecutive pairs.)
+void gather_costs(const uint8_t* agg, int n, int nd, int ne, int no, int stride, uint16_t* cm) {
+  for (int t = 0; t <= n; ++t) {
+    uint16_t* row = cm + static_cast<size_t>(t) * stride;
+    const uint8_t* a = agg + static_cast<size_t>(t) * nd;
+    const int pmax = std::max(0, std::min(ne, n - t));
+    const int pairs = std::min(pmax, no);  // odd DISP: the last even level has no pair
+    for (int p = 0; p < pairs; ++p) {
+      const uint8_t* c = a + static_cast<size_t>(p) * (nd + 2);
+      row[p] = static_cast<uint16_t>(c[0] | c[1] << 8);
+    }
+    int p = pairs;
+    if (p < pmax) row[p++] = a[static_cast<size_t>(pairs) * (nd + 2)];
+    for (; p < stride; ++p) row[p] = 0;
+  }
+}
+
+}  // namespace
+
+// Forward pass two sites at a time, like the hardware's clock t: site 2t+1 (matched
+// nodes at even d, occlusion nodes at odd d), then site 2t+2 (matched at odd d,
+// occlusion at even d). The levels are split by parity and the matched costs are
+// gathered into site order first, so the loops over levels run over consecutive
+// entries and vectorize.
+void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
+                  DpLine& out) {
   const int nd = hw.disp;
   const int acc_w = dp_acc_bits(hw);
   const uint32_t mask = (acc_w >= 32) ? 0xffffffffu : ((1u << acc_w) - 1);
   const uint32_t big = 1u << (acc_w - 1);
   const int sites = 2 * n;
-  s.u0.assign(nd, big);
-  s.u1.assign(nd, 0);
-  s.dec.assign(static_cast<size_t>(sites + 1) * nd, 0);
-  s.u0[0] = 0;
+  const int ne = (nd + 1) / 2, no = nd / 2;  // even / odd levels
+  const int stride = (ne + 7) / 8 * 8;       // entries per site, whole vectors
 
-  // Forward pass, one site at a time (the hardware does two per clock).
-  for (int i = 1; i <= sites; ++i) {
-    const uint32_t* up = s.u0.data();
-    uint32_t* uc = s.u1.data();
-    uint8_t* dec = &s.dec[static_cast<size_t>(i) * nd];
-    // matched nodes: i + d odd; their left pixel xl = (i - 1 + d) / 2 is inside the
-    // line for d < 2n - i + 1 (beyond it the cost is 0). Branch-free loops: speed only.
-    const int dm0 = (i & 1) ? 0 : 1;
-    const int dlim = std::min(nd, sites - i + 1);
-    int d = dm0;
-    for (; d < dlim; d += 2) {
-      const int xl = (i - 1 + d) / 2;
-      uc[d] = (up[d] + agg[static_cast<size_t>(xl) * nd + d]) & mask;
-    }
-    for (; d < nd; d += 2) uc[d] = up[d] & mask;
-    // occlusion nodes: i + d even; first of choice 0, 1, 2 reaching the minimum. The
-    // edge levels (no d - 1 / no d + 1) are peeled so the inner loop has no branches.
-    const int do0 = (i & 1) ? 1 : 0;
-    auto occ_node = [&](int dd, bool has_lo, bool has_hi) {
-      uint32_t best = up[dd];
-      uint8_t ch = 0;
-      if (has_lo) {
-        const uint32_t c1 = (up[dd - 1] + occ) & mask;
-        if (c1 < best) best = c1, ch = 1;
-      }
-      if (has_hi) {
-        const uint32_t c2 = (up[dd + 1] + occ) & mask;
-        if (c2 < best) best = c2, ch = 2;
-      }
-      uc[dd] = best;
-      dec[dd] = ch;
-    };
-    d = do0;
-    if (d == 0 && d < nd) {
-      occ_node(0, false, nd >= 2);
-      d = 2;
-    }
-    for (; d <= nd - 2; d += 2) {
-      const uint32_t b0 = up[d];
-      const uint32_t c1 = (up[d - 1] + occ) & mask;
-      const uint32_t c2 = (up[d + 1] + occ) & mask;
-      const bool t1 = c1 < b0;
-      const uint32_t b1 = t1 ? c1 : b0;
-      const bool t2 = c2 < b1;
-      uc[d] = t2 ? c2 : b1;
-      dec[d] = static_cast<uint8_t>(t2 ? 2 : (t1 ? 1 : 0));
-    }
-    if (d == nd - 1 && d >= 1) occ_node(d, true, false);
-    std::swap(s.u0, s.u1);
-  }
-  out.end_cost = s.u0[0];
+  s.cm.resize(static_cast<size_t>(n + 1) * stride);
+  gather_costs(agg, n, nd, ne, no, stride, s.cm.data());
+
+  // U with one vector of room in front (index -1 is read by the first block) and
+  // behind. Every decision the backward pass reads is written by the forward pass, so
+  // dec is not cleared.
+  s.u0.assign(static_cast<size_t>(stride) + 2 * 8, big);
+  s.u1.assign(static_cast<size_t>(stride) + 2 * 8, big);
+  s.dec.resize(static_cast<size_t>(sites + 1) * stride);
+  const Fwd f{n, ne, no, stride, occ, mask, s.cm.data(),
+              s.u0.data() + 8, s.u1.data() + 8, s.dec.data()};
+  f.ue[0] = 0;
+#if defined(__GNUC__)
+  if (acc_w <= 30)
+    forward_vector(f);
+  else
+#endif
+    forward_scalar(f);
+  out.end_cost = f.ue[0];
 
   // Backward pass from (2N, 0).
   out.path.assign(sites + 1, 0);
@@ -102,7 +208,7 @@ SM_HOT void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig&
     if ((i + d) & 1) {
       out.match[(i - 1 + d) / 2] = d;
     } else {
-      const uint8_t ch = s.dec[static_cast<size_t>(i) * nd + d];
+      const uint32_t ch = s.dec[static_cast<size_t>(i) * stride + d / 2];
       d += (ch == 1) ? -1 : (ch == 2) ? 1 : 0;
     }
   }

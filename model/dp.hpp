@@ -20,10 +20,14 @@ struct DpLine {
   std::vector<DispPix> disp;      // after the left-occlusion fill (valid bit set)
 };
 
-// Reusable work buffers of trellis_line, so a frame allocates once.
+// Reusable work buffers of trellis_line, so a frame allocates once. Levels are kept
+// split by parity (even d = 2m, odd d = 2m + 1), so that every loop of the forward pass
+// runs over consecutive entries; S = ceil(DISP/2) rounded up to a multiple of 8.
 struct DpScratch {
-  std::vector<uint32_t> u0, u1;   // U of the previous / current site, DISP entries
-  std::vector<uint8_t> dec;       // 2-bit choice of every occlusion node, (2N+1) * DISP
+  std::vector<uint32_t> u0, u1;   // U of the even / odd levels at the current site
+  std::vector<uint32_t> dec;      // choice of occlusion node (i, d) at i * S + d / 2,
+                                  // (2N+1) * S entries
+  std::vector<uint16_t> cm;       // matched costs in site order, (N+1) * S pairs (dp.cpp)
 };
 
 // One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=

@@ -1,16 +1,20 @@
 #include "pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <vector>
 
 #include <fmt/format.h>
+
+#include "kernels.hpp"
 
 namespace sm {
 
 void validate_regs(const Regs& r, const HwConfig& hw) {
   auto bad = [](const std::string& m) { throw std::invalid_argument(m); };
-  if (r.width < 16 || r.width > hw.max_width)
-    bad(fmt::format("width {} outside 16..{}", r.width, hw.max_width));
+  if (r.width < hw.min_width() || r.width > hw.max_width)
+    bad(fmt::format("width {} outside {}..{}", r.width, hw.min_width(), hw.max_width));
   if (r.height < 16 || r.height > hw.max_height)
     bad(fmt::format("height {} outside 16..{}", r.height, hw.max_height));
   if (r.gain_l > 1023 || r.gain_r > 1023) bad("gain above 1023 (10-bit Q2.8)");
@@ -47,23 +51,73 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   r.rl = rectify(r.bl, regs.grid_l, regs.rect_enable, hw);
   r.rr = rectify(r.br, regs.grid_r, regs.rect_enable, hw);
   lap("rectify");
-  const CensusImage cl = census_transform(r.rl, hw);
-  const CensusImage cr = census_transform(r.rr, hw);
-  lap("census");
-  CostVolume raw = hamming_cost(cl, cr, hw);
-  lap("cost");
-  CostVolume agg = sw_aggregate(raw, r.rl, regs.sw_table, hw);
-  lap("aggregate");
-  r.dp = trellis_dp(agg, regs.occ, hw);
-  lap("dp");
+
+  // Census, cost, aggregation and DP stream row by row through the row kernels the
+  // stage functions use (model/kernels.hpp), so the results are the stage functions'
+  // bits: row y's costs enter a ring of SW rows of C = H >> COST_SHIFT, and once the
+  // ring holds rows y-2R .. y, row y-R is aggregated and goes through the DP. Only the
+  // volumes that are kept are ever allocated whole. Each stage's time is summed over
+  // its rows (stage_ms keeps the stage order).
+  const int w = regs.width, h = regs.height, nd = hw.disp, ra = (hw.sw - 1) / 2, sw = hw.sw;
+  const size_t row = static_cast<size_t>(w) * nd;
+  const detail::CensusPad pl(r.rl, (hw.census - 1) / 2), pr(r.rr, (hw.census - 1) / 2);
+  const detail::AggRow ag(w, h, nd, hw.sw, regs.sw_table, hw);
+  const auto cb = static_cast<uint8_t>(hw.census_bits());
+  if (keep_volumes) {
+    r.raw = CostVolume(w, h, nd);
+    r.agg = CostVolume(w, h, nd);
+  }
+  std::vector<CensusVec> cl(static_cast<size_t>(w)), cr(static_cast<size_t>(w));
+  std::vector<uint8_t> ring(static_cast<size_t>(sw) * row + detail::kCostPad);
+  std::vector<uint8_t> agg_line(keep_volumes ? 0 : row);
+  std::vector<const uint8_t*> win(static_cast<size_t>(sw));
+  r.dp = DispImage(w, h);
+  DpScratch scratch;
+  DpLine line;
+  double ms[4] = {0, 0, 0, 0};  // census, cost, aggregate, dp
+  auto since = [](clock::time_point a, clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  for (int y = 0; y < h + ra; ++y) {
+    if (y < h) {
+      const auto t0 = clock::now();
+      detail::census_row(pl, y, cl.data());
+      detail::census_row(pr, y, cr.data());
+      const auto t1 = clock::now();
+      uint8_t* c = &ring[static_cast<size_t>(y % sw) * row];
+      if (keep_volumes) {
+        uint8_t* hr = r.raw.pix(0, y);
+        detail::cost_row(cl.data(), cr.data(), w, nd, cb, 0, hr);
+        for (size_t i = 0; i < row; ++i) c[i] = static_cast<uint8_t>(hr[i] >> hw.cost_shift);
+      } else {
+        detail::cost_row(cl.data(), cr.data(), w, nd, cb, hw.cost_shift, c);
+      }
+      const auto t2 = clock::now();
+      ms[0] += since(t0, t1);
+      ms[1] += since(t1, t2);
+    }
+    const int ya = y - ra;  // the row whose window is complete
+    if (ya < 0) continue;
+    const auto t0 = clock::now();
+    for (int j = -ra; j <= ra; ++j)
+      win[static_cast<size_t>(j + ra)] =
+          (ya + j >= 0 && ya + j < h) ? &ring[static_cast<size_t>((ya + j) % sw) * row] : nullptr;
+    uint8_t* a = keep_volumes ? r.agg.pix(0, ya) : agg_line.data();
+    detail::agg_row(ag, win.data(), r.rl.px.data(), ya, a);
+    const auto t1 = clock::now();
+    trellis_line(a, w, regs.occ, hw, scratch, line);
+    std::copy(line.disp.begin(), line.disp.end(), &r.dp.at(0, ya));
+    const auto t2 = clock::now();
+    ms[2] += since(t0, t1);
+    ms[3] += since(t1, t2);
+  }
+  const char* names[4] = {"census", "cost", "aggregate", "dp"};
+  for (int k = 0; k < 4; ++k) r.stage_ms.emplace_back(names[k], ms[k]);
+  t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps);
   lap("post");
   r.objects = separate_objects(r.post, regs, hw);
   lap("objects");
-  if (keep_volumes) {
-    r.raw = std::move(raw);
-    r.agg = std::move(agg);
-  }
   return r;
 }
 

@@ -2,7 +2,14 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
+#include <utility>
+
+// Speed (docs/performance.md): the rank filter runs on vectors of keys, and on x86-64
+// with GCC its loop is also compiled for AVX2 and picked at run time (SM_HOT in
+// kernels.hpp); integer min/max only, so both clones give the same bits.
+#include "kernels.hpp"
 
 namespace sm {
 
@@ -18,28 +25,111 @@ DispImage post_median(const DispImage& in, const HwConfig& hw, int ry, int rx) {
   return post_rank(in, hw, ry, rx, (2 * ry + 1) * (2 * rx + 1) / 2);
 }
 
+namespace {
+
+// Batcher's odd-even merge sort network for n (a power of two) elements: compare-
+// exchange pairs (i, j), i < j, in an order that sorts any input ascending.
+std::vector<std::pair<int, int>> sort_network(int n) {
+  std::vector<std::pair<int, int>> net;
+  for (int p = 1; p < n; p <<= 1)
+    for (int k = p; k >= 1; k >>= 1)
+      for (int j = k % p; j + k < n; j += 2 * k)
+        for (int i = 0; i < std::min(k, n - j - k); ++i)
+          if ((i + j) / (2 * p) == (i + j + k) / (2 * p)) net.emplace_back(i + j, i + j + k);
+  return net;
+}
+
+#if defined(__GNUC__)
+typedef uint16_t VK __attribute__((vector_size(32)));  // keys of 16 neighbouring centres
+constexpr int kKeyLanes = 16;
+constexpr int kMaxNet = 64;  // windows up to 8 x 8 take the vector path
+
+// Rank filter of the centres x0, x0 + 16, ... of row y whose whole window lies inside
+// the columns (x0 >= rx, x + 16 + rx <= w); returns the first centre not done. Sixteen
+// centres at a time through a sorting network on vectors of keys (min/max only; the
+// element of rank `rank` of the sorted window is the answer whatever the order of
+// equal keys). The network has n2 = the next power of two inputs; the extra ones are
+// 0xffff and sort behind every key (keys are at most 2^15). Window rows outside the
+// frame take the centre's key: the centre vector itself.
+SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, int rx, int rank,
+                    int n2, const std::pair<int, int>* net, size_t net_size, DispPix* out) {
+  VK v[kMaxNet];
+  int x = x0;
+  for (; x + kKeyLanes + rx <= w; x += kKeyLanes) {
+    VK centre;
+    std::memcpy(&centre, keys + static_cast<size_t>(y) * w + x, sizeof centre);
+    int k = 0;
+    for (int j = -ry; j <= ry; ++j) {
+      const bool row_in = y + j >= 0 && y + j < h;
+      for (int i = -rx; i <= rx; ++i, ++k) {
+        if (row_in)
+          std::memcpy(&v[k], keys + static_cast<size_t>(y + j) * w + x + i, sizeof(VK));
+        else
+          v[k] = centre;
+      }
+    }
+    for (; k < n2; ++k) v[k] = VK{} + 0xffff;
+    for (size_t c = 0; c < net_size; ++c) {
+      const VK a = v[net[c].first], b = v[net[c].second];
+      v[net[c].first] = a < b ? a : b;
+      v[net[c].second] = a < b ? b : a;
+    }
+    const VK m = v[rank];
+    const VK o = m == 0 ? VK{} : ((m - 1) | kDispValid);
+    std::memcpy(out + x, &o, sizeof o);
+  }
+  return x;
+}
+#endif
+
+}  // namespace
+
 DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int rank) {
   const unsigned dmask = (1u << clog2(hw.disp)) - 1;
   auto key = [&](DispPix p) -> unsigned { return disp_valid(p) ? (p & dmask) + 1 : 0; };
-  DispImage out(in.w, in.h);
-  std::vector<unsigned> win;
   const int n = (2 * ry + 1) * (2 * rx + 1);
   if (rank < 0 || rank >= n) throw std::invalid_argument("post_rank: rank outside the window");
-  win.reserve(n);
-  for (int y = 0; y < in.h; ++y)
-    for (int x = 0; x < in.w; ++x) {
-      const unsigned c = key(in.at(x, y));
-      win.clear();
-      for (int j = -ry; j <= ry; ++j)
-        for (int i = -rx; i <= rx; ++i) {
-          const int xx = x + i, yy = y + j;
-          const bool inside = xx >= 0 && xx < in.w && yy >= 0 && yy < in.h;
-          win.push_back(inside ? key(in.at(xx, yy)) : c);
-        }
-      std::nth_element(win.begin(), win.begin() + rank, win.end());
-      const unsigned m = win[rank];
-      out.at(x, y) = m == 0 ? DispPix{0} : make_disp(m - 1, true);
+  const int w = in.w, h = in.h;
+  DispImage out(w, h);
+
+  // One centre, straight from the definition (image edges, leftover columns, windows
+  // too large for the network).
+  std::vector<unsigned> win;
+  win.reserve(static_cast<size_t>(n));
+  auto one = [&](int x, int y) {
+    const unsigned c = key(in.at(x, y));
+    win.clear();
+    for (int j = -ry; j <= ry; ++j)
+      for (int i = -rx; i <= rx; ++i) {
+        const int xx = x + i, yy = y + j;
+        const bool inside = xx >= 0 && xx < w && yy >= 0 && yy < h;
+        win.push_back(inside ? key(in.at(xx, yy)) : c);
+      }
+    std::nth_element(win.begin(), win.begin() + rank, win.end());
+    const unsigned m = win[static_cast<size_t>(rank)];
+    out.at(x, y) = m == 0 ? DispPix{0} : make_disp(m - 1, true);
+  };
+
+#if defined(__GNUC__)
+  int n2 = 1;
+  while (n2 < n) n2 <<= 1;
+  const bool vec = n2 <= kMaxNet && dmask < 0x8000;  // keys <= 2^15 (any DISP <= 2^15)
+  if (vec) {
+    std::vector<uint16_t> keys(in.px.size());
+    for (size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<uint16_t>(key(in.px[i]));
+    const auto net = sort_network(n2);
+    for (int y = 0; y < h; ++y) {
+      int x = 0;
+      for (; x < std::min(rx, w); ++x) one(x, y);
+      x = rank_row(keys.data(), w, h, y, x, ry, rx, rank, n2, net.data(), net.size(),
+                   &out.px[static_cast<size_t>(y) * w]);
+      for (; x < w; ++x) one(x, y);
     }
+    return out;
+  }
+#endif
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) one(x, y);
   return out;
 }
 

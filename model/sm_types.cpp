@@ -20,6 +20,8 @@ void HwConfig::validate() const {
   if (max_height < 16 || max_height > 4095)
     bad(fmt::format("max_height {} outside 16..4095", max_height));
   if (disp < 4 || disp > 254 || disp % 2) bad(fmt::format("disp {} must be even, 4..254", disp));
+  if (max_width < min_width())
+    bad(fmt::format("max_width {} below DISP/2 + 3 = {} (disp {})", max_width, min_width(), disp));
   if (census < 3 || census > 15 || census % 2 == 0)
     bad(fmt::format("census {} must be odd, 3..15", census));
   if (sw < 3 || sw > 7 || sw % 2 == 0) bad(fmt::format("sw {} must be odd, 3..7", sw));

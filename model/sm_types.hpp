@@ -76,6 +76,10 @@ struct HwConfig {
   int max_objects = 8;    // MAX_OBJECTS (K): objects reported per frame
   int label_slots = 64;   // LABEL_SLOTS: equivalence-table entries of the labeller
   int census_bits() const { return census * census - 1; }
+  // Narrowest active line: 16, or DISP/2 + 3 when larger -- the DP reads a line's
+  // decisions back DISP/2 + 2 beats after its forward pass wrote them (sm_dp.v), so a
+  // shorter line would overlap its own backward pass.
+  int min_width() const { return disp / 2 + 3 > 16 ? disp / 2 + 3 : 16; }
   int cost_bits() const;  // width of the aggregated cost (see algorithm.md)
   void validate() const;  // throws std::invalid_argument on an illegal combination
 };
@@ -97,7 +101,7 @@ struct RectGrid {
 
 // Run-time registers (AXI4-Lite), with the paper's defaults.
 struct Regs {
-  int width = 320;           // active width, 16..MAX_WIDTH
+  int width = 320;           // active width, HwConfig::min_width()..MAX_WIDTH
   int height = 240;          // active height, 16..MAX_HEIGHT
   uint16_t gain_l = 256;     // brightness gain, Q2.8 (10 bits)
   uint16_t gain_r = 256;

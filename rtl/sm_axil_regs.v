@@ -67,6 +67,9 @@ module sm_axil_regs #(
     output reg  [GAW-1:0]    grid_waddr,    // {cam, bank, point}
     output reg  [31:0]       grid_wdata     // {sy, sx}, signed Q.5 each
 );
+  // Narrowest active line the pipeline supports (HwConfig::min_width, the WIDTH minimum
+  // of the generated map): the DP needs DISP/2 + 3 columns (sm_dp.v), every window 16.
+  localparam integer MIN_WIDTH = (DISP / 2 + 3 > 16) ? DISP / 2 + 3 : 16;
   /* verilator lint_off UNUSEDPARAM */  // the generated map holds every field's constants
   `include "sm_regmap.vh"
   /* verilator lint_on UNUSEDPARAM */

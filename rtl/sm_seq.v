@@ -85,7 +85,10 @@ module sm_seq #(
       .dout_valid(h_valid),
       .level     (unused_fifo_level)
   );
-  assign s_axis_tready = !fifo_full;
+  // Not ready while in reset: a pixel handed over then would be dropped by the FIFO's
+  // reset, and a source that counts handshakes would count it. rst_n is a register in
+  // sm_top, so ready still does not depend on any input combinationally.
+  assign s_axis_tready = rst_n && !fifo_full;
   wire        h_user = h_word[17];
   wire        h_last = h_word[16];
   wire [15:0] h_data = h_word[15:0];

@@ -57,7 +57,11 @@ TEST_CASE("field widths and ranges follow the spec", "[regmap]") {
   CHECK(field("OFFSET_L.VALUE").max.eval(hw) == 255);
   CHECK(field("OCC.VALUE").width == 8);
   CHECK(field("FILTER_ENABLE.VALUE").width == 3);
-  CHECK(field("WIDTH.VALUE").min.eval(hw) == 16);
+  // narrowest line the DP's line memories allow: max(16, DISP/2 + 3), 67 at 128 levels
+  CHECK(field("WIDTH.VALUE").min.eval(hw) == 67);
+  sm::HwConfig small = hw;
+  small.disp = 16;
+  CHECK(field("WIDTH.VALUE").min.eval(small) == 16);
   CHECK(field("WIDTH.VALUE").max.eval(hw) == 320);
   CHECK(field("HEIGHT.VALUE").max.eval(hw) == 240);
   CHECK(field("ID.VALUE").reset.eval(hw) == 0x534D4331);

@@ -276,6 +276,7 @@ struct Val {
     if (!std::strcmp(param, "MAX_HEIGHT")) return hw.max_height;
     if (!std::strcmp(param, "DISP")) return hw.disp;
     if (!std::strcmp(param, "MAX_OBJECTS")) return hw.max_objects;
+    if (!std::strcmp(param, "MIN_WIDTH")) return hw.min_width();
     throw std::invalid_argument(std::string("regmap: unknown parameter ") + param);
   }
 };
