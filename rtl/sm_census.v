@@ -1,8 +1,12 @@
 `default_nettype none
 // Census transform of both rectified images (docs/algorithm.md, section 3).
 // One sm_linebuf holds the CENSUS-1 previous rows of both cameras ({right, left} per
-// word), so a full window column arrives per beat; a CENSUS x CENSUS register window
-// slides over it and every neighbour is compared with the centre in parallel.
+// word), so a full window column arrives per beat; a CENSUS x CENSUS window slides over
+// it and every neighbour is compared with the centre in parallel. Only the window's
+// newest column is flip-flops: the CENSUS-1 older columns live in a circular buffer of
+// LUT-RAM that every beat writes once and reads at every older column's address
+// (quad-port RAM32M: four LUTs hold two bits of up to four columns' reads, where a
+// shifting register window needs one flip-flop per bit and column).
 //
 // Latency: the output beat after the ce of input beat n is the pixel of input beat
 // n - (R*width + R) - 2 (R = (CENSUS-1)/2): the window delay of sm_win_ctrl plus
@@ -59,16 +63,32 @@ module sm_census #(
   reg [C-1:0] row_ok_q, row_ok_q2;
   reg [C-1:0] col_ok_q, col_ok_q2;
 
-  // ---- stage 2: the window, win_l[r][j] = row (centre + r - R), column (centre + j - R)
-  reg [7:0] win_l [0:C-1][0:C-1];
-  reg [7:0] win_r [0:C-1][0:C-1];
+  // ---- stage 2: the window. Column j (C-1 = entered last) of row r (centre + r - R),
+  // newest column in a register and the older ones in LUT-RAM (sm_colwin).
+  localparam CWW = C * 16;  // one column of both images, row r at [r*16 +: 16]
+  wire [CWW-1:0]   newcol;
+  wire [C*CWW-1:0] awin;  // by age: age a at [a*CWW +: CWW]
+  wire [C*CWW-1:0] win;   // column j at [j*CWW +: CWW], age C-1-j
+  genvar r, j;
+  generate
+    // row C-1 is the live row, row C-2-k the line buffer's row live-1-k
+    for (r = 0; r < C - 1; r = r + 1) begin : g_newrow
+      assign newcol[r*16 +: 16] = lb_dout[(C-2-r)*16 +: 16];
+    end
+    assign newcol[(C-1)*16 +: 16] = live_q;
+    for (j = 0; j < C; j = j + 1) begin : g_col
+      assign win[j*CWW +: CWW] = awin[(C-1-j)*CWW +: CWW];
+    end
+  endgenerate
+  sm_colwin #(.W(CWW), .N(C)) u_win (
+      .clk(clk), .rst_n(rst_n), .ce(ce), .col(newcol), .win(awin)
+  );
 
   // ---- stage 3: compare against the centre ----------------------------------------
-  wire [7:0]    ctr_l = win_l[R][R];
-  wire [7:0]    ctr_r = win_r[R][R];
+  wire [7:0]    ctr_l = win[R*CWW + R*16 +: 8];
+  wire [7:0]    ctr_r = win[R*CWW + R*16 + 8 +: 8];
   wire [CB-1:0] cl_bits;
   wire [CB-1:0] cr_bits;
-  genvar r, j;
   generate
     for (r = 0; r < C; r = r + 1) begin : g_row
       for (j = 0; j < C; j = j + 1) begin : g_col
@@ -76,15 +96,16 @@ module sm_census #(
         localparam K = r * C + j - ((r * C + j > R * C + R) ? 1 : 0);
         if (r != R || j != R) begin : g_bit
           // an outside neighbour counts as equal to the centre: bit 0
-          wire ok = row_ok_q2[r] & col_ok_q2[j];
-          assign cl_bits[K] = ok & (win_l[r][j] < ctr_l);
-          assign cr_bits[K] = ok & (win_r[r][j] < ctr_r);
+          wire       ok = row_ok_q2[r] & col_ok_q2[j];
+          wire [7:0] pl = win[j*CWW + r*16 +: 8];
+          wire [7:0] pr = win[j*CWW + r*16 + 8 +: 8];
+          assign cl_bits[K] = ok & (pl < ctr_l);
+          assign cr_bits[K] = ok & (pr < ctr_r);
         end
       end
     end
   endgenerate
 
-  integer a, b;
   always @(posedge clk) begin
     if (ce) begin
       live_q    <= {s_right, s_left};
@@ -92,19 +113,6 @@ module sm_census #(
       col_ok_q  <= col_ok;
       row_ok_q2 <= row_ok_q;
       col_ok_q2 <= col_ok_q;
-      // shift the window one column left; the newest column enters at j = C-1
-      for (a = 0; a < C; a = a + 1)
-        for (b = 0; b < C - 1; b = b + 1) begin
-          win_l[a][b] <= win_l[a][b+1];
-          win_r[a][b] <= win_r[a][b+1];
-        end
-      // row r = C-1 is the live row, row C-2-k is the line buffer's row live-1-k
-      win_l[C-1][C-1] <= live_q[7:0];
-      win_r[C-1][C-1] <= live_q[15:8];
-      for (a = 0; a < C - 1; a = a + 1) begin
-        win_l[C-2-a][C-1] <= lb_dout[a*16 +: 8];
-        win_r[C-2-a][C-1] <= lb_dout[a*16+8 +: 8];
-      end
       m_cl   <= cl_bits;
       m_cr   <= cr_bits;
       m_left <= ctr_l;

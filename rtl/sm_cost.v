@@ -41,32 +41,36 @@ module sm_cost #(
   endgenerate
   wire unused_width = &width;
 
-  // Right vectors of the DISP-1 previous beats: crd_q[(d-1)*CB +: CB] is beat n - d.
-  // Packed, so the shift is one wide assignment (Verilator cannot loop over an array
-  // with delayed assignments at this size).
-  reg [(DISP-1)*CB-1:0] crd_q;
+  // Right vectors in bit-plane order (one plane per census bit, one bit per level):
+  // cr_all[i*DISP + d] is bit i of the right vector of beat n - d, the one level d
+  // compares with. Beat n itself is s_cr; the older ones come from a delay line of
+  // the same order, crd_q[i*DISP + d] = bit i of beat n - 1 - d, shifted one level up
+  // per ce (its top bit of every plane, beat n - DISP, is never read). Bit-plane order
+  // lets the popcount below do all levels with the same long-vector operations. The
+  // planes are assembled in always blocks: as CB continuous assignments, Verilator
+  // 5.006 joins them into a chain of ever longer concatenations (quadratic in CB*DISP).
+  reg [CB*DISP-1:0] crd_q;
+  reg [CB*DISP-1:0] cr_all, cl_all;
+  genvar i;
   generate
-    if (DISP == 2) begin : g_dl1
-      always @(posedge clk) if (ce) crd_q <= s_cr;
-    end else begin : g_dl
-      always @(posedge clk) if (ce) crd_q <= {crd_q[(DISP-2)*CB-1:0], s_cr};
+    for (i = 0; i < CB; i = i + 1) begin : g_plane
+      always @* begin
+        cr_all[i*DISP +: DISP] = {crd_q[i*DISP +: DISP-1], s_cr[i]};
+        cl_all[i*DISP +: DISP] = {DISP{s_cl[i]}};  // the left vector, every level
+      end
+      wire unused_crd_top = crd_q[i*DISP + DISP - 1];  // beat n - DISP
     end
   endgenerate
+  always @(posedge clk) if (ce) crd_q <= cr_all;
 
   // ok[d] = (x >= d) for the entering beat: all ones shifted in since the row start.
   reg  [DISP-1:0] ok_q;
   wire [DISP-1:0] ok = s_side[2] ? {{(DISP - 1) {1'b0}}, 1'b1} : {ok_q[DISP-2:0], 1'b1};
   wire unused_ok_top = ok_q[DISP-1];  // shifted out
 
-  // Popcount of every level, latency 2.
-  wire [HW-1:0] pc [0:DISP-1];
-  genvar d;
-  generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_lvl
-      wire [CB-1:0] crx = (d == 0) ? s_cr : crd_q[((d == 0) ? 0 : d - 1)*CB +: CB];
-      sm_popcount #(.N(CB)) u_pc (.clk(clk), .ce(ce), .a(s_cl), .b(crx), .cnt(pc[d]));
-    end
-  endgenerate
+  // Popcount of every level (one compressor tree per level), latency 2.
+  wire [DISP*HW-1:0] pc;  // level d at [d*HW +: HW]
+  sm_popcount #(.N(CB), .L(DISP)) u_pc (.clk(clk), .ce(ce), .a(cl_all), .b(cr_all), .cnt(pc));
 
   // Control and pass-through data along the popcount's two stages.
   reg [DISP-1:0] ok_q2, ok_q3;
@@ -86,7 +90,16 @@ module sm_cost #(
     end
   end
 
-  integer e;
+  // Output costs: CB where x - d < 0. A generate loop rather than a for loop in the
+  // always block: Verilator unrolls loops of up to 64 iterations only, and ran the
+  // DISP = 128 one at run time, bit-slice by bit-slice (the logic is the same).
+  wire [DISP*HW-1:0] cost;
+  genvar d;
+  generate
+    for (d = 0; d < DISP; d = d + 1) begin : g_out
+      assign cost[d*HW +: HW] = ok_q3[d] ? pc[d*HW +: HW] : CB_V;
+    end
+  endgenerate
   always @(posedge clk) begin
     if (ce) begin
       ok_q2   <= ok;
@@ -94,7 +107,7 @@ module sm_cost #(
       left_q2 <= s_left;
       left_q3 <= left_q2;
       m_left  <= left_q3;
-      for (e = 0; e < DISP; e = e + 1) m_cost[e*HW +: HW] <= ok_q3[e] ? pc[e] : CB_V;
+      m_cost  <= cost;
     end
   end
 endmodule

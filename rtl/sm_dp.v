@@ -87,7 +87,20 @@ module sm_dp #(
   // forward DP clock of this ce, and the pixel the read-out emits on it
   wire [XW-1:0] t_f = (x_in >= S_0) ? x_in - S_0 : x_in + width - S_0;
   wire [XW-1:0] t_rev = width - 1'b1 - t_f;
-  wire [XW-1:0] x_out = (x_in >= S_P2) ? x_in - S_P2 : x_in + width - S_P2;
+  // Pixel the read-out emits: (x_in - S - 2) mod W. Counted instead of computed from
+  // x_in: the modulo (compare, subtract, add) in front of the read-out's equality
+  // compare and stack-address select made the longest register-to-register path. Lines
+  // are exactly W beats with sol on beat 0 (sm_seq), so the count equals the formula:
+  // at sol x_in = 0 gives W - S - 2, and it steps by one, wrapping after W - 1.
+  reg  [XW-1:0] xo_q;       // x_out of the previous ce
+  reg           xo_last_q;  // xo_q == W - 1
+  wire [XW-1:0] x_out = s_side[2] ? width - S_P2 : xo_last_q ? {XW{1'b0}} : xo_q + 1'b1;
+  always @(posedge clk) begin
+    if (ce) begin
+      xo_q      <= x_out;
+      xo_last_q <= (x_out == width - 1'b1);
+    end
+  end
   wire          line_end = (x_in == S_M1);  // forward clock W-1
   wire          step_last = (x_in == S_0);  // backward step of site pair 0
   wire          rd_start = (x_in == S_P1);

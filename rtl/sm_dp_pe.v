@@ -62,11 +62,18 @@ module sm_dp_pe #(
   wire [ACC_W-1:0] self_in;  // choice 0 of the occlusion node
   wire [ACC_W-1:0] c1 = nb_lo + {{(ACC_W - 8) {1'b0}}, occ};
   wire [ACC_W-1:0] c2 = nb_hi + {{(ACC_W - 8) {1'b0}}, occ};
-  // min3 with the spec's tie order: 0, then 1, then 2 (later ones must be strictly less)
-  wire             take1 = (HAS_LO != 0) && (c1 < self_in);
-  wire [ACC_W-1:0] m01 = take1 ? c1 : self_in;
-  wire             take2 = (HAS_HI != 0) && (c2 < m01);
-  wire [ACC_W-1:0] occ_u = take2 ? c2 : m01;
+  // min3 with the spec's tie order: 0, then 1, then 2 (later ones must be strictly
+  // less). The three comparisons run in parallel and one 3:1 multiplexer picks the
+  // result, instead of compare-select-compare-select: two compare/select levels per
+  // site would put ten LUTs between registers across the two sites of a clock. Nothing
+  // wraps (algorithm.md: every sum stays below 2*BIG), so c2 < c1 is nb_hi < nb_lo and
+  // needs no adder in front.
+  wire             lt10 = c1 < self_in;
+  wire             lt20 = c2 < self_in;
+  wire             lt21 = nb_hi < nb_lo;
+  wire             take1 = (HAS_LO != 0) && lt10;
+  wire             take2 = (HAS_HI != 0) && (take1 ? lt21 : lt20);
+  wire [ACC_W-1:0] occ_u = take2 ? c2 : take1 ? c1 : self_in;
   assign dec = take2 ? 2'd2 : take1 ? 2'd1 : 2'd0;
 
   wire [ACC_W-1:0] u_next;

@@ -3,12 +3,15 @@
 // near pixels of the disparity stream with a flat equivalence table, per-label
 // statistics, and at the end of each frame a scan that lists up to MAX_OBJECTS objects.
 //
-// Stream side (advances on ce): stage 1 registers the entering beat and reads the row
-// buffer (labels of the row above); stage 2 labels the pixel, merges, and updates the
-// statistics in the same ce, so a run of one label needs no forwarding. The statistics
-// are double-banked by frame: the scan of frame f (on clk, not ce) reads one bank while
-// frame f+1 is labelled into the other; it needs at most LABEL_SLOTS + MAX_OBJECTS *
-// (DW + 1) + 2 clocks, less than the 256 beats of the smallest frame (checked below).
+// Stream side (advances on ce): stage 1 registers the entering beat, reads the row
+// buffer (labels of the row above) and compares the pixel with its left neighbour and
+// the threshold; stage 2 labels the pixel and merges in the equivalence table; stage 3
+// updates the statistics on the clk right after stage 2's ce (not on the next ce), so
+// the read-modify-write of a run of one label needs no forwarding and the frame's last
+// update is done before the scan reads the bank. The statistics are double-banked by
+// frame: the scan of frame f (on clk, not ce) reads one bank while frame f+1 is
+// labelled into the other; it needs at most LABEL_SLOTS + MAX_OBJECTS * (DW + 1) + 2
+// clocks, less than the 256 beats of the smallest frame (checked below).
 module sm_objects #(
     parameter MAX_WIDTH   = 320,  // widest active line
     parameter MAX_HEIGHT  = 240,  // tallest active frame
@@ -98,7 +101,7 @@ module sm_objects #(
   reg [RBW-1:0] rb [0:MAX_WIDTH-1];
   reg [RBW-1:0] rb_q;
   reg [XW-1:0]  x_q;
-  reg [DW:0]    pix_q;      // {valid, d}
+  reg [DW-1:0]  pix_q;      // d (its valid bit is in near_q)
   reg           up_in_q;    // row above is in the frame
   reg           left_in_q;  // column left is in the frame
   reg           eof_q;
@@ -108,6 +111,22 @@ module sm_objects #(
   reg [7:0]     thr_q, tol_q;
   reg [15:0]    minpix_q;
 
+  // Neighbour tests of the entering pixel, done here to keep them off stage 2's
+  // labelling path: the parameters stage 2 would use (latched at this ce on sof), the
+  // left neighbour is the pixel now in stage 2, and the pixel above must lie in
+  // [d - tol, d + tol], which needs only the entering d.
+  wire [DW-1:0] s_d = s_disp[DW-1:0];
+  wire [7:0]    thr_e = c_side[1] ? near_thr : thr_q;
+  wire [7:0]    tol_e = c_side[1] ? tol : tol_q;
+  wire [8:0]    s_hi = {{(9-DW){1'b0}}, s_d} + {1'b0, tol_e};
+  wire [8:0]    s_lo = {{(9-DW){1'b0}}, s_d} - {1'b0, tol_e};  // bit 8: below 0
+  wire [8:0]    p_hi = {{(9-DW){1'b0}}, pix_q} + {1'b0, tol_e};
+  wire [8:0]    p_lo = {{(9-DW){1'b0}}, pix_q} - {1'b0, tol_e};
+  reg           near_q;                       // valid and d >= threshold
+  reg           l_close_q;                    // |d - left d| <= tol
+  reg  [8:0]    u_hi_q;                       // d + tol
+  reg  [DW-1:0] u_lo_q;                       // max(d - tol, 0)
+
   // ---- stage 2: label -------------------------------------------------------------
   wire          real_q = side_q[0];
   wire          fresh = side_q[0] & side_q[1];  // first pixel: tables start empty
@@ -115,21 +134,19 @@ module sm_objects #(
   reg  [NW-1:0] next_q;                         // labels allocated in this frame
   reg           tf_q;                           // table full seen in this frame
   reg           l_near_q;
-  reg  [DW-1:0] l_d_q;
   reg  [LW-1:0] l_lab_q;
   reg  [LW-1:0] parent [0:LABEL_SLOTS-1];       // flat: every entry names its root
 
   wire          bank = fresh ? ~bank_q : bank_q;
   wire [NW-1:0] next_eff = fresh ? {NW{1'b0}} : next_q;
-  wire [DW-1:0] d = pix_q[DW-1:0];
-  wire          near = pix_q[DW] && ({{(8-DW){1'b0}}, d} >= thr_q);
+  wire [DW-1:0] d = pix_q;
+  wire          near = near_q;
   wire          u_near = rb_q[RBW-1];
   wire [DW-1:0] u_d = rb_q[LW +: DW];
   wire [LW-1:0] u_lab = rb_q[LW-1:0];
-  wire [DW-1:0] du = (d > u_d) ? d - u_d : u_d - d;
-  wire [DW-1:0] dl = (d > l_d_q) ? d - l_d_q : l_d_q - d;
-  wire          up_ok = near && up_in_q && u_near && ({{(8-DW){1'b0}}, du} <= tol_q);
-  wire          left_ok = near && left_in_q && l_near_q && ({{(8-DW){1'b0}}, dl} <= tol_q);
+  wire          up_ok = near && up_in_q && u_near && (u_d >= u_lo_q) &&
+                        ({{(9-DW){1'b0}}, u_d} <= u_hi_q);
+  wire          left_ok = near && left_in_q && l_near_q && l_close_q;
   /* verilator lint_off WIDTH */  // labels index a table of LABEL_SLOTS (not 2^LW) entries
   wire [LW-1:0] ur = parent[u_lab];
   /* verilator lint_on WIDTH */
@@ -144,6 +161,8 @@ module sm_objects #(
   wire          drop = near && !up_ok && !left_ok && !room;
   wire          near_eff = near && !drop;
   wire [LW-1:0] lab = merge ? m_s : up_ok ? ur : left_ok ? lr : next_eff[LW-1:0];
+  wire [NW-1:0] next_new = next_eff + {{(NW-1){1'b0}}, alloc};
+  wire          tf_new = (fresh ? 1'b0 : tf_q) | drop;
 
   // statistics, banked by frame parity: address {bank, label}; combinational reads
   // (distributed RAM) so a label's update is visible to the very next pixel
@@ -158,32 +177,56 @@ module sm_objects #(
   reg [NS-1:0]   st_alive;
 
   // banks at {0, label} and {1, label}: LABEL_SLOTS need not be a power of two, so the
-  // bank bit selects the upper half by offset
-  wire [LW:0] a_lab = bank ? {1'b0, lab} + LABEL_SLOTS[LW:0] : {1'b0, lab};
-  wire [LW:0] a_abs = bank ? {1'b0, m_a} + LABEL_SLOTS[LW:0] : {1'b0, m_a};
+  // bank bit selects the upper half by offset (a plain bit when it is one)
+  localparam POW2 = (LABEL_SLOTS == (1 << LW));
+  wire [LW:0] a_lab = POW2 ? {bank, lab}
+                    : bank ? {1'b0, lab} + LABEL_SLOTS[LW:0] : {1'b0, lab};
+  wire [LW:0] a_abs = POW2 ? {bank, m_a}
+                    : bank ? {1'b0, m_a} + LABEL_SLOTS[LW:0] : {1'b0, m_a};
+  wire        upd = ce && real_q && near_eff;
 
-  // base statistics the pixel joins: the survivor's (merged with the absorbed one's)
-  wire [XW-1:0]   b_x0  = merge && st_x0[a_abs] < st_x0[a_lab] ? st_x0[a_abs] : st_x0[a_lab];
-  wire [YW-1:0]   b_y0  = merge && st_y0[a_abs] < st_y0[a_lab] ? st_y0[a_abs] : st_y0[a_lab];
-  wire [XW-1:0]   b_x1  = merge && st_x1[a_abs] > st_x1[a_lab] ? st_x1[a_abs] : st_x1[a_lab];
-  wire [YW-1:0]   b_y1  = merge && st_y1[a_abs] > st_y1[a_lab] ? st_y1[a_abs] : st_y1[a_lab];
-  wire [CNTW-1:0] b_cnt = st_cnt[a_lab] + (merge ? st_cnt[a_abs] : {CNTW{1'b0}});
-  wire [SUMW-1:0] b_sum = st_sum[a_lab] + (merge ? st_sum[a_abs] : {SUMW{1'b0}});
-  wire [DW-1:0]   b_max = merge && st_max[a_abs] > st_max[a_lab] ? st_max[a_abs] : st_max[a_lab];
-  wire [XW-1:0]   px = x_q;
-  wire [YW-1:0]   py = y_q;
-  wire [XW-1:0]   n_x0  = alloc || px < b_x0 ? px : b_x0;
-  wire [YW-1:0]   n_y0  = alloc || py < b_y0 ? py : b_y0;
-  wire [XW-1:0]   n_x1  = alloc || px > b_x1 ? px : b_x1;
-  wire [YW-1:0]   n_y1  = alloc || py > b_y1 ? py : b_y1;
-  wire [CNTW-1:0] n_cnt = (alloc ? {CNTW{1'b0}} : b_cnt) + 1'b1;
-  wire [SUMW-1:0] n_sum = (alloc ? {SUMW{1'b0}} : b_sum) + {{(SUMW-DW){1'b0}}, d};
-  wire [DW-1:0]   n_max = alloc || d > b_max ? d : b_max;
-  wire [NW-1:0]   next_new = next_eff + {{(NW-1){1'b0}}, alloc};
-  wire            tf_new = (fresh ? 1'b0 : tf_q) | drop;
-  wire            upd = ce && real_q && near_eff;
+  // ---- stage 3: statistics update, on the clk after stage 2's ce ---------------------
+  reg            s3_v;       // an update is pending
+  reg  [LW:0]    s3_lab, s3_abs;
+  reg            s3_merge, s3_alloc;
+  reg  [DW-1:0]  s3_d;
+  reg  [XW-1:0]  s3_x;
+  reg  [YW-1:0]  s3_y;
+
+  // The pixel joins the survivor's statistics, merged with the absorbed one's. Bounds:
+  // the three compares (absorbed vs survivor, pixel vs each) run in parallel and one
+  // select follows, instead of a compare on the result of a compare.
+  wire [XW-1:0]   r_x0a = st_x0[s3_abs];
+  wire [XW-1:0]   r_x0  = st_x0[s3_lab];
+  wire [YW-1:0]   r_y0a = st_y0[s3_abs];
+  wire [YW-1:0]   r_y0  = st_y0[s3_lab];
+  wire [XW-1:0]   r_x1a = st_x1[s3_abs];
+  wire [XW-1:0]   r_x1  = st_x1[s3_lab];
+  wire [YW-1:0]   r_y1a = st_y1[s3_abs];
+  wire [YW-1:0]   r_y1  = st_y1[s3_lab];
+  wire [DW-1:0]   r_mxa = st_max[s3_abs];
+  wire [DW-1:0]   r_mx  = st_max[s3_lab];
+  wire            m_x0 = s3_merge && r_x0a < r_x0;
+  wire            m_y0 = s3_merge && r_y0a < r_y0;
+  wire            m_x1 = s3_merge && r_x1a > r_x1;
+  wire            m_y1 = s3_merge && r_y1a > r_y1;
+  wire            m_mx = s3_merge && r_mxa > r_mx;
+  wire [XW-1:0]   n_x0 = s3_alloc ? s3_x : m_x0 ? (s3_x < r_x0a ? s3_x : r_x0a)
+                                           : (s3_x < r_x0 ? s3_x : r_x0);
+  wire [YW-1:0]   n_y0 = s3_alloc ? s3_y : m_y0 ? (s3_y < r_y0a ? s3_y : r_y0a)
+                                           : (s3_y < r_y0 ? s3_y : r_y0);
+  wire [XW-1:0]   n_x1 = s3_alloc ? s3_x : m_x1 ? (s3_x > r_x1a ? s3_x : r_x1a)
+                                           : (s3_x > r_x1 ? s3_x : r_x1);
+  wire [YW-1:0]   n_y1 = s3_alloc ? s3_y : m_y1 ? (s3_y > r_y1a ? s3_y : r_y1a)
+                                           : (s3_y > r_y1 ? s3_y : r_y1);
+  wire [DW-1:0]   n_max = s3_alloc ? s3_d : m_mx ? (s3_d > r_mxa ? s3_d : r_mxa)
+                                            : (s3_d > r_mx ? s3_d : r_mx);
+  wire [CNTW-1:0] b_cnt = st_cnt[s3_lab] + (s3_merge ? st_cnt[s3_abs] : {CNTW{1'b0}});
+  wire [SUMW-1:0] b_sum = st_sum[s3_lab] + (s3_merge ? st_sum[s3_abs] : {SUMW{1'b0}});
+  wire [CNTW-1:0] n_cnt = (s3_alloc ? {CNTW{1'b0}} : b_cnt) + 1'b1;
+  wire [SUMW-1:0] n_sum = (s3_alloc ? {SUMW{1'b0}} : b_sum) + {{(SUMW-DW){1'b0}}, s3_d};
   // only {valid, d} of the stream word and the real/sof/sol bits of the sideband matter
-  wire            unused_in = &{s_disp[14:DW], side_q[4:2]};
+  wire            unused_in = &{s_disp[14:DW], side_q[4:2], s_lo[8:DW], p_lo[8:DW]};
 
   integer i;
   always @(posedge clk) begin
@@ -193,16 +236,19 @@ module sm_objects #(
       rb_q      <= rb[s_x];
       /* verilator lint_on WIDTH */
       x_q       <= c_x;
-      pix_q     <= {s_disp[15], s_disp[DW-1:0]};
+      pix_q     <= s_d;
       up_in_q   <= row_ok[0];
       left_in_q <= col_ok[0];
       if (c_side[0]) y_q <= c_y;
+      near_q    <= s_disp[15] && ({{(8-DW){1'b0}}, s_d} >= thr_e);
+      l_close_q <= (p_lo[8] || s_d >= p_lo[DW-1:0]) && ({{(9-DW){1'b0}}, s_d} <= p_hi);
+      u_hi_q    <= s_hi;
+      u_lo_q    <= s_lo[8] ? {DW{1'b0}} : s_lo[DW-1:0];
       // stage 2: the row above's entry for this column is read; write this row's
       /* verilator lint_off WIDTH */  // as above
       rb[x_q]  <= {real_q & near_eff, d, lab};
       /* verilator lint_on WIDTH */
       l_near_q <= real_q & near_eff;
-      l_d_q    <= d;
       l_lab_q  <= lab;
       if (real_q) begin
         for (i = 0; i < LABEL_SLOTS; i = i + 1) begin
@@ -210,23 +256,31 @@ module sm_objects #(
           else if (merge && parent[i] == m_a) parent[i] <= m_s;
         end
       end
+      s3_lab   <= a_lab;
+      s3_abs   <= a_abs;
+      s3_merge <= merge;
+      s3_alloc <= alloc;
+      s3_d     <= d;
+      s3_x     <= x_q;
+      s3_y     <= y_q;
     end
-    if (upd) begin
-      st_x0[a_lab]  <= n_x0;
-      st_y0[a_lab]  <= n_y0;
-      st_x1[a_lab]  <= n_x1;
-      st_y1[a_lab]  <= n_y1;
-      st_cnt[a_lab] <= n_cnt;
-      st_sum[a_lab] <= n_sum;
-      st_max[a_lab] <= n_max;
+    // stage 3
+    if (s3_v) begin
+      st_x0[s3_lab]  <= n_x0;
+      st_y0[s3_lab]  <= n_y0;
+      st_x1[s3_lab]  <= n_x1;
+      st_y1[s3_lab]  <= n_y1;
+      st_cnt[s3_lab] <= n_cnt;
+      st_sum[s3_lab] <= n_sum;
+      st_max[s3_lab] <= n_max;
     end
   end
 
   // alive: set when a label is allocated, cleared when it is absorbed (two writes)
   always @(posedge clk) begin
-    if (upd) begin
-      if (alloc) st_alive[a_lab] <= 1'b1;
-      if (merge) st_alive[a_abs] <= 1'b0;
+    if (s3_v) begin
+      if (s3_alloc) st_alive[s3_lab] <= 1'b1;
+      if (s3_merge) st_alive[s3_abs] <= 1'b0;
     end
   end
 
@@ -240,6 +294,7 @@ module sm_objects #(
     if (!rst_n) begin
       side_q  <= 5'd0;
       eof_q   <= 1'b0;
+      s3_v    <= 1'b0;
       bank_q  <= 1'b0;
       next_q  <= {NW{1'b0}};
       tf_q    <= 1'b0;
@@ -253,6 +308,7 @@ module sm_objects #(
       sc_min  <= 16'd0;
     end else begin
       scan_go <= 1'b0;
+      s3_v    <= upd;
       if (ce) begin
         side_q <= c_side;
         eof_q  <= c_eof;

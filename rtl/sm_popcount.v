@@ -1,7 +1,8 @@
 `default_nettype none
 // Pipelined population count of a ^ b (docs/algorithm.md, section 4: the Hamming
-// distance of two census vectors). A plain $countones, or a binary adder tree, costs
-// 2-3 LUTs per bit in Yosys; this is a compressor tree sized for 6-input LUTs:
+// distance of two census vectors), for L independent lanes side by side (sm_cost: one
+// lane per disparity level). A plain $countones, or a binary adder tree, costs 2-3 LUTs
+// per bit in Yosys; this is a compressor tree sized for 6-input LUTs, one per lane:
 //  - leaves fold the XOR into the first counter: three bit pairs (six inputs) give a
 //    2-bit count, one LUT6 per output bit;
 //  - then Dadda-style stages on the bit heap: every column is cut into groups of up
@@ -11,15 +12,25 @@
 //  - a final two-row carry-chain adder.
 // The heap's shape is computed by constant functions from N, so any N works.
 //
-// Latency 2 ce: the leaves are registered, then the compressed and added result.
+// Bit-plane order: the inputs and every heap hold bit i of all L lanes together, at
+// [i*L +: L] (for L = 1 that is the plain order). The bits of a heap column all have
+// the same weight, so which of them share a counter is free; the groups of a column
+// take its bits t, t + G, ..., t + 5*G, and the leaves the input bits q, q + NG,
+// q + 2*NG. The logic of a lane is the same as with one instance per lane and
+// consecutive bits per counter, but every stage becomes a few bitwise operations on
+// long vectors, which Verilator evaluates word by word (bit by bit and lane by lane,
+// the paper configuration's 128 levels made sm_cost ~2/3 of the simulation time).
+//
+// Latency 2 ce: the two rows left after compression are registered, then their sum.
 module sm_popcount #(
-    parameter N = 224  // bits to count (1..1023)
+    parameter N = 224,  // bits to count (1..1023)
+    parameter L = 1     // lanes (1..1024)
 ) (
-    input  wire          clk,
-    input  wire          ce,
-    input  wire [N-1:0]  a,
-    input  wire [N-1:0]  b,
-    output wire [OW-1:0] cnt  // popcount(a ^ b), 2 ce after a and b
+    input  wire            clk,
+    input  wire            ce,
+    input  wire [N*L-1:0]  a,    // bit i of lane l at [i*L + l]
+    input  wire [N*L-1:0]  b,
+    output wire [L*OW-1:0] cnt   // lane l at [l*OW +: OW]: popcount(a ^ b), 2 ce later
 );
   localparam OW  = $clog2(N + 1);
   localparam NG  = (N + 2) / 3;  // leaf groups of three pairs
@@ -32,6 +43,9 @@ module sm_popcount #(
   generate
     if (N < 1 || N > 1023) begin : g_bad_n
       initial $error("sm_popcount: N (%0d) must be 1..1023", N);
+    end
+    if (L < 1 || L > 1024) begin : g_bad_l
+      initial $error("sm_popcount: L (%0d) must be 1..1024", L);
     end
   endgenerate
 
@@ -56,7 +70,6 @@ module sm_popcount #(
       shape_next = n;
     end
   endfunction
-
   // Heights of every stage: stage s, column c at [(s*NCP + c)*HB +: HB].
   function [MS*NCP*HB-1:0] all_shapes(input integer dummy);
     integer k;
@@ -108,46 +121,34 @@ module sm_popcount #(
   endfunction
   localparam NS = num_stages(SHAPE);
 
-  // 6:3 counter as plain logic: an arithmetic "+" here would become carry chains.
-  function [2:0] count6(input [5:0] v);
-    reg s1, c1, s2, c2, k;
-    begin
-      s1 = v[0] ^ v[1] ^ v[2];
-      c1 = (v[0] & v[1]) | (v[0] & v[2]) | (v[1] & v[2]);
-      s2 = v[3] ^ v[4] ^ v[5];
-      c2 = (v[3] & v[4]) | (v[3] & v[5]) | (v[4] & v[5]);
-      k  = s1 & s2;
-      count6 = {(c1 & c2) | (c1 & k) | (c2 & k), c1 ^ c2 ^ k, s1 ^ s2};
-    end
-  endfunction
-
-  // ---- leaves: registered 2-bit counts of three XOR'ed pairs ----------------------
-  // Padding bits are equal in a and b, so they XOR to 0.
-  wire [NP-1:0] x = {{(NP - N) {1'b0}}, a ^ b};
-  reg  [NG-1:0] leaf0_q;  // weight 1 of every group
-  reg  [NG-1:0] leaf1_q;  // weight 2
-  integer q;
-  always @(posedge clk) begin
-    if (ce) begin
-      for (q = 0; q < NG; q = q + 1) begin
-        leaf0_q[q] <= x[3*q] ^ x[3*q+1] ^ x[3*q+2];
-        leaf1_q[q] <= (x[3*q] & x[3*q+1]) | (x[3*q] & x[3*q+2]) | (x[3*q+1] & x[3*q+2]);
-      end
-    end
-  end
+  // ---- leaves: 2-bit counts of three XOR'ed pairs ----------------------------------
+  // Group q takes input bits q, q + NG and q + 2*NG. Padding bits are equal in a and b,
+  // so they XOR to 0. The leaves are not registered: at 6-input LUTs, leaves and
+  // compression stages are 1 + NS levels (5 for N = 225), and the two rows left after
+  // them are 2*OW bits a lane against 2*NG leaf bits (the paper configuration's 128
+  // lanes: 2,048 flip-flops instead of 19,200).
+  wire [NP*L-1:0] x  = {{((NP - N) * L) {1'b0}}, a ^ b};
+  wire [NG*L-1:0] x0 = x[0 +: NG*L];
+  wire [NG*L-1:0] x1 = x[NG*L +: NG*L];
+  wire [NG*L-1:0] x2 = x[2*NG*L +: NG*L];
+  wire [NG*L-1:0] leaf0 = x0 ^ x1 ^ x2;  // weight 1 of every group
+  wire [NG*L-1:0] leaf1 = (x0 & x1) | (x0 & x2) | (x1 & x2);  // weight 2
 
   // ---- compression stages ---------------------------------------------------------
+  // A 6:3 counter is plain logic (an arithmetic "+" would become carry chains):
+  //   s1, c1 = sum and carry of inputs 0..2; s2, c2 = of inputs 3..5; k = s1 & s2;
+  //   weight 1 = s1 ^ s2, weight 2 = c1 ^ c2 ^ k, weight 4 = majority(c1, c2, k).
   genvar s, c, t;
   generate
     for (s = 0; s <= NS; s = s + 1) begin : g_st
       localparam TOT = OFFS[(s*NCP + NC)*HB +: HB];
-      wire [TOT-1:0] v;  // the heap after s stages, column by column
+      wire [TOT*L-1:0] v;  // the heap after s stages, column by column, bit-plane order
       if (s == 0) begin : g_leaf
         if (NC > 1) begin : g_two
-          assign v = {leaf1_q, leaf0_q};
+          assign v = {leaf1, leaf0};
         end else begin : g_one
-          assign v = leaf0_q;  // N = 1: bit 1 is always 0
-          wire unused_leaf1 = |leaf1_q;
+          assign v = leaf0;  // N = 1: bit 1 is always 0
+          wire unused_leaf1 = |leaf1;
         end
       end else begin : g_cmp
         for (c = 0; c < NC; c = c + 1) begin : g_col
@@ -157,7 +158,6 @@ module sm_popcount #(
           localparam H2 = SHAPE[(P*NCP + c + 2)*HB +: HB];
           localparam G  = HC / 6;
           localparam RM = HC % 6;
-          localparam NCH  = G + ((RM >= 3) ? 1 : 0);
           localparam NCH1 = H1 / 6 + ((H1 % 6 >= 3) ? 1 : 0);
           localparam NCH2 = H2 / 6 + ((H2 % 6 >= 3) ? 1 : 0);
           localparam PS0  = (HC % 6 <= 2) ? HC % 6 : 0;  // bits passed through
@@ -172,28 +172,62 @@ module sm_popcount #(
           localparam O2 = OFFS[(s*NCP + c + 2)*HB +: HB] + PS2 + NCH2 + NCH1;
           if (RM <= 2) begin : g_pass
             for (t = 0; t < RM; t = t + 1) begin : g_p
-              assign v[Z0 + t] = g_st[s-1].v[IN0 + 6 * G + t];
+              assign v[(Z0 + t)*L +: L] = g_st[s-1].v[(IN0 + 6 * G + t)*L +: L];
             end
           end
-          for (t = 0; t < NCH; t = t + 1) begin : g_grp
-            localparam K = (t < G) ? 6 : RM;  // inputs of this group
-            wire [5:0] in6;
-            if (K == 6) begin : g_full
-              assign in6 = g_st[s-1].v[IN0 + 6 * t +: 6];
-            end else begin : g_part
-              assign in6 = {{(6 - K) {1'b0}}, g_st[s-1].v[IN0 + 6 * t +: K]};
-            end
-            wire [2:0] cnt3 = count6(in6);
-            assign v[O0 + t] = cnt3[0];
+          // The G full groups: input j of group t is bit IN0 + j*G + t; the outputs of
+          // group t go to bits O0 + t, O1 + t, O2 + t.
+          if (G > 0) begin : g_full
+            localparam GL = G * L;
+            wire [GL-1:0] i0 = g_st[s-1].v[(IN0        )*L +: GL];
+            wire [GL-1:0] i1 = g_st[s-1].v[(IN0 +     G)*L +: GL];
+            wire [GL-1:0] i2 = g_st[s-1].v[(IN0 + 2 * G)*L +: GL];
+            wire [GL-1:0] i3 = g_st[s-1].v[(IN0 + 3 * G)*L +: GL];
+            wire [GL-1:0] i4 = g_st[s-1].v[(IN0 + 4 * G)*L +: GL];
+            wire [GL-1:0] i5 = g_st[s-1].v[(IN0 + 5 * G)*L +: GL];
+            wire [GL-1:0] s1 = i0 ^ i1 ^ i2;
+            wire [GL-1:0] c1 = (i0 & i1) | (i0 & i2) | (i1 & i2);
+            wire [GL-1:0] s2 = i3 ^ i4 ^ i5;
+            wire [GL-1:0] c2 = (i3 & i4) | (i3 & i5) | (i4 & i5);
+            wire [GL-1:0] k  = s1 & s2;
+            assign v[O0*L +: GL] = s1 ^ s2;
             if (c + 1 < NC) begin : g_w2
-              assign v[O1 + t] = cnt3[1];
+              assign v[O1*L +: GL] = c1 ^ c2 ^ k;
             end else begin : g_no_w2
-              wire unused_w2 = cnt3[1];  // weight 2^NC: always 0
+              wire unused_w2 = |(c1 ^ c2 ^ k);  // weight 2^NC: always 0
             end
-            if (K >= 4 && c + 2 < NC) begin : g_w4
-              assign v[O2 + t] = cnt3[2];
+            if (c + 2 < NC) begin : g_w4
+              assign v[O2*L +: GL] = (c1 & c2) | (c1 & k) | (c2 & k);
             end else begin : g_no_w4
-              wire unused_w4 = cnt3[2];  // 3 inputs never reach 4, or weight >= 2^NC
+              wire unused_w4 = |((c1 & c2) | (c1 & k) | (c2 & k));  // weight >= 2^NC
+            end
+          end
+          // The partial group of RM = 3..5 bits, if any (bits IN0 + 6*G onwards; the
+          // missing inputs are 0); its outputs go to bits O0 + G, O1 + G, O2 + G.
+          if (RM >= 3) begin : g_part
+            wire [6*L-1:0] in6 = {{((6 - RM) * L) {1'b0}}, g_st[s-1].v[(IN0 + 6 * G)*L +: RM*L]};
+            wire [L-1:0] i0 = in6[0 +: L];
+            wire [L-1:0] i1 = in6[L +: L];
+            wire [L-1:0] i2 = in6[2*L +: L];
+            wire [L-1:0] i3 = in6[3*L +: L];
+            wire [L-1:0] i4 = in6[4*L +: L];
+            wire [L-1:0] i5 = in6[5*L +: L];
+            wire [L-1:0] s1 = i0 ^ i1 ^ i2;
+            wire [L-1:0] c1 = (i0 & i1) | (i0 & i2) | (i1 & i2);
+            wire [L-1:0] s2 = i3 ^ i4 ^ i5;
+            wire [L-1:0] c2 = (i3 & i4) | (i3 & i5) | (i4 & i5);
+            wire [L-1:0] k  = s1 & s2;
+            assign v[(O0 + G)*L +: L] = s1 ^ s2;
+            if (c + 1 < NC) begin : g_w2
+              assign v[(O1 + G)*L +: L] = c1 ^ c2 ^ k;
+            end else begin : g_no_w2
+              wire unused_w2 = |(c1 ^ c2 ^ k);  // weight 2^NC: always 0
+            end
+            if (RM >= 4 && c + 2 < NC) begin : g_w4
+              assign v[(O2 + G)*L +: L] = (c1 & c2) | (c1 & k) | (c2 & k);
+            end else begin : g_no_w4
+              // 3 inputs never reach 4, or weight >= 2^NC
+              wire unused_w4 = |((c1 & c2) | (c1 & k) | (c2 & k));
             end
           end
         end
@@ -201,28 +235,46 @@ module sm_popcount #(
     end
   endgenerate
 
-  // ---- final two-row adder ----------------------------------------------------------
-  wire [NC-1:0] row_a, row_b;
-  genvar f;
+  // ---- final two-row adder, one per lane --------------------------------------------
+  wire [NC*L-1:0] row_a, row_b;  // bit-plane order
+  genvar f, l;
   generate
     for (f = 0; f < NC; f = f + 1) begin : g_fin
       localparam HF = SHAPE[(NS*NCP + f)*HB +: HB];
       localparam OF = OFFS[(NS*NCP + f)*HB +: HB];
       if (HF >= 1) begin : g_a
-        assign row_a[f] = g_st[NS].v[OF];
+        assign row_a[f*L +: L] = g_st[NS].v[OF*L +: L];
       end else begin : g_a0
-        assign row_a[f] = 1'b0;
+        assign row_a[f*L +: L] = {L{1'b0}};
       end
       if (HF >= 2) begin : g_b
-        assign row_b[f] = g_st[NS].v[OF + 1];
+        assign row_b[f*L +: L] = g_st[NS].v[(OF + 1)*L +: L];
       end else begin : g_b0
-        assign row_b[f] = 1'b0;
+        assign row_b[f*L +: L] = {L{1'b0}};
       end
     end
   endgenerate
-  wire [NC-1:0] sum = row_a + row_b;  // modulo 2^OW: the count fits
+  // The pipeline register: two rows of OW bits a lane.
+  reg [NC*L-1:0] row_a_q, row_b_q;
+  always @(posedge clk) begin
+    if (ce) begin
+      row_a_q <= row_a;
+      row_b_q <= row_b;
+    end
+  end
+  wire [L*NC-1:0] sum;  // lane l at [l*NC +: NC]
+  generate
+    for (l = 0; l < L; l = l + 1) begin : g_lane
+      wire [NC-1:0] ra, rb;
+      for (f = 0; f < NC; f = f + 1) begin : g_bit
+        assign ra[f] = row_a_q[f*L + l];
+        assign rb[f] = row_b_q[f*L + l];
+      end
+      assign sum[l*NC +: NC] = ra + rb;  // modulo 2^OW: the count fits
+    end
+  endgenerate
 
-  reg [OW-1:0] cnt_q;
+  reg [L*OW-1:0] cnt_q;
   always @(posedge clk) begin
     if (ce) cnt_q <= sum;
   end

@@ -77,46 +77,96 @@ module sm_post_median #(
   assign col_in[16*(NR-1) +: 16] = live_q;
 
   reg [4:0]    side_q, side_q2;
-  reg [NR-1:0] row_ok_q, row_ok_q2;
-  reg [NC-1:0] col_ok_q, col_ok_q2;
+  reg [NR-1:0] row_ok_q;
+  reg [NC-1:0] col_ok_q;
 
   // ---- stage 2: the window, win[r*NC + j] = row (centre + r - RY), column (centre + j - RX)
   reg [15:0] win [0:N-1];
 
-  // ---- stage 3: rank every element, pick the middle one ------------------------------
+  // Sort keys: {valid, valid ? d : 0} orders like the specification's key (valid ? d + 1
+  // : 0) and maps one to one onto it, so ranks and the median are the same, and the
+  // output needs no decrement: the median is invalid when its top bit is clear, its
+  // disparity is the low bits. The border-masked keys of the window of the next ce and
+  // every pairwise comparison of them are registered with the window, so the rank stage
+  // starts from comparison bits.
   function [KW-1:0] key_of(input [DW:0] vd);  // {valid, d}
-    key_of = vd[DW] ? {1'b0, vd[DW-1:0]} + 1'b1 : {KW{1'b0}};
+    key_of = {vd[DW], vd[DW] ? vd[DW-1:0] : {DW{1'b0}}};
   endfunction
-  wire [15:0]   ctr = win[RY*NC + RX];
-  wire [KW-1:0] ctr_key = key_of({ctr[15], ctr[DW-1:0]});
-  wire [KW-1:0] key [0:N-1];
-  wire [N-1:0]  is_mid;
+  wire [15:0]   nwin [0:N-1];  // the window after this ce's shift
+  wire [KW-1:0] nkey [0:N-1];  // its keys, border rule applied with the masks it will have
   genvar r, j, i;
   generate
-    for (r = 0; r < NR; r = r + 1) begin : g_kr
-      for (j = 0; j < NC; j = j + 1) begin : g_kc
-        assign key[r*NC + j] = (row_ok_q2[r] & col_ok_q2[j]) ? key_of({win[r*NC + j][15], win[r*NC + j][DW-1:0]}) : ctr_key;
+    for (r = 0; r < NR; r = r + 1) begin : g_nr
+      for (j = 0; j < NC; j = j + 1) begin : g_nc
+        if (j < NC - 1) begin : g_shift
+          assign nwin[r*NC + j] = win[r*NC + j + 1];
+        end else begin : g_enter
+          assign nwin[r*NC + j] = col_in[16*r +: 16];
+        end
+        assign nkey[r*NC + j] = (row_ok_q[r] & col_ok_q[j])
+                              ? key_of({nwin[r*NC + j][15], nwin[r*NC + j][DW-1:0]})
+                              : key_of({nwin[RY*NC + RX][15], nwin[RY*NC + RX][DW-1:0]});
       end
     end
+  endgenerate
+
+  // le_q[i*(i-1)/2 + j] = key[j] <= key[i] for j < i; the other order is its complement
+  localparam NP = N * (N - 1) / 2;
+  reg [KW-1:0] key_q [0:N-1];
+  reg [NP-1:0] le_q;
+  wire [NP-1:0] le_n;
+  generate
+    for (i = 1; i < N; i = i + 1) begin : g_le
+      for (j = 0; j < i; j = j + 1) begin : g_pair
+        assign le_n[i*(i-1)/2 + j] = nkey[j] <= nkey[i];
+      end
+    end
+  endgenerate
+
+  // ---- stage 3: rank every element, pick the middle one ------------------------------
+  // Bit-level adders (no '+') so the counts map to plain LUTs instead of carry chains.
+  function [RW:0] add_b(input [RW:0] x, input [RW:0] y);
+    integer k;
+    reg c;
+    begin
+      c = 1'b0;
+      for (k = 0; k <= RW; k = k + 1) begin
+        add_b[k] = x[k] ^ y[k] ^ c;
+        c = (x[k] & y[k]) | (x[k] & c) | (y[k] & c);
+      end
+    end
+  endfunction
+  // ones in v, as a balanced tree of those adders
+  localparam CW = RW + 1;
+  function [RW:0] ones(input [N-1:0] v);
+    integer k, h;
+    reg [N*CW-1:0] acc;
+    begin
+      for (k = 0; k < N; k = k + 1) acc[k*CW +: CW] = {{RW{1'b0}}, v[k]};
+      for (h = 1; h < N; h = h * 2)
+        for (k = 0; k + h < N; k = k + 2 * h)
+          acc[k*CW +: CW] = add_b(acc[k*CW +: CW], acc[(k+h)*CW +: CW]);
+      ones = acc[RW:0];
+    end
+  endfunction
+
+  wire [15:0]  ctr = win[RY*NC + RX];
+  wire [N-1:0] is_mid;
+  generate
     for (i = 0; i < N; i = i + 1) begin : g_rank
       // elements lower i in the order (key, index): ties go to the lower index, so
       // every element has a distinct rank and exactly one holds rank MID
       wire [N-1:0] lower;
       for (j = 0; j < N; j = j + 1) begin : g_cmp
         if (j < i) begin : g_lo
-          assign lower[j] = key[j] <= key[i];
+          assign lower[j] = le_q[i*(i-1)/2 + j];
         end else if (j > i) begin : g_hi
-          assign lower[j] = key[j] < key[i];
+          assign lower[j] = ~le_q[j*(j-1)/2 + i];
         end else begin : g_self
           assign lower[j] = 1'b0;
         end
       end
-      reg [RW:0] cnt;
-      integer b;
-      always @* begin
-        cnt = {(RW+1){1'b0}};
-        for (b = 0; b < N; b = b + 1) cnt = cnt + {{RW{1'b0}}, lower[b]};
-      end
+      wire [RW:0] cnt = ones(lower);
       /* verilator lint_off WIDTH */  // MID is a 32-bit localparam below 2^RW
       assign is_mid[i] = (cnt == MID);
       /* verilator lint_on WIDTH */
@@ -127,30 +177,27 @@ module sm_post_median #(
   integer e;
   always @* begin
     med = {KW{1'b0}};
-    for (e = 0; e < N; e = e + 1) med = med | (is_mid[e] ? key[e] : {KW{1'b0}});
+    for (e = 0; e < N; e = e + 1) med = med | (is_mid[e] ? key_q[e] : {KW{1'b0}});
   end
-  // key - 1 modulo 2^DW is d even for key = 2^DW (d = DISP-1 when DISP is a power of 2)
-  wire [DW-1:0] med_d = med[DW-1:0] - 1'b1;
-  wire [15:0]   med_pix = (med == {KW{1'b0}}) ? 16'd0 : {1'b1, {(15-DW){1'b0}}, med_d};
+  wire [15:0] med_pix = med[DW] ? {1'b1, {(15-DW){1'b0}}, med[DW-1:0]} : 16'd0;
 
   // The enable is taken with the frame's first centre at this stage, so every pixel of
   // a frame sees the same setting even when the register changes mid-frame.
   reg  en_q;
   wire en = side_q2[1] ? enable : en_q;
 
-  integer a2, b2;
+  integer a2;
   always @(posedge clk) begin
     if (ce) begin
       live_q    <= s_disp;
       row_ok_q  <= row_ok;
       col_ok_q  <= col_ok;
-      row_ok_q2 <= row_ok_q;
-      col_ok_q2 <= col_ok_q;
       // shift the window one column left; the entering column lands at j = NC-1
-      for (a2 = 0; a2 < NR; a2 = a2 + 1) begin
-        for (b2 = 0; b2 < NC - 1; b2 = b2 + 1) win[a2*NC + b2] <= win[a2*NC + b2 + 1];
-        win[a2*NC + NC - 1] <= col_in[16*a2 +: 16];
+      for (a2 = 0; a2 < N; a2 = a2 + 1) begin
+        win[a2]   <= nwin[a2];
+        key_q[a2] <= nkey[a2];
       end
+      le_q <= le_n;
       m_disp <= en ? med_pix : ctr;
     end
   end

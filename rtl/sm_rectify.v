@@ -10,10 +10,11 @@
 //
 // Pipeline (ce's after the entering beat): 0 grid read, 1 V0/V1 (only the first pixel
 // of a 16-pixel segment loads them), 2 S accumulated across the segment, 3 source
-// position, tap validity and buffer addresses, 4 buffer read, 5 bilinear blend into
-// m_pix. The buffer write of an entering pixel is delayed to ce 4 as well, so the read
-// of a beat sees every earlier row and none of the rows entering after it: the slot of
-// row y-R is only overwritten by the row after the live one.
+// position, tap validity and buffer rows/columns, 4 buffer addresses (from registers,
+// straight into the read port) and read, 5 bilinear blend into m_pix. The buffer write
+// of an entering pixel is delayed to ce 4 as well, so the read of a beat sees every
+// earlier row and none of the rows entering after it: the slot of row y-R is only
+// overwritten by the row after the live one.
 //
 // Grid memory: point (gx, gy) of bank b is at grid_waddr = {b, gy[GYB-1:0], gx[GXB-1:0]},
 // i.e. point index gy * GWMAX + gx with GWMAX = 2**GXB (docs/algorithm.md, section 2).
@@ -106,7 +107,8 @@ module sm_rectify #(
   localparam [SB-1:0]  LAST_SLOT = NR - 1;
   localparam [SB-1:0]  HALF_NR   = R + 1;
   localparam [DYW-1:0] RD        = R;
-  localparam [DYW-1:0] NRD       = NR;
+  localparam [SB+1:0]  NRS       = NR;
+  localparam [SB-2:0]  LAST_HS   = R;   // last slot pair
   localparam [BAW-1:0] HALFW_B   = HALFW;
   /* verilator lint_on WIDTH */
 
@@ -194,37 +196,43 @@ module sm_rectify #(
   reg [3:0]    fx_q2;
   reg          en_q2;
   reg [XW-1:0] cx_q2;
-  reg [YW-1:0] cy_q2;
+  reg [IW-1:0] ncy_q2;  // -cy
   reg [SB-1:0] cs_q2;
   reg [RW-1:0] rok_q2;
   reg [VW-1:0] v0x_q, v1x_q, v0y_q, v1y_q;  // of the current 16-pixel segment
-  reg [SW-1:0] sx_acc_q, sy_acc_q;           // S of the previous pixel
+  reg [SW-1:0] sx_acc_q, sy_acc_q;           // of the previous pixel, see below
 
   function [SW-1:0] sextv(input [VW-1:0] v);
     sextv = {{(SW - VW){v[VW-1]}}, v};
   endfunction
-  // S(fx) = V0*(16-fx) + V1*fx = S(fx-1) + (V1 - V0), S(0) = 16*V0
-  wire [SW-1:0] sx_s = (fx_q2 == 4'd0) ? sextv(v0x_q) << 4 : sx_acc_q + sextv(v1x_q) - sextv(v0x_q);
-  wire [SW-1:0] sy_s = (fx_q2 == 4'd0) ? sextv(v0y_q) << 4 : sy_acc_q + sextv(v1y_q) - sextv(v0y_q);
+  // S(fx) = V0*(16-fx) + V1*fx = S(fx-1) + (V1 - V0), S(0) = 16*V0. The accumulators
+  // carry the offsets stage 3 would otherwise add: the rounding (+256) and, for Y, the
+  // centre row (-cy * 2^13, constant along a segment), so bits [26:13] are ix and iy - cy
+  // (floor commutes with a multiple of 2^13); |S| <= 2^23 and cy < 2^12 keep them in
+  // range. A disabled stage loads the pass-through position instead (ix = cx, iy = cy,
+  // no fraction); en only changes at a frame's first pixel, where fx = 0 reloads.
+  localparam [SW-1:0] RND = 27'd256;
+  wire [SW-1:0] sx_n = (fx_q2 == 4'd0) ? (sextv(v0x_q) << 4) + RND
+                                       : sx_acc_q + sextv(v1x_q) - sextv(v0x_q);
+  wire [SW-1:0] sy_n = (fx_q2 == 4'd0) ? (sextv(v0y_q) << 4) + {ncy_q2, 13'd256}
+                                       : sy_acc_q + sextv(v1y_q) - sextv(v0y_q);
+  wire [SW-1:0] sx_s = en_q2 ? sx_n : {{(SW - 13 - XW){1'b0}}, cx_q2, 13'd0};
+  wire [SW-1:0] sy_s = en_q2 ? sy_n : {SW{1'b0}};
 
   // ---------------------------------------------------------------- stage 3: taps
   reg [4:0]    side_q3;
-  reg          en_q3;
-  reg [XW-1:0] cx_q3;
-  reg [YW-1:0] cy_q3;
   reg [SB-1:0] cs_q3;
+  reg [SB+1:0] csm_q3, csp_q3;  // cs - NR, cs + NR (signed)
   reg [RW-1:0] rok_q3;
 
-  // Q.4 = (S + 256) >> 9, arithmetic
+  // Q.4 source position: ix, ax; row offset iy - cy and ay (accumulators above).
+  wire [IW-1:0]  ix  = sx_acc_q[IW+12:13];
+  wire [3:0]     ax  = sx_acc_q[12:9];
+  wire [DYW-1:0] dy0 = {{(DYW - IW){sy_acc_q[IW+12]}}, sy_acc_q[IW+12:13]};
+  wire [3:0]     ay  = sy_acc_q[12:9];
   /* verilator lint_off UNUSEDSIGNAL */  // the low bits are below the Q.4 step
-  wire [SW-1:0] sx_r = sx_acc_q + 27'd256;
-  wire [SW-1:0] sy_r = sy_acc_q + 27'd256;
+  wire [8:0]     unused_acc = {sx_acc_q[8:0] ^ sy_acc_q[8:0]};
   /* verilator lint_on UNUSEDSIGNAL */
-  // |S| <= 2^23 so bits SW-1..IW+13 are copies of the sign; ix/iy keep IW bits.
-  wire [IW-1:0] ix = en_q3 ? sx_r[IW+12:13] : {{(IW - XW){1'b0}}, cx_q3};
-  wire [IW-1:0] iy = en_q3 ? sy_r[IW+12:13] : {{(IW - YW){1'b0}}, cy_q3};
-  wire [3:0]    ax = en_q3 ? sx_r[12:9] : 4'd0;
-  wire [3:0]    ay = en_q3 ? sy_r[12:9] : 4'd0;
 
   // Columns: ix and ix+1 inside 0..width-1.
   wire [IW-1:0] ix1  = ix + 1'b1;
@@ -232,37 +240,56 @@ module sm_rectify #(
   wire          c0ok = !ix[IW-1] && (ix < wide_w);
   wire          c1ok = !ix1[IW-1] && (ix1 < wide_w);
 
-  // Rows: iy and iy+1 within R of the centre row and inside the frame (row_ok).
-  wire [DYW-1:0] dy0 = {{(DYW - IW){iy[IW-1]}}, iy} - {{(DYW - YW){1'b0}}, cy_q3};
-  wire [DYW-1:0] dy1 = dy0 + 1'b1;
+  // Rows: iy and iy+1 within R of the centre row and inside the frame (row_ok). Both
+  // look rok up by dy0 itself (a DB-bit two's complement index; no add of R first).
+  localparam DB = $clog2(R + 1) + 1;
+  localparam integer RI = R;  // signed, whatever type an override gave R
   wire           in0 = ($signed(dy0) >= -$signed(RD)) && ($signed(dy0) <= $signed(RD));
-  wire           in1 = ($signed(dy1) >= -$signed(RD)) && ($signed(dy1) <= $signed(RD));
-  /* verilator lint_off WIDTH */  // indices are in 0..2R when in0/in1 hold
-  /* verilator lint_off UNUSEDSIGNAL */
-  wire [DYW-1:0] idx0 = dy0 + RD;
-  wire [DYW-1:0] idx1 = dy1 + RD;
-  wire           r0ok = in0 && rok_q3[idx0];
-  wire           r1ok = in1 && rok_q3[idx1];
-  /* verilator lint_on UNUSEDSIGNAL */
-  /* verilator lint_on WIDTH */
+  wire           in1 = ($signed(dy0) >= -$signed(RD) - 1) && ($signed(dy0) < $signed(RD));
+  wire [(1 << DB) - 1:0] rok0, rok1;  // [k]: rows dy0 = k and dy0 + 1 = k + 1 (k signed)
+  genvar k;
+  generate
+    for (k = 0; k < (1 << DB); k = k + 1) begin : g_rok
+      localparam integer SK = (k < (1 << (DB - 1))) ? k : k - (1 << DB);
+      if (SK >= -RI && SK <= RI) begin : g_in0
+        assign rok0[k] = rok_q3[SK + RI];
+      end else begin : g_out0
+        assign rok0[k] = 1'b0;
+      end
+      if (SK + 1 >= -RI && SK + 1 <= RI) begin : g_in1
+        assign rok1[k] = rok_q3[SK + 1 + RI];
+      end else begin : g_out1
+        assign rok1[k] = 1'b0;
+      end
+    end
+  endgenerate
+  wire           r0ok = in0 && rok0[dy0[DB-1:0]];
+  wire           r1ok = in1 && rok1[dy0[DB-1:0]];
 
-  // Slots of rows iy and iy+1 (meaningful when r0ok / r1ok).
-  wire [DYW-1:0] t0 = {{(DYW - SB){1'b0}}, cs_q3} + dy0;
+  // Slot of row iy (meaningful when r0ok or r1ok): cs + dy0 modulo NR, the three
+  // candidates in parallel.
+  wire [DYW-1:0] t0  = {{(DYW - SB){1'b0}}, cs_q3} + dy0;
+  wire [DYW-1:0] t0m = {{(DYW - SB - 2){csm_q3[SB+1]}}, csm_q3} + dy0;
+  wire [DYW-1:0] t0p = {{(DYW - SB - 2){csp_q3[SB+1]}}, csp_q3} + dy0;
   /* verilator lint_off UNUSEDSIGNAL */  // a wrapped slot fits SB bits
-  wire [DYW-1:0] t0w = t0[DYW-1] ? t0 + NRD : ($signed(t0) >= $signed(NRD)) ? t0 - NRD : t0;
+  wire [DYW-1:0] t0w = t0[DYW-1] ? t0p : !t0m[DYW-1] ? t0m : t0;
   /* verilator lint_on UNUSEDSIGNAL */
   wire [SB-1:0]  slot0 = t0w[SB-1:0];
-  wire [SB-1:0]  slot1 = (slot0 == LAST_SLOT) ? {SB{1'b0}} : slot0 + 1'b1;
 
-  // Bank {row parity, column parity}: which tap it serves and where that tap is.
+  // Bank {row parity, column parity}: which tap it serves and where that tap is. Rows
+  // iy, iy+1 (slots slot0, slot0+1 mod NR, NR even) and columns ix, ix+1 have opposite
+  // parities; a bank word holds a slot pair (slot >> 1) and a column pair (col >> 1):
+  // the odd one of each is slot0 >> 1 and ix >> 1, the even one (slot0 + 1) >> 1 (mod
+  // R+1) and (ix + 1) >> 1.
   wire          rp = slot0[0];  // row parity of tap row iy
   wire          cp = ix[0];     // column parity of tap column ix
-  wire [SB-1:0] slot_e = rp ? slot1 : slot0;
-  wire [SB-1:0] slot_o = rp ? slot0 : slot1;
+  wire [SB-2:0] hs0 = slot0[SB-1:1];
+  wire [SB-2:0] hs_e = !rp ? hs0 : (hs0 == LAST_HS) ? {(SB-1){1'b0}} : hs0 + 1'b1;
+  wire [SB-2:0] hs_o = hs0;
+  wire [CHW-1:0] hc_e = ix1[CHW:1];
+  wire [CHW-1:0] hc_o = ix[CHW:1];
   wire          rv_e = rp ? r1ok : r0ok;
   wire          rv_o = rp ? r0ok : r1ok;
-  wire [IW-1:0] col_e = cp ? ix1 : ix;
-  wire [IW-1:0] col_o = cp ? ix : ix1;
   wire          cv_e = cp ? c1ok : c0ok;
   wire          cv_o = cp ? c0ok : c1ok;
 
@@ -274,18 +301,25 @@ module sm_rectify #(
     /* verilator lint_on WIDTH */
   endfunction
   /* verilator lint_on UNUSEDSIGNAL */
-
-  wire [BAW-1:0] ra0 = baddr(slot_e, col_e, rv_e && cv_e);  // bank {0,0}
-  wire [BAW-1:0] ra1 = baddr(slot_e, col_o, rv_e && cv_o);  // bank {0,1}
-  wire [BAW-1:0] ra2 = baddr(slot_o, col_e, rv_o && cv_e);  // bank {1,0}
-  wire [BAW-1:0] ra3 = baddr(slot_o, col_o, rv_o && cv_o);  // bank {1,1}
+  function [BAW-1:0] haddr(input [SB-2:0] hslot, input [CHW-1:0] hcol, input ok);
+    /* verilator lint_off WIDTH */
+    haddr = ok ? hslot * HALFW_B + hcol : {BAW{1'b0}};
+    /* verilator lint_on WIDTH */
+  endfunction
 
   wire [4:0] ax1 = 5'd16 - {1'b0, ax};
   wire [4:0] ay1 = 5'd16 - {1'b0, ay};
 
   // ---------------------------------------------------------------- stage 4: read
   reg [4:0]     side_q4;
-  reg [BAW-1:0] ra_q[0:3];
+  reg [SB-2:0]  hs_e_q, hs_o_q;  // slot pairs of the even / odd tap row
+  reg [CHW-1:0] hc_e_q, hc_o_q;  // column pairs of the even / odd tap column
+  reg [3:0]     ok_q;            // bank reads that hit a valid tap
+  wire [BAW-1:0] ra[0:3];
+  assign ra[0] = haddr(hs_e_q, hc_e_q, ok_q[0]);  // bank {0,0}
+  assign ra[1] = haddr(hs_e_q, hc_o_q, ok_q[1]);  // bank {0,1}
+  assign ra[2] = haddr(hs_o_q, hc_e_q, ok_q[2]);  // bank {1,0}
+  assign ra[3] = haddr(hs_o_q, hc_o_q, ok_q[3]);  // bank {1,1}
   reg [8:0]     w00_q, w10_q, w01_q, w11_q;
   reg [3:0]     tv_q;  // tap valid: {11, 01, 10, 00}
   reg           rp_q, cp_q;
@@ -311,7 +345,7 @@ module sm_rectify #(
           .waddr(wa_q4),
           .wdata(wp_q4),
           .re   (ce),
-          .raddr(ra_q[b]),
+          .raddr(ra[b]),
           .rdata(lb_rd[b])
       );
     end
@@ -385,7 +419,7 @@ module sm_rectify #(
       fx_q2  <= fx_q;
       en_q2  <= en_q1;
       cx_q2  <= cx_q;
-      cy_q2  <= cy_q1;
+      ncy_q2 <= -{{(IW - YW){1'b0}}, cy_q1};
       cs_q2  <= cs_q;
       rok_q2 <= rok_q;
       wp_q2  <= wp_q;
@@ -394,19 +428,19 @@ module sm_rectify #(
       // stage 2 -> 3
       sx_acc_q <= sx_s;
       sy_acc_q <= sy_s;
-      en_q3    <= en_q2;
-      cx_q3    <= cx_q2;
-      cy_q3    <= cy_q2;
       cs_q3    <= cs_q2;
+      csm_q3   <= {2'b00, cs_q2} - NRS;
+      csp_q3   <= {2'b00, cs_q2} + NRS;
       rok_q3   <= rok_q2;
       wp_q3    <= wp_q2;
       wa_q3    <= wa_q2;
       wb_q3    <= wb_q2;
       // stage 3 -> 4
-      ra_q[0] <= ra0;
-      ra_q[1] <= ra1;
-      ra_q[2] <= ra2;
-      ra_q[3] <= ra3;
+      hs_e_q  <= hs_e;
+      hs_o_q  <= hs_o;
+      hc_e_q  <= hc_e;
+      hc_o_q  <= hc_o;
+      ok_q    <= {rv_o && cv_o, rv_o && cv_e, rv_e && cv_o, rv_e && cv_e};
       w00_q   <= {4'd0, ax1} * {4'd0, ay1};
       w10_q   <= {5'd0, ax} * {4'd0, ay1};
       w01_q   <= {4'd0, ax1} * {5'd0, ay};

@@ -13,12 +13,20 @@
 // window delay of R rows and R columns):
 //   ce 0  line-buffer read of the entering column; window-controller masks registered;
 //         sw_table latched when the centre is sof
-//   ce 1  column shifted into the window registers; weight codes of the window that is
-//         being formed (the one of the centre of ce 0) registered
-//   ce 2  per window row and level: sum of the SW weighted costs; weight sum
-//   ce 3  per level: sum of the SW row sums; RECIP(weight sum) from the ROM
-//   ce 4  per level: A_raw * RECIP
-//   ce 5  round, shift by 12, saturate to CW bits
+//   ce 1  column into the window (newest column in registers, the SW-1 older ones in a
+//         small circular buffer); weight codes of the window being formed registered
+//   ce 2  per level (sm_sw_level): A_raw = sum of the SW*SW weighted costs;
+//         weight sum and RECIP(weight sum) from the ROM, once per pixel
+//   ce 3  per level: A_raw * RECIP
+//   ce 4  per level: round, shift by 12, saturate to CW bits
+//   ce 5  per level: output register
+//
+// Resources: the window of SW x SW x DISP costs is the block's largest state. Only its
+// newest column is flip-flops; the SW-1 older columns live in a circular buffer that
+// every beat writes once and reads at SW-1 addresses -- a quad-port LUT-RAM (RAM32M)
+// holds two bits of four columns in four LUTs where flip-flops would need eight. The
+// per-level sums are one adder tree each (no row-sum registers): the narrow A_raw is
+// the only per-level register before the multiplier.
 module sm_sw_aggregate #(
     parameter MAX_WIDTH  = 320,  // widest active line
     parameter DISP       = 128,  // disparity levels
@@ -35,7 +43,7 @@ module sm_sw_aggregate #(
     input  wire [DISP*HW-1:0]   s_cost,    // raw Hamming cost of level d at [d*HW +: HW]
     input  wire [7:0]           s_left,    // left rectified pixel of the same beat
     output reg  [4:0]           m_side,
-    output reg  [DISP*CW-1:0]   m_agg      // aggregated cost of level d at [d*CW +: CW]
+    output wire [DISP*CW-1:0]   m_agg      // aggregated cost of level d at [d*CW +: CW]
 );
   localparam XW    = $clog2(MAX_WIDTH + 1);
   localparam CB    = CENSUS * CENSUS - 1;           // census bits = largest raw cost
@@ -47,15 +55,9 @@ module sm_sw_aggregate #(
   localparam WMAX  = 4 * NQ;                        // largest weight sum
   localparam SUMW  = $clog2(WMAX + 1);              // weight sum width
   localparam RW    = 13;                            // RECIP width: RECIP(1) = 4096
-  localparam PW    = CW + 2;                        // one weighted cost: C << 2 at most
-  localparam RSW   = $clog2(4 * SW * CMAX + 1);     // sum of one window row
-  localparam AW    = $clog2(4 * NQ * CMAX + 1);     // A_raw
-  localparam MW    = AW + RW;                       // A_raw * RECIP
-  localparam QW    = MW - 12 + 1;                   // (A_raw * RECIP + 2048) >> 12
   localparam LVW   = DISP * CW;                     // shifted costs of one pixel
   localparam LBW   = LVW + 8;                       // line-buffer word per row: costs, pixel
   localparam COLW  = SW * LVW;                      // costs of one window column
-  localparam [QW-1:0] OMAX = {{(QW - CW) {1'b0}}, {CW{1'b1}}};  // saturation: 2^CW - 1
 
   generate
     if (SW < 3 || SW > 7 || (SW % 2) == 0) begin : g_bad_sw
@@ -134,7 +136,6 @@ module sm_sw_aggregate #(
     end
   endgenerate
 
-  reg [SW*COLW-1:0] cwin_q;  // costs of the window, column c at [c*COLW +: COLW]
   // Left pixels of columns 0..SW-2 only: the oldest column is needed just once, for the
   // weights computed while the window forms.
   reg [(SW-1)*SW*8-1:0] pwin_q;  // column c at [c*SW*8 +: SW*8]
@@ -162,43 +163,20 @@ module sm_sw_aggregate #(
   reg [4:0]      side2_q;
   always @(posedge clk) begin
     if (ce) begin
-      cwin_q <= {cwin_q[(SW-1)*COLW-1:0], col_cost};
       pwin_q <= pform[(SW-1)*SW*8-1:0];
       code_q <= code;
     end
   end
 
-  // ---------------------------------------------------------------- ce 2: row sums
-  // A weight 1 << (code-1) times a cost is a multiplexer of shifted copies.
-  function [PW-1:0] wmul;
-    input [1:0]    cd;
-    input [CW-1:0] cost;
-    begin
-      case (cd)
-        2'd0:    wmul = {PW{1'b0}};
-        2'd1:    wmul = {2'b00, cost};
-        2'd2:    wmul = {1'b0, cost, 1'b0};
-        default: wmul = {cost, 2'b00};
-      endcase
-    end
-  endfunction
+  // Cost window: column c entered c + 1 ce ago (0 = the newest, in a register; the
+  // older ones in LUT-RAM, sm_colwin).
+  wire [SW*COLW-1:0] cwin;  // column c at [c*COLW +: COLW]
+  sm_colwin #(.W(COLW), .N(SW)) u_cwin (
+      .clk(clk), .rst_n(rst_n), .ce(ce), .col(col_cost), .win(cwin)
+  );
 
-  wire [SW*DISP*RSW-1:0] rsum;  // row k, level d at [(k*DISP + d)*RSW +: RSW]
-  generate
-    for (k = 0; k < SW; k = k + 1) begin : g_rs_row
-      for (d = 0; d < DISP; d = d + 1) begin : g_rs_lvl
-        wire [SW*PW-1:0] terms;
-        for (c = 0; c < SW; c = c + 1) begin : g_term
-          assign terms[c*PW +: PW] = wmul(code_q[(k*SW + c)*2 +: 2],
-                                          cwin_q[c*COLW + k*LVW + d*CW +: CW]);
-        end
-        sm_sw_addtree #(.N(SW), .IW(PW), .OW(RSW)) u_sum (
-            .terms(terms), .sum(rsum[(k*DISP + d)*RSW +: RSW]));
-      end
-    end
-  endgenerate
-
-  // Weight sum of the window, once per pixel.
+  // ---------------------------------------------------------------- ce 2..5: levels
+  // Weight sum and its reciprocal, once per pixel (ce 2).
   wire [NQ*3-1:0] wts;
   generate
     for (k = 0; k < NQ; k = k + 1) begin : g_wt
@@ -209,30 +187,11 @@ module sm_sw_aggregate #(
   wire [SUMW-1:0] wsum;
   sm_sw_addtree #(.N(NQ), .IW(3), .OW(SUMW)) u_wsum (.terms(wts), .sum(wsum));
 
-  reg [SW*DISP*RSW-1:0] rsum_q;
-  reg [SUMW-1:0]        wsum_q;
-  reg [4:0]             side3_q;
-  always @(posedge clk) begin
-    if (ce) begin
-      rsum_q <= rsum;
-      wsum_q <= wsum;
-    end
-  end
-
-  // ---------------------------------------------------------------- ce 3: A_raw, RECIP
-  wire [DISP*AW-1:0] araw;
-  generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_col_sum
-      wire [SW*RSW-1:0] rows;
-      for (k = 0; k < SW; k = k + 1) begin : g_row
-        assign rows[k*RSW +: RSW] = rsum_q[(k*DISP + d)*RSW +: RSW];
-      end
-      sm_sw_addtree #(.N(SW), .IW(RSW), .OW(AW)) u_sum (.terms(rows), .sum(araw[d*AW +: AW]));
-    end
-  endgenerate
-
   // RECIP(s) = floor((4096 + floor(s/2)) / s), RECIP(0) = 0: a ROM filled at
-  // elaboration, read through a register.
+  // elaboration, read through its register. In LUTs the ROM would put four more levels
+  // behind the weight-sum tree; as a block RAM (half a RAMB36) its address is the end
+  // of the path.
+  (* ram_style = "block" *)
   reg [RW-1:0] recip_rom [0:WMAX];
   integer s;
   integer recip_unused_hi;  // RECIP <= 4096: only its low RW bits are stored
@@ -244,41 +203,28 @@ module sm_sw_aggregate #(
     end
   end
 
-  reg [DISP*AW-1:0] araw_q;
-  reg [RW-1:0]      recip_q;
-  reg [4:0]         side4_q;
+  reg [RW-1:0] recip_q;
   always @(posedge clk) begin
-    if (ce) begin
-      araw_q  <= araw;
-      recip_q <= recip_rom[wsum_q];
-    end
+    if (ce) recip_q <= recip_rom[wsum];
   end
 
-  // ---------------------------------------------------------------- ce 4: multiply
-  reg [DISP*MW-1:0] prod_q;
-  reg [4:0]         side5_q;
-  integer n;
-  always @(posedge clk) begin
-    if (ce) begin
-      for (n = 0; n < DISP; n = n + 1)
-        prod_q[n*MW +: MW] <= araw_q[n*AW +: AW] * recip_q;
-    end
-  end
-
-  // ---------------------------------------------------------------- ce 5: round, saturate
-  wire [DISP*CW-1:0] agg;
+  // Per level: the window's costs of level d in window-position order (row k, column c
+  // at position k*SW + c, as the codes).
   generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_norm
-      wire [MW:0]   rnd = {1'b0, prod_q[d*MW +: MW]} + 2048;
-      wire [QW-1:0] q   = rnd[MW:12];
-      wire [11:0]   unused_frac = rnd[11:0];
-      assign agg[d*CW +: CW] = (q > OMAX) ? OMAX[CW-1:0] : q[CW-1:0];
+    for (d = 0; d < DISP; d = d + 1) begin : g_lvl
+      wire [NQ*CW-1:0] wcost;
+      for (k = 0; k < SW; k = k + 1) begin : g_row
+        for (c = 0; c < SW; c = c + 1) begin : g_col
+          assign wcost[(k*SW + c)*CW +: CW] = cwin[c*COLW + k*LVW + d*CW +: CW];
+        end
+      end
+      sm_sw_level #(.CW(CW), .SW(SW), .RW(RW)) u_lvl (
+          .clk(clk), .ce(ce), .code(code_q), .cost(wcost), .recip(recip_q),
+          .agg(m_agg[d*CW +: CW]));
     end
   endgenerate
 
-  always @(posedge clk) begin
-    if (ce) m_agg <= agg;
-  end
+  reg [4:0] side3_q, side4_q, side5_q;
 
   // Sideband: the only control state, reset so no stale real beat leaves after reset.
   always @(posedge clk) begin

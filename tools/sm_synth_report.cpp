@@ -76,9 +76,14 @@ void save(const std::string& path, const json& j) {
   f << j.dump(2) << "\n";
 }
 
-// Yosys names: "\sm_census" (public), "$paramod$<hash>\sm_linebuf" (derived).
+// Yosys names: "\sm_census" (public), "$paramod$<hash>\sm_linebuf" (derived, long
+// parameter lists) and "$paramod\sm_popcount\N=32'..." (derived, short ones).
 std::string norm(const std::string& n) { return !n.empty() && n[0] == '\\' ? n.substr(1) : n; }
 std::string base_name(const std::string& n) {
+  if (n.rfind("$paramod\\", 0) == 0) {
+    const auto e = n.find('\\', 9);
+    return n.substr(9, e == std::string::npos ? std::string::npos : e - 9);
+  }
   auto p = n.rfind('\\');
   return p == std::string::npos ? n : n.substr(p + 1);
 }

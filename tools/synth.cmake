@@ -12,7 +12,7 @@ set(SM_SYNTH_DIR ${CMAKE_BINARY_DIR}/synth)
 # The configurations of sim/sim.cmake (SM_SMALL_PARAMS / SM_PAPER_PARAMS; that file is
 # read after this one, keep the two in step).
 set(SM_SYNTH_SMALL_PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 CENSUS=7 SW=3 RECT_RADIUS=4)
-set(SM_SYNTH_PAPER_PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 CENSUS=15 SW=5 RECT_RADIUS=15)
+set(SM_SYNTH_PAPER_PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 CENSUS=15 SW=5 RECT_RADIUS=18)
 set(SM_SYNTH_TIMEOUT 14400 CACHE STRING "time limit (s) of one Yosys run of the synth targets")
 option(SM_SYNTH_PAPER_BLOCKS
        "synth_paper maps each block of sm_top in its own Yosys run and sums them" ON)
