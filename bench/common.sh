@@ -25,3 +25,12 @@ jget() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))[sys.arg
 machine() {
   echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg)"
 }
+# build_info <build dir>: the settings of a build that change the speed of its stereo_sim
+build_info() {
+  local c=$1/CMakeCache.txt
+  [ -f "$c" ] || { echo "$1: no CMakeCache.txt"; return; }
+  local th fl
+  th=$(sed -n 's/^SM_SIM_THREADS:[A-Z]*=//p' "$c")
+  fl=$(sed -n 's/^SM_SIM_CXXFLAGS:[A-Z]*=//p' "$c")
+  echo "$1: $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$c"), SM_SIM_THREADS=${th:-1}, SM_SIM_CXXFLAGS='${fl}'"
+}

@@ -3,7 +3,9 @@
 # (320x240, 128 levels) with one and, if built, two threads; then Verilator against
 # Icarus Verilog on the same RTL at the small configuration (64x48, 16 levels), in the
 # same run. Medians over RUNS (default 3) runs. Usage: bench/sim_speed.sh [OUT_DIR]
-#   FRAMES=3 frames per Verilator paper run, IV_FRAMES=2 frames per Icarus run.
+#   FRAMES=3 frames per Verilator paper run, IV_FRAMES=2 frames per Icarus run;
+#   LEAD= build of the one-thread stereo_sim (and stereo_sim_small, generated headers),
+#   SIM_MT= two-thread stereo_sim (default build-bench-mt/sim/stereo_sim), see common.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 OUT=${1:-$ROOT/build-bench/sim_speed}
@@ -13,6 +15,8 @@ mkdir -p "$OUT"
 SIM=$LEAD/sim/stereo_sim
 need "$SIM" "cmake --build $LEAD --target stereo_sim"
 machine
+build_info "$LEAD"
+[ -x "$SIM_MT" ] && build_info "$(cd "$(dirname "$SIM_MT")/.." && pwd)"
 
 # vl_runs <sim> <label> <frames> [args...]: prints "label cycles/s frames/s" medians
 vl_runs() {
@@ -33,7 +37,11 @@ echo "## paper configuration 320x240, DISP 128, CENSUS 15, SW 5; $FRAMES frames 
   vl_runs "$SIM" verilator_1thread "$FRAMES"
   if [ -x "$SIM_MT" ]; then vl_runs "$SIM_MT" verilator_2threads "$FRAMES"; fi
 } | tee "$OUT/paper.txt" | awk '{printf "%-20s %12.0f cycles/s %8.3f frames/s\n", $1, $2, $3}'
-[ -x "$SIM_MT" ] || echo "(no two-thread build at $SIM_MT: cmake -S . -B build-bench-mt -DSM_SIM_THREADS=2 && cmake --build build-bench-mt --target stereo_sim)"
+if [ -x "$SIM_MT" ]; then
+  awk 'NR==1{v=$2} NR==2{printf "2 threads / 1 thread (cycles/s): %.2fx\n", $2/v}' "$OUT/paper.txt"
+else
+  echo "(no two-thread build at $SIM_MT: cmake -S . -B build-bench-mt -DSM_SIM_THREADS=2 && cmake --build build-bench-mt --target stereo_sim)"
+fi
 
 # ---- small configuration: Verilator vs Icarus on the same RTL
 SMALL=$(pick "$LEAD/sim/stereo_sim_small" "$ROOT/build-bench-top/sim/stereo_sim_small")
@@ -84,3 +92,4 @@ echo "## small configuration 64x48, DISP 16, CENSUS 7, SW 3 (same RTL, same run)
 } | tee "$OUT/small.txt" | awk '{printf "%-20s %12.0f cycles/s %8.3f frames/s\n", $1, $2, $3}'
 echo "Icarus output identical to the model: yes ($IV_FRAMES frames, every pixel)"
 awk 'NR==1{v=$2} NR==2{printf "Verilator / Icarus (cycles/s): %.0fx\n", v/$2}' "$OUT/small.txt"
+echo "load at the end: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -1,13 +1,17 @@
 # Helpers to verilate RTL blocks for tests and tools.
 #
-# sm_verilated(TARGET <exe> TOP <module> [PARAMS NAME=VALUE ...] [TRACE] [THREADS n])
+# sm_verilated(TARGET <exe> TOP <module> [PARAMS NAME=VALUE ...] [TRACE] [THREADS n]
+#              [OPT_FAST flags...] [OPT_SLOW flags...])
 #   Verilates rtl/<module>.v (submodules are found in rtl/ and the generated folder)
 #   into the executable target. The target gets SM_VTOP / SM_VTOP_H naming the model
-#   class and header, and SM_P_<NAME>=<VALUE> for every parameter.
+#   class and header, and SM_P_<NAME>=<VALUE> for every parameter. OPT_FAST / OPT_SLOW
+#   are extra compiler flags for the generated files Verilator marks as run every
+#   cycle / run once (construction, initial blocks, trace declarations).
 set(SM_VERILATOR_ARGS --x-assign fast --x-initial fast -O3 --assert -Wno-fatal
     -y ${SM_RTL_DIR} -y ${SM_GEN_DIR} -I${SM_GEN_DIR})
 function(sm_verilated)
-  cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS;TRACE_DEPTH" "PARAMS" ${ARGN})
+  cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS;TRACE_DEPTH" "PARAMS;OPT_FAST;OPT_SLOW"
+                        ${ARGN})
   set(args ${SM_VERILATOR_ARGS})
   if(V_TRACE_DEPTH)
     list(APPEND args --trace-depth ${V_TRACE_DEPTH})
@@ -26,6 +30,12 @@ function(sm_verilated)
   endif()
   if(V_THREADS)
     list(APPEND extra THREADS ${V_THREADS})
+  endif()
+  if(V_OPT_FAST)
+    list(APPEND extra OPT_FAST ${V_OPT_FAST})
+  endif()
+  if(V_OPT_SLOW)
+    list(APPEND extra OPT_SLOW ${V_OPT_SLOW})
   endif()
   verilate(${V_TARGET} SOURCES ${SM_RTL_DIR}/${V_TOP}.v TOP_MODULE ${V_TOP}
            PREFIX V${V_TARGET} VERILATOR_ARGS ${args} ${extra})

@@ -4,13 +4,20 @@ endif()
 # The Verilated IP, once per configuration, as a static library that stereo_sim and the
 # system tests share (the paper configuration is ~150 MB of generated C++).
 set(SM_SIM_THREADS 1 CACHE STRING "Verilator threads of the stereo_sim model")
+# Extra compiler flags for the per-cycle code of the Verilated tops (stereo_sim, the
+# system tests), e.g. -march=native for a benchmark build (docs/performance.md).
+set(SM_SIM_CXXFLAGS "" CACHE STRING "Extra compiler flags of the Verilated tops' per-cycle code")
+separate_arguments(_sm_sim_cxxflags UNIX_COMMAND "${SM_SIM_CXXFLAGS}")
 
 # sm_vtop(<library> <params...>): sm_top verilated at a configuration, with tracing of
 # sm_top's ports and inter-stage wires (depth 2: a full-depth trace of the paper
 # configuration is ~0.5 MB per cycle).
 function(sm_vtop lib)
   add_library(${lib} STATIC ${CMAKE_SOURCE_DIR}/sim/sm_vtop_anchor.cpp)
-  sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE TRACE_DEPTH 2 THREADS ${SM_SIM_THREADS})
+  # The run-once code (construction, initial blocks, trace declarations: about half of
+  # the generated C++) is built at -O1, which saves compile time and no run time.
+  sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE TRACE_DEPTH 2 THREADS ${SM_SIM_THREADS}
+               OPT_SLOW -O1 OPT_FAST ${_sm_sim_cxxflags})
   add_dependencies(${lib} sm_regmap_gen_files)
   get_target_property(defs ${lib} COMPILE_DEFINITIONS)
   # The copy taken here still has verilate()'s tracing-off defaults: the harness must see
@@ -31,7 +38,8 @@ function(sm_add_sim target lib)
                                           nlohmann_json::nlohmann_json ${OpenCV_LIBS})
   target_compile_definitions(${target} PRIVATE
     SM_DEFAULT_SCENE="${CMAKE_BINARY_DIR}/scene"
-    SM_SYNTH_JSON="${CMAKE_BINARY_DIR}/synth/sm_top_${target}.json")
+    SM_SYNTH_JSON="${CMAKE_BINARY_DIR}/synth/sm_top_${target}.json"
+    SM_SYNTH_JSON_DOCS="${CMAKE_SOURCE_DIR}/docs/synth/sm_top_${target}.json")
 endfunction()
 sm_add_sim(stereo_sim vtop_paper)
 sm_add_sim(stereo_sim_small vtop_small)

@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
   app.add_option("--vcd-lines", vcd_lines, "VCD window: line periods to dump")->capture_default_str();
   app.add_option("--vcd-cycles", vcd_cycles, "VCD window: cycles to dump (overrides lines)");
   app.add_option("--out", out_dir, "output folder (disparity, panel, report.json)")->capture_default_str();
-  app.add_option("--synth-json", synth_json, "synthesis report JSON (default: the one built for this configuration)");
+  app.add_option("--synth-json", synth_json, "synthesis report JSON (default: build/synth, else docs/synth, for this configuration)");
   app.add_flag("--no-check", no_check, "skip the reference-model comparison");
   app.add_flag("-q,--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
@@ -258,11 +258,26 @@ int main(int argc, char** argv) {
     rep["sim_cycles_per_second"] = res.cycles / wall;
     if (!in.gt.empty())
       rep["bad1_percent"] = sm::tools::bad1(sm::tools::disp_to_float(res.frames.back()), in.gt, in.mask).bad_pct();
-    if (synth_json.empty()) synth_json = SM_SYNTH_JSON;
-    if (fs::exists(synth_json)) {
+    // Synthesis figures: the given report (it must be valid), else the one `synth_paper`
+    // / `synth_small` built for this configuration, else the one committed in docs/synth.
+    const bool synth_given = !synth_json.empty();
+    if (!synth_given) {
+      for (const char* cand : {SM_SYNTH_JSON, SM_SYNTH_JSON_DOCS})
+        if (fs::exists(cand)) {
+          synth_json = cand;
+          break;
+        }
+    }
+    if (!synth_json.empty()) {
       std::ifstream sj(synth_json);
       json s = json::parse(sj, nullptr, false);
-      if (!s.is_discarded() && s.contains("total")) rep["synthesis"] = s["total"];
+      if (s.is_discarded() || !s.contains("total")) {
+        if (synth_given) throw std::runtime_error(fmt::format("{}: not a synthesis report", synth_json));
+        fmt::print(stderr, "note: {} is not a synthesis report, ignored\n", synth_json);
+      } else {
+        rep["synthesis"] = s["total"];
+        rep["synthesis_report"] = synth_json;
+      }
     }
 
     // ---- outputs ----
@@ -307,7 +322,13 @@ int main(int argc, char** argv) {
       fmt::print("  bit-exact vs model: {}{}\n", mismatches == 0 ? "yes" : "NO, ",
                  mismatches == 0 ? "" : fmt::format("{} mismatches, first: {}", mismatches, first_mismatch));
     if (rep.contains("bad1_percent")) fmt::print("  bad-1.0 vs ground truth: {:.2f} %\n", rep["bad1_percent"].get<double>());
-    if (rep.contains("synthesis")) fmt::print("  synthesis: {}\n", rep["synthesis"].dump());
+    if (rep.contains("synthesis")) {
+      const json& t = rep["synthesis"];
+      fmt::print("  synthesis: {} LUTs ({} LUT-RAM, {} SRL), {} FFs, {} RAMB36, {} DSP, {} LUT levels  [{}]\n",
+                 t.value("luts", 0), t.value("lutram", 0), t.value("srl", 0), t.value("ffs", 0),
+                 t.value("bram36", 0.0), t.value("dsp", 0), t.value("lut_levels", 0),
+                 rep["synthesis_report"].get<std::string>());
+    }
     fmt::print("  simulation: {:.2f} s wall, {:.2f} frames/s, {:.0f} cycles/s\n", wall, in.frames.size() / wall,
                res.cycles / wall);
     fmt::print("  outputs in {}/\n", out_dir);
