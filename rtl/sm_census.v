@@ -64,7 +64,7 @@ module sm_census #(
   reg [C-1:0] col_ok_q, col_ok_q2;
 
   // ---- stage 2: the window. Column j (C-1 = entered last) of row r (centre + r - R),
-  // newest column in a register and the older ones in LUT-RAM (sm_colwin).
+  // all C columns in a circular buffer of LUT-RAM (sm_colwin).
   localparam CWW = C * 16;  // one column of both images, row r at [r*16 +: 16]
   wire [CWW-1:0]   newcol;
   wire [C*CWW-1:0] awin;  // by age: age a at [a*CWW +: CWW]

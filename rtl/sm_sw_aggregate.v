@@ -168,8 +168,7 @@ module sm_sw_aggregate #(
     end
   end
 
-  // Cost window: column c entered c + 1 ce ago (0 = the newest, in a register; the
-  // older ones in LUT-RAM, sm_colwin).
+  // Cost window: column c entered c + 1 ce ago, all SW columns in LUT-RAM (sm_colwin).
   wire [SW*COLW-1:0] cwin;  // column c at [c*COLW +: COLW]
   sm_colwin #(.W(COLW), .N(SW)) u_cwin (
       .clk(clk), .rst_n(rst_n), .ce(ce), .col(col_cost), .win(cwin)

@@ -40,6 +40,8 @@ function(sm_add_sim target lib)
     SM_DEFAULT_SCENE="${CMAKE_BINARY_DIR}/scene"
     SM_SYNTH_JSON="${CMAKE_BINARY_DIR}/synth/sm_top_${target}.json"
     SM_SYNTH_JSON_DOCS="${CMAKE_SOURCE_DIR}/docs/synth/sm_top_${target}.json")
+  # the default input: building stereo_sim alone must leave it runnable
+  add_dependencies(${target} sm_default_scene)
 endfunction()
 sm_add_sim(stereo_sim vtop_paper)
 sm_add_sim(stereo_sim_small vtop_small)
