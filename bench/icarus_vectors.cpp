@@ -20,13 +20,10 @@ int run(int argc, char** argv) {
   int frames = 2;
   sm::HwConfig hw;
   CLI::App app{"Stimulus + expected output hex files for the Icarus testbench"};
-  app.add_option("--scene", scene_dir,
-                 "scene folder (left.png right.png), resized to MAX_WIDTH x MAX_HEIGHT")
+  app.add_option("--scene", scene_dir, "scene folder (left.png right.png), resized to MAX_WIDTH x MAX_HEIGHT")
       ->required();
   app.add_option("--out", out, "output folder")->required();
-  app.add_option("--frames", frames, "frames (the pair repeated)")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
+  app.add_option("--frames", frames, "frames (the pair repeated)")->check(CLI::Range(1, 100))->capture_default_str();
   app.add_option("--max-width", hw.max_width)->capture_default_str();
   app.add_option("--max-height", hw.max_height)->capture_default_str();
   app.add_option("--disp", hw.disp)->capture_default_str();

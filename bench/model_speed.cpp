@@ -42,9 +42,7 @@ uint64_t fnv(const std::vector<T>& v) {
   return h;
 }
 
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 int run(int argc, char** argv) {
   std::string scene_dir = SM_BENCH_DEFAULT_SCENE, json_path;
@@ -53,29 +51,21 @@ int run(int argc, char** argv) {
   std::vector<int> sw_table;
   bool no_opencv = false;
   CLI::App app{"Model speed vs OpenCV StereoSGBM / StereoBinarySGBM (single thread, medians)"};
-  app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")
-      ->capture_default_str();
-  app.add_option("--runs", runs, "repetitions (median)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
-  app.add_option("--levels", levels, "disparity levels of every method (even, 4..254)")
-      ->capture_default_str();
-  app.add_option("--width", width, "frame width")
-      ->check(CLI::Range(16, 4096))
-      ->capture_default_str();
-  app.add_option("--height", height, "frame height")
-      ->check(CLI::Range(16, 4096))
-      ->capture_default_str();
+  app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")->capture_default_str();
+  app.add_option("--runs", runs, "repetitions (median)")->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--levels", levels, "disparity levels of every method (even, 4..254)")->capture_default_str();
+  app.add_option("--width", width, "frame width")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--height", height, "frame height")->check(CLI::Range(16, 4096))->capture_default_str();
   app.add_option("--census", census, "model census window (paper: 15)")->capture_default_str();
   app.add_option("--sw", sw, "model support-weight window (paper: 5)")->capture_default_str();
   // The three options below only widen the bit-exactness check (other arithmetic ranges,
   // weight sets including all-zero and all-4 windows); the speed figures use the defaults.
   app.add_option("--cost-shift", cost_shift, "model COST_SHIFT (paper: 2)")->capture_default_str();
-  app.add_option("--sw-table", sw_table, "model weight codes 0..3 by |dI| >> 3 (up to 32; the "
-                                         "rest 0; default: the register defaults)")
+  app.add_option("--sw-table", sw_table,
+                 "model weight codes 0..3 by |dI| >> 3 (up to 32; the "
+                 "rest 0; default: the register defaults)")
       ->delimiter(',');
-  app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")
-      ->check(CLI::Range(0, 255));
+  app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")->check(CLI::Range(0, 255));
   app.add_option("--json", json_path, "write the medians as JSON");
   app.add_flag("--no-opencv", no_opencv, "time the model only");
   try {
@@ -113,15 +103,13 @@ int run(int argc, char** argv) {
     g.height = height;
     if (!sw_table.empty()) {
       g.sw_table.fill(0);
-      for (size_t k = 0; k < sw_table.size(); ++k)
-        g.sw_table[k] = static_cast<uint8_t>(sw_table[k]);
+      for (size_t k = 0; k < sw_table.size(); ++k) g.sw_table[k] = static_cast<uint8_t>(sw_table[k]);
     }
     if (occ >= 0) g.occ = static_cast<uint8_t>(occ);
     return g;
   }();
   const int nd16 = (levels + 15) / 16 * 16;  // OpenCV needs a multiple of 16
-  auto sgbm = cv::StereoSGBM::create(0, nd16, 5, 8 * 25, 32 * 25, 1, 63, 10, 100, 32,
-                                     cv::StereoSGBM::MODE_SGBM);
+  auto sgbm = cv::StereoSGBM::create(0, nd16, 5, 8 * 25, 32 * 25, 1, 63, 10, 100, 32, cv::StereoSGBM::MODE_SGBM);
   auto bsgbm = cv::stereo::StereoBinarySGBM::create(0, nd16, 9, 100, 1000, 1, 0, 5, 400, 200);
 
   std::map<std::string, std::vector<double>> t;
@@ -136,12 +124,10 @@ int run(int argc, char** argv) {
     h_post = fnv(res.post.px);
     // run_pipeline streams rows through the stage kernels; the whole-frame stage
     // functions (what the RTL block tests compare against) must give the same bits.
-    const sm::CostVolume raw = sm::hamming_cost(sm::census_transform(res.rl, hw),
-                                                sm::census_transform(res.rr, hw), hw);
+    const sm::CostVolume raw = sm::hamming_cost(sm::census_transform(res.rl, hw), sm::census_transform(res.rr, hw), hw);
     const sm::CostVolume agg = sm::sw_aggregate(raw, res.rl, regs.sw_table, hw);
     const sm::DispImage dp = sm::trellis_dp(agg, regs.occ, hw);
-    if (!(raw == res.raw) || !(agg == res.agg) || dp != res.dp ||
-        sm::post_process(dp, regs, hw) != res.post)
+    if (!(raw == res.raw) || !(agg == res.agg) || dp != res.dp || sm::post_process(dp, regs, hw) != res.post)
       throw sm::tools::ToolError("run_pipeline and the stage functions differ");
   }
   cv::Mat d;
@@ -173,8 +159,8 @@ int run(int argc, char** argv) {
   js["fingerprint_agg"] = fmt::format("{:016x}", h_agg);
   js["fingerprint_dp"] = fmt::format("{:016x}", h_dp);
   js["fingerprint_post"] = fmt::format("{:016x}", h_post);
-  fmt::print("model speed: {} {}x{}, {} levels, 1 thread, median of {} runs (ms / frame)\n",
-             scene_dir, width, height, levels, runs);
+  fmt::print("model speed: {} {}x{}, {} levels, 1 thread, median of {} runs (ms / frame)\n", scene_dir, width, height,
+             levels, runs);
   fmt::print("| method | ms / frame | frames/s | vs model |\n|---|---|---|---|\n");
   const double m = median(t["model"]);
   for (const char* n : {"model", "sgbm", "binsgbm"}) {
@@ -192,8 +178,8 @@ int run(int argc, char** argv) {
     fmt::print("| {} | {:.2f} | {:.0f} % |\n", n, v, 100.0 * v / m);
     js["stage_ms"][n] = v;
   }
-  fmt::print("\nfingerprints (FNV-1a): cost {:016x} aggregate {:016x} dp {:016x} post {:016x}\n",
-             h_raw, h_agg, h_dp, h_post);
+  fmt::print("\nfingerprints (FNV-1a): cost {:016x} aggregate {:016x} dp {:016x} post {:016x}\n", h_raw, h_agg, h_dp,
+             h_post);
   if (!json_path.empty()) sm::tools::write_text_atomic(json_path, js.dump(2) + "\n");
   return 0;
 }

@@ -22,12 +22,8 @@ int run(int argc, char** argv) {
   CLI::App app{"Resize a stereo dataset to the IP's active size (for RTL-vs-model accuracy)"};
   app.add_option("dataset", dataset, "dataset folder or one scene folder")->required();
   app.add_option("--out", out, "output folder (one subfolder per scene)")->required();
-  app.add_option("--width", width, "target width")
-      ->check(CLI::Range(16, 4096))
-      ->capture_default_str();
-  app.add_option("--height", height, "target height")
-      ->check(CLI::Range(16, 4096))
-      ->capture_default_str();
+  app.add_option("--width", width, "target width")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--height", height, "target height")->check(CLI::Range(16, 4096))->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -57,8 +53,8 @@ int run(int argc, char** argv) {
     }
     const int levels = static_cast<int>(std::ceil(sc.levels * sx));
     sm::tools::write_text_atomic(od + "/scale.txt", fmt::format("256 {}\n", levels));
-    fmt::print("{}: {}x{} -> {}x{} (disparity x{:.3f}, {} levels)\n", sc.name, sc.left.cols,
-               sc.left.rows, width, height, sx, levels);
+    fmt::print("{}: {}x{} -> {}x{} (disparity x{:.3f}, {} levels)\n", sc.name, sc.left.cols, sc.left.rows, width,
+               height, sx, levels);
   }
   return 0;
 }

@@ -30,12 +30,11 @@ int run(int argc, char** argv) {
   sm::tools::quiet_opencv();
   const auto scenes = sm::tools::list_scenes(dataset);
   if (scenes.empty()) throw sm::tools::ToolError(fmt::format("{}: no scene folders", dataset));
-  const char* names[] = {"DP alone", "+ 5x1 vertical median", "+ 3x3 median",
-                         "+ 5x3 median (output)"};
+  const char* names[] = {"DP alone", "+ 5x1 vertical median", "+ 3x3 median", "+ 5x3 median (output)"};
   std::vector<double> sum(4, 0.0);
   nlohmann::json js;
-  fmt::print("| scene | size | {} | {} | {} | {} |\n|---|---|---|---|---|---|\n", names[0],
-             names[1], names[2], names[3]);
+  fmt::print("| scene | size | {} | {} | {} | {} |\n|---|---|---|---|---|---|\n", names[0], names[1], names[2],
+             names[3]);
   for (const auto& dir : scenes) {
     const sm::tools::Scene sc = sm::tools::load_scene(dir);
     sm::HwConfig hw;
@@ -43,16 +42,15 @@ int run(int argc, char** argv) {
     hw.max_width = sc.left.cols;
     hw.max_height = sc.left.rows;
     const sm::Regs regs = sm::Regs::defaults(hw);
-    const sm::PipelineResult r = sm::run_pipeline(sm::tools::to_image8(sc.left),
-                                                  sm::tools::to_image8(sc.right), hw, regs, false);
+    const sm::PipelineResult r =
+        sm::run_pipeline(sm::tools::to_image8(sc.left), sm::tools::to_image8(sc.right), hw, regs, false);
     std::vector<const sm::DispImage*> st{&r.dp};
     for (const auto& s : r.post_steps) st.push_back(&s);
     if (st.size() != 4) throw sm::tools::ToolError("expected three post-processing steps");
     if (*st.back() != r.post) throw sm::tools::ToolError("last step differs from the output");
     std::string row = fmt::format("| {} | {}x{} |", sc.name, sc.left.cols, sc.left.rows);
     for (int k = 0; k < 4; ++k) {
-      const double b =
-          sm::tools::bad1(sm::tools::disp_to_float(*st[k]), sc.gt, sc.nonocc).bad_pct();
+      const double b = sm::tools::bad1(sm::tools::disp_to_float(*st[k]), sc.gt, sc.nonocc).bad_pct();
       sum[k] += b;
       row += fmt::format(" {:.2f} |", b);
       js[sc.name][names[k]] = b;

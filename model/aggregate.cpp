@@ -14,9 +14,12 @@ namespace sm {
 
 namespace detail {
 
-AggRow::AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& table,
-               const HwConfig& hw)
-    : w(w_), h(h_), nd(nd_), r((sw - 1) / 2), out_max((1u << hw.cost_bits()) - 1),
+AggRow::AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& table, const HwConfig& hw)
+    : w(w_),
+      h(h_),
+      nd(nd_),
+      r((sw - 1) / 2),
+      out_max((1u << hw.cost_bits()) - 1),
       // Byte sums of `group` costs cannot wrap: group * (255 >> COST_SHIFT) <= 255, for
       // any 8-bit input, not only legal Hamming costs (4 at COST_SHIFT 2, 1 at 0).
       group(255 / (255 >> std::clamp(hw.cost_shift, 0, 7))),
@@ -66,8 +69,7 @@ inline void load_add(VB& s, const uint8_t* p) {
 // Bit q of mask[c] marks window position q as a neighbour of weight 1 << c; its costs
 // start at base[q] + xoff.
 template <int NB>
-inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* mask, int group,
-                      int d0, uint16_t* sum) {
+inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* mask, int group, int d0, uint16_t* sum) {
   const VB zero = {};
   VH lo[NB], hi[NB];  // levels 0-7 and 16-23 / 8-15 and 24-31 of each block of 32
   for (int v = 0; v < NB; ++v) lo[v] = hi[v] = VH{};
@@ -84,12 +86,10 @@ inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* m
       // Zero-extension by interleaving with zero bytes within each 16-byte half (one
       // instruction each on x86); the level order is restored when storing.
       for (int v = 0; v < NB; ++v) {
-        const VB l = __builtin_shufflevector(s[v], zero, 0, 32, 1, 32, 2, 32, 3, 32, 4, 32, 5,
-                                             32, 6, 32, 7, 32, 16, 32, 17, 32, 18, 32, 19, 32,
-                                             20, 32, 21, 32, 22, 32, 23, 32);
-        const VB h = __builtin_shufflevector(s[v], zero, 8, 32, 9, 32, 10, 32, 11, 32, 12, 32,
-                                             13, 32, 14, 32, 15, 32, 24, 32, 25, 32, 26, 32, 27,
-                                             32, 28, 32, 29, 32, 30, 32, 31, 32);
+        const VB l = __builtin_shufflevector(s[v], zero, 0, 32, 1, 32, 2, 32, 3, 32, 4, 32, 5, 32, 6, 32, 7, 32, 16, 32,
+                                             17, 32, 18, 32, 19, 32, 20, 32, 21, 32, 22, 32, 23, 32);
+        const VB h = __builtin_shufflevector(s[v], zero, 8, 32, 9, 32, 10, 32, 11, 32, 12, 32, 13, 32, 14, 32, 15, 32,
+                                             24, 32, 25, 32, 26, 32, 27, 32, 28, 32, 29, 32, 30, 32, 31, 32);
         lo[v] += reinterpret_cast<const VH&>(l) << c;
         hi[v] += reinterpret_cast<const VH&>(h) << c;
       }
@@ -111,8 +111,7 @@ inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* m
 // one window position at a time across the row (vectorizes), kept per centre as bit
 // masks; (2) per centre, the weight sum from the masks; (3) per centre and block of
 // levels, the neighbours' costs summed by weight (agg_block), then the normalisation.
-SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t* left, int y,
-                    uint8_t* out) {
+SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t* left, int y, uint8_t* out) {
   const int w = a.w, h = a.h, nd = a.nd, r = a.r, side = 2 * r + 1, nq = side * side;
   // (1) Window position q = (j + r) * side + (i + r) is neighbour (x + i, y + j) of
   // centre (x, y). Bit q of b0[x] / b1[x] is bit 0 / 1 of its weight code (0 outside
@@ -149,9 +148,7 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
         std::memcpy(&code[static_cast<size_t>(x)], &c, 16);
       }
 #endif
-      for (; x < x1; ++x)
-        code[static_cast<size_t>(x)] =
-            a.code[static_cast<size_t>(std::abs(nrow[x + i] - centre[x]))];
+      for (; x < x1; ++x) code[static_cast<size_t>(x)] = a.code[static_cast<size_t>(std::abs(nrow[x + i] - centre[x]))];
       const int q = (j + r) * side + (i + r);
       for (x = 0; x < w; ++x) {
         b0[x] |= static_cast<uint64_t>(code[static_cast<size_t>(x)] & 1) << q;
@@ -164,16 +161,14 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
   for (int j = -r; j <= r; ++j)
     if (y + j >= 0 && y + j < h)
       for (int i = -r; i <= r; ++i)
-        base[static_cast<size_t>((j + r) * side + (i + r))] =
-            c_rows[j + r] + static_cast<ptrdiff_t>(i) * nd;
+        base[static_cast<size_t>((j + r) * side + (i + r))] = c_rows[j + r] + static_cast<ptrdiff_t>(i) * nd;
 
   std::vector<uint16_t> sum(static_cast<size_t>(nd) + 128);  // A_raw, whole blocks
   uint16_t* su = sum.data();
   for (int x = 0; x < w; ++x) {
     // (2) Window positions of weight 1, 2, 4 (codes 1, 2, 3) and the weight sum.
     const uint64_t m[3] = {b0[x] & ~b1[x], b1[x] & ~b0[x], b0[x] & b1[x]};
-    const auto wsum = static_cast<uint32_t>(__builtin_popcountll(m[0]) +
-                                            2 * __builtin_popcountll(m[1]) +
+    const auto wsum = static_cast<uint32_t>(__builtin_popcountll(m[0]) + 2 * __builtin_popcountll(m[1]) +
                                             4 * __builtin_popcountll(m[2]));
     const uint32_t rec = sw_recip(wsum);
     const size_t xoff = static_cast<size_t>(x) * nd;
@@ -204,14 +199,13 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
 
 }  // namespace detail
 
-CostVolume sw_aggregate(const CostVolume& raw, const Image8& left,
-                        const std::array<uint8_t, 32>& table, const HwConfig& hw) {
+CostVolume sw_aggregate(const CostVolume& raw, const Image8& left, const std::array<uint8_t, 32>& table,
+                        const HwConfig& hw) {
   if (raw.w != left.w || raw.h != left.h)
-    throw std::invalid_argument(fmt::format("sw_aggregate: cost volume {}x{} but left image {}x{}",
-                                            raw.w, raw.h, left.w, left.h));
-  if (raw.d != hw.disp)
     throw std::invalid_argument(
-        fmt::format("sw_aggregate: cost volume has {} levels, DISP is {}", raw.d, hw.disp));
+        fmt::format("sw_aggregate: cost volume {}x{} but left image {}x{}", raw.w, raw.h, left.w, left.h));
+  if (raw.d != hw.disp)
+    throw std::invalid_argument(fmt::format("sw_aggregate: cost volume has {} levels, DISP is {}", raw.d, hw.disp));
   if (hw.sw < 1 || hw.sw > 7 || hw.sw % 2 == 0)  // (a window position per bit of a word)
     throw std::invalid_argument(fmt::format("sw_aggregate: SW {} must be odd, 1..7", hw.sw));
 
@@ -226,8 +220,7 @@ CostVolume sw_aggregate(const CostVolume& raw, const Image8& left,
   std::vector<const uint8_t*> rows(static_cast<size_t>(2 * a.r + 1));
   for (int y = 0; y < h; ++y) {
     for (int j = -a.r; j <= a.r; ++j)
-      rows[static_cast<size_t>(j + a.r)] =
-          (y + j >= 0 && y + j < h) ? c.data() + (y + j) * row : nullptr;
+      rows[static_cast<size_t>(j + a.r)] = (y + j >= 0 && y + j < h) ? c.data() + (y + j) * row : nullptr;
     detail::agg_row(a, rows.data(), left.px.data(), y, out.v.data() + y * row);
   }
   return out;

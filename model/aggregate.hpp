@@ -12,9 +12,7 @@ namespace sm {
 // RECIP(s) = floor((4096 + floor(s/2)) / s) for s >= 1, RECIP(0) = 0: the reciprocal
 // of a weight sum in 1/4096 units, rounded to nearest (the hardware's ROM).
 constexpr int kRecipShift = 12;
-constexpr uint32_t sw_recip(uint32_t s) {
-  return s == 0 ? 0u : ((1u << kRecipShift) + s / 2) / s;
-}
+constexpr uint32_t sw_recip(uint32_t s) { return s == 0 ? 0u : ((1u << kRecipShift) + s / 2) / s; }
 
 // Weight of a neighbour whose left-image intensity differs from the centre's by
 // |dI|: code = table[min(|dI| >> 3, 31)], weight 0 for code 0 else 1 << (code - 1).
@@ -28,7 +26,7 @@ constexpr uint32_t sw_weight(const std::array<uint8_t, 32>& table, int abs_diff)
 // rectified image (same size), source of the weights; table: 2-bit weight codes by
 // |dI| >> 3. Returns the CW-bit aggregated costs A(x, y, d). Throws
 // std::invalid_argument when the sizes do not match or SW is not odd, 1..7.
-CostVolume sw_aggregate(const CostVolume& raw, const Image8& left,
-                        const std::array<uint8_t, 32>& table, const HwConfig& hw);
+CostVolume sw_aggregate(const CostVolume& raw, const Image8& left, const std::array<uint8_t, 32>& table,
+                        const HwConfig& hw);
 
 }  // namespace sm

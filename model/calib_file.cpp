@@ -33,8 +33,7 @@ uint32_t grid_waddr(const HwConfig& hw, int bank, int gx, int gy) {
 
 uint32_t grid_wdata(const RectGrid& g, int gx, int gy) {
   const size_t i = static_cast<size_t>(gy) * g.gw + gx;
-  return (static_cast<uint32_t>(static_cast<uint16_t>(g.sy[i])) << 16) |
-         static_cast<uint16_t>(g.sx[i]);
+  return (static_cast<uint32_t>(static_cast<uint16_t>(g.sy[i])) << 16) | static_cast<uint16_t>(g.sx[i]);
 }
 
 void save_calib(const std::string& path, const CalibFile& c) {
@@ -57,9 +56,7 @@ void save_calib(const std::string& path, const CalibFile& c) {
 }
 
 CalibFile load_calib(const std::string& path) {
-  auto fail = [&](const std::string& what) {
-    throw std::runtime_error(fmt::format("{}: {}", path, what));
-  };
+  auto fail = [&](const std::string& what) { throw std::runtime_error(fmt::format("{}: {}", path, what)); };
   std::ifstream f(path);
   if (!f) fail("cannot open calibration file");
   nlohmann::json j;
@@ -76,16 +73,13 @@ CalibFile load_calib(const std::string& path) {
     if (v < lo || v > hi) fail(fmt::format("'{}' = {} outside {}..{}", key, v, lo, hi));
     return static_cast<int>(v);
   };
-  if (!j.contains("format") || j["format"] != kFormat)
-    fail(fmt::format("'format' is not \"{}\"", kFormat));
+  if (!j.contains("format") || j["format"] != kFormat) fail(fmt::format("'format' is not \"{}\"", kFormat));
   if (get_int("version", 0, 1 << 30) != kVersion) fail(fmt::format("unsupported version"));
   CalibFile c;
   c.width = get_int("width", 16, 4095);
   c.height = get_int("height", 16, 4095);
-  if (get_int("grid_step", 0, 1 << 30) != kGridStep)
-    fail(fmt::format("'grid_step' must be {}", kGridStep));
-  if (get_int("frac_bits", 0, 1 << 30) != kMapFrac)
-    fail(fmt::format("'frac_bits' must be {}", kMapFrac));
+  if (get_int("grid_step", 0, 1 << 30) != kGridStep) fail(fmt::format("'grid_step' must be {}", kGridStep));
+  if (get_int("frac_bits", 0, 1 << 30) != kMapFrac) fail(fmt::format("'frac_bits' must be {}", kMapFrac));
   const int gw = RectGrid::points_w(c.width), gh = RectGrid::points_h(c.height);
   if (get_int("grid_w", 0, 1 << 30) != gw || get_int("grid_h", 0, 1 << 30) != gh)
     fail(fmt::format("grid size must be {}x{} for a {}x{} image", gw, gh, c.width, c.height));
@@ -99,16 +93,13 @@ CalibFile load_calib(const std::string& path) {
       const auto& a = j[cam].contains(comp) ? j[cam][comp] : nlohmann::json();
       if (!a.is_array()) fail(fmt::format("'{}.{}' missing or not an array", cam, comp));
       if (a.size() != n)
-        fail(fmt::format("'{}.{}' has {} values, expected {} ({}x{})", cam, comp, a.size(), n, gw,
-                         gh));
+        fail(fmt::format("'{}.{}' has {} values, expected {} ({}x{})", cam, comp, a.size(), n, gw, gh));
       std::vector<int16_t>& dst = comp[1] == 'x' ? g.sx : g.sy;
       dst.resize(n);
       for (size_t i = 0; i < n; ++i) {
-        if (!a[i].is_number_integer())
-          fail(fmt::format("'{}.{}'[{}] is not an integer", cam, comp, i));
+        if (!a[i].is_number_integer()) fail(fmt::format("'{}.{}'[{}] is not an integer", cam, comp, i));
         const long v = a[i].get<long>();
-        if (v < -32768 || v > 32767)
-          fail(fmt::format("'{}.{}'[{}] = {} outside int16", cam, comp, i, v));
+        if (v < -32768 || v > 32767) fail(fmt::format("'{}.{}'[{}] = {} outside int16", cam, comp, i, v));
         dst[i] = static_cast<int16_t>(v);
       }
     }

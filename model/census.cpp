@@ -21,11 +21,14 @@ constexpr int kBlock = SM_VEC_BYTES;  // pixels per vector of the census compare
 }
 
 CensusPad::CensusPad(const Image8& in, int r_)
-    : w(in.w), h(in.h), r(r_), stride(static_cast<size_t>(in.w + 2 * r_ + kBlock)),
+    : w(in.w),
+      h(in.h),
+      r(r_),
+      stride(static_cast<size_t>(in.w + 2 * r_ + kBlock)),
       px(stride * static_cast<size_t>(in.h + 2 * r_), 255) {
   for (int y = 0; y < h; ++y)
-    std::memcpy(px.data() + static_cast<size_t>(y + r) * stride + r,
-                &in.px[static_cast<size_t>(y) * w], static_cast<size_t>(w));
+    std::memcpy(px.data() + static_cast<size_t>(y + r) * stride + r, &in.px[static_cast<size_t>(y) * w],
+                static_cast<size_t>(w));
 }
 
 #if defined(__GNUC__)
@@ -74,8 +77,7 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
   for (int x = 0; x < w; ++x) {
     for (int i = 0; i < 4; ++i) {
       uint64_t v = 0;
-      for (int b = 0; b < 8; ++b)
-        v |= static_cast<uint64_t>(planes[(8 * i + b) * wr + x]) << (8 * b);
+      for (int b = 0; b < 8; ++b) v |= static_cast<uint64_t>(planes[(8 * i + b) * wr + x]) << (8 * b);
       out[x][static_cast<size_t>(i)] = v;
     }
   }
@@ -85,8 +87,7 @@ namespace {
 
 // popcount(a ^ b) of all four words: exact for any input vector. The sum is taken
 // modulo 256 (an 8-bit H) before the shift, as H >> COST_SHIFT of an 8-bit volume.
-void cost_row_portable(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb,
-                       int shift, uint8_t* out) {
+void cost_row_portable(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {
   for (int x = 0; x < w; ++x) {
     uint8_t* o = out + static_cast<size_t>(x) * nd;
     const CensusVec a = l[x];
@@ -107,9 +108,8 @@ void cost_row_portable(const CensusVec* l, const CensusVec* rr, int w, int nd, u
 // those of b, so each vector is split into nibbles once), the 32 byte counts summed per
 // 64-bit quarter (psadbw, <= 64 each), the quarters of eight levels packed one byte per
 // level and added bytewise: modulo 256 like the portable sum.
-__attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, const CensusVec* rr,
-                                                          int w, int nd, uint8_t cb, int shift,
-                                                          uint8_t* out) {
+__attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, const CensusVec* rr, int w, int nd,
+                                                          uint8_t cb, int shift, uint8_t* out) {
   const __m256i low4 = _mm256_set1_epi8(0x0f);
   const __m256i count4 = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4,  //
                                           0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
@@ -120,8 +120,7 @@ __attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, co
     const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&rr[x]));
     uint8_t* n = &nib[64 * static_cast<size_t>(x)];
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(n), _mm256_and_si256(v, low4));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(n + 32),
-                        _mm256_and_si256(_mm256_srli_epi16(v, 4), low4));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(n + 32), _mm256_and_si256(_mm256_srli_epi16(v, 4), low4));
   }
   const __m128i sh = _mm_cvtsi32_si128(shift);
   const __m128i keep = _mm_set1_epi8(static_cast<char>(0xff >> shift));  // 16-bit shift: mask
@@ -160,8 +159,7 @@ __attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, co
 
 }  // namespace
 
-void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift,
-              uint8_t* out) {
+void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {
 #if defined(SM_X86_DISPATCH)
   static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
   if (avx2) return cost_row_avx2(l, rr, w, nd, cb, shift, out);
@@ -173,8 +171,7 @@ void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb
 
 CensusImage census_transform(const Image8& in, const HwConfig& hw) {
   if (hw.census < 3 || hw.census > 15 || hw.census % 2 == 0)
-    throw std::invalid_argument(
-        fmt::format("census_transform: census {} must be odd, 3..15", hw.census));
+    throw std::invalid_argument(fmt::format("census_transform: census {} must be odd, 3..15", hw.census));
   const detail::CensusPad pad(in, (hw.census - 1) / 2);
   CensusImage out(in.w, in.h, CensusVec{0, 0, 0, 0});
   for (int y = 0; y < in.h; ++y) detail::census_row(pad, y, &out.px[static_cast<size_t>(y) * in.w]);
@@ -183,8 +180,7 @@ CensusImage census_transform(const Image8& in, const HwConfig& hw) {
 
 CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw) {
   if (cl.w != cr.w || cl.h != cr.h)
-    throw std::invalid_argument(
-        fmt::format("hamming_cost: left {}x{} and right {}x{} differ", cl.w, cl.h, cr.w, cr.h));
+    throw std::invalid_argument(fmt::format("hamming_cost: left {}x{} and right {}x{} differ", cl.w, cl.h, cr.w, cr.h));
   if (hw.disp < 1 || hw.disp > 256)
     throw std::invalid_argument(fmt::format("hamming_cost: disp {} outside 1..256", hw.disp));
   const int nd = hw.disp, w = cl.w;

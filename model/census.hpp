@@ -16,8 +16,8 @@ CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwCo
 
 // popcount(a ^ b) over the four words.
 inline int census_distance(const CensusVec& a, const CensusVec& b) {
-  return __builtin_popcountll(a[0] ^ b[0]) + __builtin_popcountll(a[1] ^ b[1]) +
-         __builtin_popcountll(a[2] ^ b[2]) + __builtin_popcountll(a[3] ^ b[3]);
+  return __builtin_popcountll(a[0] ^ b[0]) + __builtin_popcountll(a[1] ^ b[1]) + __builtin_popcountll(a[2] ^ b[2]) +
+         __builtin_popcountll(a[3] ^ b[3]);
 }
 
 }  // namespace sm

@@ -67,8 +67,7 @@ void forward_scalar(const Fwd& f) {
     // m < no) from the site-2t+1 values, then the matched nodes d = 2m+1.
     dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
     for (int m = 0; m < f.ne; ++m)
-      occ_node(ue[m], m >= 1 ? (uo[m - 1] + occ) & mask : none,
-               m < f.no ? (uo[m] + occ) & mask : none, dec[m]);
+      occ_node(ue[m], m >= 1 ? (uo[m - 1] + occ) & mask : none, m < f.no ? (uo[m] + occ) & mask : none, dec[m]);
     c += f.stride;
     for (int m = 0; m < f.no; ++m) uo[m] = (uo[m] + (c[m] >> 8)) & mask;
   }
@@ -90,8 +89,8 @@ inline void store(uint32_t* p, const VI& v) { std::memcpy(p, &v, sizeof v); }
 
 // Occlusion nodes from m, one vector: u = the first of choice 0 (u), 1 (lo + occ) and 2 (hi +
 // occ) that reaches the minimum; lanes set in lo_absent / hi_absent lack that choice.
-inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, int32_t occ,
-                      int32_t mask, const VI& lo_absent, const VI& hi_absent, uint32_t* dec) {
+inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, int32_t occ, int32_t mask,
+                      const VI& lo_absent, const VI& hi_absent, uint32_t* dec) {
   VI b0, c1, c2;
   load(b0, u);
   load(c1, lo);
@@ -133,8 +132,7 @@ SM_HOT void forward_vector(const Fwd& f) {
     for (int m = 0; m < f.ne; m += kLanes) add_block(ue + m, c + m, false, mask);
     dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
     for (int m = 0; m < f.ne; m += kLanes)
-      occ_block(ue + m, uo + m - 1, uo + m, occ, mask, m == 0 ? first : no_lane, lane + m >= f.no,
-                dec + m);
+      occ_block(ue + m, uo + m - 1, uo + m, occ, mask, m == 0 ? first : no_lane, lane + m >= f.no, dec + m);
     c += f.stride;
     for (int m = 0; m < f.no; m += kLanes) add_block(uo + m, c + m, true, mask);
   }
@@ -169,8 +167,7 @@ void gather_costs(const uint8_t* agg, int n, int nd, int ne, int no, int stride,
 // occlusion at even d). The levels are split by parity and the matched costs are
 // gathered into site order first, so the loops over levels run over consecutive
 // entries and vectorize.
-void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
-                  DpLine& out) {
+void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s, DpLine& out) {
   const int nd = hw.disp;
   const int acc_w = dp_acc_bits(hw);
   const uint32_t mask = (acc_w >= 32) ? 0xffffffffu : ((1u << acc_w) - 1);
@@ -188,8 +185,7 @@ void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, Dp
   s.u0.assign(static_cast<size_t>(stride) + 2 * 8, big);
   s.u1.assign(static_cast<size_t>(stride) + 2 * 8, big);
   s.dec.resize(static_cast<size_t>(sites + 1) * stride);
-  const Fwd f{n, ne, no, stride, occ, mask, s.cm.data(),
-              s.u0.data() + 8, s.u1.data() + 8, s.dec.data()};
+  const Fwd f{n, ne, no, stride, occ, mask, s.cm.data(), s.u0.data() + 8, s.u1.data() + 8, s.dec.data()};
   f.ue[0] = 0;
 #if defined(__GNUC__)
   if (acc_w <= 30)
@@ -222,14 +218,13 @@ void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp) {
   int first = -1;
   for (int x = 0; x < n && first < 0; ++x)
     if (match[x] >= 0) first = x;
-  if (first < 0) return;  // no match in the line: 0
+  if (first < 0) return;    // no match in the line: 0
   int fill = match[first];  // left of the first match: disp(first)
   int prev = -1;            // disparity of the match left of x, -1 before the first
   for (int x = 0; x < n; ++x) {
     if (match[x] >= 0) {
       if (prev >= 0)  // pixels since the previous match get min(disp(a), disp(b))
-        for (int k = x - 1; k >= 0 && match[k] < 0; --k)
-          disp[k] = make_disp(std::min(prev, match[x]), true);
+        for (int k = x - 1; k >= 0 && match[k] < 0; --k) disp[k] = make_disp(std::min(prev, match[x]), true);
       prev = match[x];
       disp[x] = make_disp(match[x], true);
     } else {
@@ -240,11 +235,9 @@ void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp) {
 
 DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw) {
   if (agg.d != hw.disp)
-    throw std::invalid_argument(
-        fmt::format("trellis_dp: cost volume has {} levels, DISP is {}", agg.d, hw.disp));
+    throw std::invalid_argument(fmt::format("trellis_dp: cost volume has {} levels, DISP is {}", agg.d, hw.disp));
   if (agg.w > hw.max_width || agg.w < 1)
-    throw std::invalid_argument(
-        fmt::format("trellis_dp: width {} outside 1..MAX_WIDTH={}", agg.w, hw.max_width));
+    throw std::invalid_argument(fmt::format("trellis_dp: width {} outside 1..MAX_WIDTH={}", agg.w, hw.max_width));
   DispImage out(agg.w, agg.h);
   DpScratch s;
   DpLine line;

@@ -14,27 +14,26 @@ int dp_acc_bits(const HwConfig& hw);
 
 // Everything the trellis of one line produces, for tests and tools.
 struct DpLine {
-  uint32_t end_cost = 0;          // U(2N, 0): cost of the optimal path
-  std::vector<int> path;          // level of the traced path at every site 0..2N
-  std::vector<int> match;         // disp(xl) of matched pixels, -1 when left-occluded
-  std::vector<DispPix> disp;      // after the left-occlusion fill (valid bit set)
+  uint32_t end_cost = 0;      // U(2N, 0): cost of the optimal path
+  std::vector<int> path;      // level of the traced path at every site 0..2N
+  std::vector<int> match;     // disp(xl) of matched pixels, -1 when left-occluded
+  std::vector<DispPix> disp;  // after the left-occlusion fill (valid bit set)
 };
 
 // Reusable work buffers of trellis_line, so a frame allocates once. Levels are kept
 // split by parity (even d = 2m, odd d = 2m + 1), so that every loop of the forward pass
 // runs over consecutive entries; S = ceil(DISP/2) rounded up to a multiple of 8.
 struct DpScratch {
-  std::vector<uint32_t> u0, u1;   // U of the even / odd levels at the current site
-  std::vector<uint32_t> dec;      // choice of occlusion node (i, d) at i * S + d / 2,
-                                  // (2N+1) * S entries
-  std::vector<uint16_t> cm;       // matched costs in site order, (N+1) * S pairs (dp.cpp)
+  std::vector<uint32_t> u0, u1;  // U of the even / odd levels at the current site
+  std::vector<uint32_t> dec;     // choice of occlusion node (i, d) at i * S + d / 2,
+                                 // (2N+1) * S entries
+  std::vector<uint16_t> cm;      // matched costs in site order, (N+1) * S pairs (dp.cpp)
 };
 
 // One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=
 // hw.max_width. Matched nodes with xl >= n use cost 0 (the hardware sees the next
 // line there; such nodes never reach the end node, see algorithm.md).
-void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s,
-                  DpLine& out);
+void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s, DpLine& out);
 
 // Left-occlusion fill of one line (match[x] = -1 for unmatched pixels), valid bit set.
 void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp);

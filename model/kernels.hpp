@@ -55,8 +55,7 @@ void census_row(const CensusPad& in, int y, CensusVec* out);
 // Hamming costs of one row: out[x * nd + d] = H >> shift with H = popcount(l[x] ^
 // rr[x - d]) as an 8-bit value, or cb >> shift when x < d (shift 0: hamming_cost; the
 // pipeline passes COST_SHIFT and gets C directly).
-void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift,
-              uint8_t* out);
+void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out);
 
 // Support-weight aggregation of row y (SW <= 7). c_rows[j + r] is row y + j of C = H >>
 // COST_SHIFT (w * nd bytes followed by kCostPad readable bytes), j = -r..r; rows outside
@@ -64,13 +63,11 @@ void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb
 // rectified image.
 struct AggRow {
   int w, h, nd, r;
-  uint32_t out_max;             // 2^CW - 1
-  int group;                    // neighbours whose C sum in one byte without wrapping
+  uint32_t out_max;               // 2^CW - 1
+  int group;                      // neighbours whose C sum in one byte without wrapping
   std::array<uint8_t, 256> code;  // weight code by |dI| (0: weight 0, c: weight 1 << (c-1))
-  AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& table,
-         const HwConfig& hw);
+  AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& table, const HwConfig& hw);
 };
-void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t* left, int y,
-             uint8_t* out);
+void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t* left, int y, uint8_t* out);
 
 }  // namespace sm::detail

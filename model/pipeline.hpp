@@ -16,12 +16,12 @@
 namespace sm {
 
 struct PipelineResult {
-  Image8 bl, br;      // after brightness control
-  Image8 rl, rr;      // after rectification
-  CostVolume raw;     // Hamming costs (kept when keep_volumes)
-  CostVolume agg;     // aggregated costs (kept when keep_volumes)
-  DispImage dp;       // trellis DP output
-  DispImage post;     // after the enabled post-processing filters
+  Image8 bl, br;                      // after brightness control
+  Image8 rl, rr;                      // after rectification
+  CostVolume raw;                     // Hamming costs (kept when keep_volumes)
+  CostVolume agg;                     // aggregated costs (kept when keep_volumes)
+  DispImage dp;                       // trellis DP output
+  DispImage post;                     // after the enabled post-processing filters
   std::vector<DispImage> post_steps;  // after each filter step (enabled or not)
   ObjectList objects;
   std::vector<std::pair<std::string, double>> stage_ms;  // wall time per stage
@@ -29,8 +29,8 @@ struct PipelineResult {
 
 // Runs one frame. left/right must be regs.width x regs.height; throws
 // std::invalid_argument otherwise. keep_volumes=false drops raw/agg to save memory.
-PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwConfig& hw,
-                            const Regs& regs, bool keep_volumes = true);
+PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwConfig& hw, const Regs& regs,
+                            bool keep_volumes = true);
 
 // Checks run-time registers against the compile-time parameters; throws
 // std::invalid_argument naming the field.

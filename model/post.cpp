@@ -51,8 +51,8 @@ constexpr int kMaxNet = 64;  // windows up to 8 x 8 take the vector path
 // equal keys). The network has n2 = the next power of two inputs; the extra ones are
 // 0xffff and sort behind every key (keys are at most 2^15). Window rows outside the
 // frame take the centre's key: the centre vector itself.
-SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, int rx, int rank,
-                    int n2, const std::pair<int, int>* net, size_t net_size, DispPix* out) {
+SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, int rx, int rank, int n2,
+                    const std::pair<int, int>* net, size_t net_size, DispPix* out) {
   VK v[kMaxNet];
   int x = x0;
   for (; x + kKeyLanes + rx <= w; x += kKeyLanes) {
@@ -133,18 +133,11 @@ DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int
   return out;
 }
 
-DispImage post_vmedian(const DispImage& in, const HwConfig& hw) {
-  return post_median(in, hw, 2, 0);
-}
-DispImage post_median3(const DispImage& in, const HwConfig& hw) {
-  return post_median(in, hw, 1, 1);
-}
-DispImage post_median53(const DispImage& in, const HwConfig& hw) {
-  return post_median(in, hw, 2, 1);
-}
+DispImage post_vmedian(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 2, 0); }
+DispImage post_median3(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 1, 1); }
+DispImage post_median53(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 2, 1); }
 
-DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,
-                       std::vector<DispImage>* steps) {
+DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps) {
   DispImage cur = in;
   if (steps) steps->clear();
   for (int n = 0; n < 3; ++n) {
@@ -200,11 +193,9 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
       if (near) {
         const bool uok =
             y > 0 && up_near[x] &&
-            static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(up_d[x]))) <=
-                regs.obj_tol;
+            static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(up_d[x]))) <= regs.obj_tol;
         const bool lok = x > 0 && l_near &&
-                         static_cast<unsigned>(
-                             std::abs(static_cast<int>(d) - static_cast<int>(l_d))) <= regs.obj_tol;
+                         static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(l_d))) <= regs.obj_tol;
         const int ur = parent[up_lab[x]];
         const int lr = l_lab;
         if (uok && lok && ur != lr) {

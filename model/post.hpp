@@ -39,8 +39,8 @@ struct Object {
   uint8_t mean_disp = 0;                    // floor(sum_disp / count)
   uint8_t max_disp = 0;                     // nearest disparity
   bool operator==(const Object& o) const {
-    return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1 && count == o.count &&
-           sum_disp == o.sum_disp && mean_disp == o.mean_disp && max_disp == o.max_disp;
+    return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1 && count == o.count && sum_disp == o.sum_disp &&
+           mean_disp == o.mean_disp && max_disp == o.max_disp;
   }
 };
 

@@ -28,17 +28,15 @@ void check_grid(const RectGrid& g, int width, int height) {
   const size_t n = static_cast<size_t>(gw) * gh;
   if (g.gw != gw || g.gh != gh || g.sx.size() != n || g.sy.size() != n)
     throw std::invalid_argument(
-        fmt::format("rectify: grid {}x{} ({} / {} points) does not fit a {}x{} image (needs {}x{})",
-                    g.gw, g.gh, g.sx.size(), g.sy.size(), width, height, gw, gh));
+        fmt::format("rectify: grid {}x{} ({} / {} points) does not fit a {}x{} image (needs {}x{})", g.gw, g.gh,
+                    g.sx.size(), g.sy.size(), width, height, gw, gh));
 }
 
 // One coordinate of section 2: V0/V1 down the grid columns, then across; Q.13 -> Q.4.
 int interp_q4(const std::vector<int16_t>& v, int gw, int x, int y) {
   const int gx = x >> kGridShift, fx = x & (kGridStep - 1);
   const int gy = y >> kGridShift, fy = y & (kGridStep - 1);
-  auto p = [&](int cx, int cy) {
-    return static_cast<int32_t>(v[static_cast<size_t>(cy) * gw + cx]);
-  };
+  auto p = [&](int cx, int cy) { return static_cast<int32_t>(v[static_cast<size_t>(cy) * gw + cx]); };
   const int32_t v0 = p(gx, gy) * (kGridStep - fy) + p(gx, gy + 1) * fy;          // Q.9
   const int32_t v1 = p(gx + 1, gy) * (kGridStep - fy) + p(gx + 1, gy + 1) * fy;  // Q.9
   const int32_t s = v0 * (kGridStep - fx) + v1 * fx;                             // Q.13
@@ -75,8 +73,8 @@ Image8 rectify(const Image8& in, const RectGrid& grid, bool enable, const HwConf
   return out;
 }
 
-RectGrid grid_from_maps(const std::vector<float>& mapx, const std::vector<float>& mapy, int map_w,
-                        int map_h, int width, int height) {
+RectGrid grid_from_maps(const std::vector<float>& mapx, const std::vector<float>& mapy, int map_w, int map_h, int width,
+                        int height) {
   RectGrid g;
   g.gw = RectGrid::points_w(width);
   g.gh = RectGrid::points_h(height);

@@ -28,8 +28,8 @@ void rect_source_q4(const RectGrid& g, int x, int y, int& sx, int& sy);
 // to Q.5 with saturation to int16. The map must cover the grid extent
 // ((gw-1)*16+1 x (gh-1)*16+1, beyond width x height when it is not a multiple of 16);
 // throws std::invalid_argument otherwise.
-RectGrid grid_from_maps(const std::vector<float>& mapx, const std::vector<float>& mapy, int map_w,
-                        int map_h, int width, int height);
+RectGrid grid_from_maps(const std::vector<float>& mapx, const std::vector<float>& mapy, int map_w, int map_h, int width,
+                        int height);
 
 // The RECT_RADIUS a grid needs: the largest |r - y| over every bilinear tap row r with a
 // non-zero weight that lies inside the image (so the second row of a tap pair counts

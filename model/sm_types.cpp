@@ -17,13 +17,11 @@ int HwConfig::cost_bits() const { return clog2((census_bits() >> cost_shift) + 1
 void HwConfig::validate() const {
   auto bad = [](const std::string& m) { throw std::invalid_argument(m); };
   if (max_width < 16 || max_width > 4095) bad(fmt::format("max_width {} outside 16..4095", max_width));
-  if (max_height < 16 || max_height > 4095)
-    bad(fmt::format("max_height {} outside 16..4095", max_height));
+  if (max_height < 16 || max_height > 4095) bad(fmt::format("max_height {} outside 16..4095", max_height));
   if (disp < 4 || disp > 254 || disp % 2) bad(fmt::format("disp {} must be even, 4..254", disp));
   if (max_width < min_width())
     bad(fmt::format("max_width {} below DISP/2 + 3 = {} (disp {})", max_width, min_width(), disp));
-  if (census < 3 || census > 15 || census % 2 == 0)
-    bad(fmt::format("census {} must be odd, 3..15", census));
+  if (census < 3 || census > 15 || census % 2 == 0) bad(fmt::format("census {} must be odd, 3..15", census));
   if (sw < 3 || sw > 7 || sw % 2 == 0) bad(fmt::format("sw {} must be odd, 3..7", sw));
   if (rect_radius < 1 || rect_radius > 31) bad(fmt::format("rect_radius {} outside 1..31", rect_radius));
   if (cost_shift < 0 || cost_shift > 4) bad(fmt::format("cost_shift {} outside 0..4", cost_shift));

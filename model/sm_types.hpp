@@ -41,8 +41,7 @@ struct Volume {
   int d = 0;
   std::vector<T> v;
   Volume() = default;
-  Volume(int w_, int h_, int d_, T fill = T{})
-      : w(w_), h(h_), d(d_), v(static_cast<size_t>(w_) * h_ * d_, fill) {}
+  Volume(int w_, int h_, int d_, T fill = T{}) : w(w_), h(h_), d(d_), v(static_cast<size_t>(w_) * h_ * d_, fill) {}
   T& at(int x, int y, int k) { return v[(static_cast<size_t>(y) * w + x) * d + k]; }
   const T& at(int x, int y, int k) const { return v[(static_cast<size_t>(y) * w + x) * d + k]; }
   T* pix(int x, int y) { return &v[(static_cast<size_t>(y) * w + x) * d]; }
@@ -65,16 +64,16 @@ inline bool disp_valid(DispPix p) { return (p & kDispValid) != 0; }
 
 // Compile-time parameters of the RTL (Verilog parameters of sm_top).
 struct HwConfig {
-  int max_width = 320;    // MAX_WIDTH: widest active line
-  int max_height = 240;   // MAX_HEIGHT: tallest active frame
-  int disp = 128;         // DISP: disparity levels 0..DISP-1
-  int census = 15;        // CENSUS: census window side (odd, 3..15)
-  int sw = 5;             // SW: support-weight window side (odd, 3..7)
-  int rect_radius = 18;   // RECT_RADIUS: rows above/below the output row the
-                          // rectifier can read (line buffer holds 2R+2 rows)
-  int cost_shift = 2;     // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
-  int max_objects = 8;    // MAX_OBJECTS (K): objects reported per frame
-  int label_slots = 64;   // LABEL_SLOTS: equivalence-table entries of the labeller
+  int max_width = 320;   // MAX_WIDTH: widest active line
+  int max_height = 240;  // MAX_HEIGHT: tallest active frame
+  int disp = 128;        // DISP: disparity levels 0..DISP-1
+  int census = 15;       // CENSUS: census window side (odd, 3..15)
+  int sw = 5;            // SW: support-weight window side (odd, 3..7)
+  int rect_radius = 18;  // RECT_RADIUS: rows above/below the output row the
+                         // rectifier can read (line buffer holds 2R+2 rows)
+  int cost_shift = 2;    // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
+  int max_objects = 8;   // MAX_OBJECTS (K): objects reported per frame
+  int label_slots = 64;  // LABEL_SLOTS: equivalence-table entries of the labeller
   int census_bits() const { return census * census - 1; }
   // Narrowest active line: 16, or DISP/2 + 3 when larger -- the DP reads a line's
   // decisions back DISP/2 + 2 beats after its forward pass wrote them (sm_dp.v), so a
@@ -85,13 +84,13 @@ struct HwConfig {
 };
 
 // Rectification map as a coarse grid of source coordinates (docs/algorithm.md, stage 2).
-constexpr int kGridShift = 4;        // grid spacing 16 output pixels
+constexpr int kGridShift = 4;  // grid spacing 16 output pixels
 constexpr int kGridStep = 1 << kGridShift;
-constexpr int kMapFrac = 5;          // grid coordinates are Q.5 (1/32 px)
-constexpr int kInterpFrac = 4;       // bilinear weights are 1/16
+constexpr int kMapFrac = 5;     // grid coordinates are Q.5 (1/32 px)
+constexpr int kInterpFrac = 4;  // bilinear weights are 1/16
 struct RectGrid {
-  int gw = 0;  // grid points per row: ceil(W/16) + 1
-  int gh = 0;  // grid rows: ceil(H/16) + 1
+  int gw = 0;               // grid points per row: ceil(W/16) + 1
+  int gh = 0;               // grid rows: ceil(H/16) + 1
   std::vector<int16_t> sx;  // source x, Q.5, gw*gh entries, row-major
   std::vector<int16_t> sy;  // source y, Q.5
   static RectGrid identity(int width, int height);
@@ -101,21 +100,21 @@ struct RectGrid {
 
 // Run-time registers (AXI4-Lite), with the paper's defaults.
 struct Regs {
-  int width = 320;           // active width, HwConfig::min_width()..MAX_WIDTH
-  int height = 240;          // active height, 16..MAX_HEIGHT
-  uint16_t gain_l = 256;     // brightness gain, Q2.8 (10 bits)
+  int width = 320;        // active width, HwConfig::min_width()..MAX_WIDTH
+  int height = 240;       // active height, 16..MAX_HEIGHT
+  uint16_t gain_l = 256;  // brightness gain, Q2.8 (10 bits)
   uint16_t gain_r = 256;
-  int16_t offset_l = 0;      // brightness offset, -256..255 (9 bits signed)
+  int16_t offset_l = 0;  // brightness offset, -256..255 (9 bits signed)
   int16_t offset_r = 0;
-  bool rect_enable = true;   // false: the rectifier passes pixels through
-  RectGrid grid_l;           // empty = identity for the active size
+  bool rect_enable = true;  // false: the rectifier passes pixels through
+  RectGrid grid_l;          // empty = identity for the active size
   RectGrid grid_r;
-  uint8_t occ = 12;          // DP occlusion penalty (8 bits); 12 by measurement (docs/evaluation.md)
+  uint8_t occ = 12;                    // DP occlusion penalty (8 bits); 12 by measurement (docs/evaluation.md)
   std::array<uint8_t, 32> sw_table{};  // 2-bit weight codes by |dI| >> 3 (set by defaults())
-  uint8_t filter_enable = 7; // bit n enables post-processing filter n+1
-  uint8_t obj_near = 32;     // objects: disparity >= obj_near is "near"
-  uint8_t obj_tol = 2;       // objects: neighbours merge when |d1 - d2| <= obj_tol
-  uint16_t obj_min_pixels = 64;  // objects smaller than this are not reported
+  uint8_t filter_enable = 7;           // bit n enables post-processing filter n+1
+  uint8_t obj_near = 32;               // objects: disparity >= obj_near is "near"
+  uint8_t obj_tol = 2;                 // objects: neighbours merge when |d1 - d2| <= obj_tol
+  uint16_t obj_min_pixels = 64;        // objects smaller than this are not reported
   static Regs defaults(const HwConfig& hw);
 };
 

@@ -17,9 +17,7 @@ template <class Top>
 class AxilMaster {
  public:
   // step() must advance the design by one clock (it may drive other ports too).
-  AxilMaster(Top& top, std::function<void()> step) : top_(top), step_(std::move(step)) {
-    idle();
-  }
+  AxilMaster(Top& top, std::function<void()> step) : top_(top), step_(std::move(step)) { idle(); }
   void idle() {
     top_.s_axil_awvalid = 0;
     top_.s_axil_wvalid = 0;

@@ -16,8 +16,8 @@ namespace sm {
 // The calibration's grids replace the identity grids; its size must be the active one.
 inline void apply_calib(const CalibFile& c, Regs& regs) {
   if (c.width != regs.width || c.height != regs.height)
-    throw std::runtime_error(fmt::format("calibration is for {}x{}, the active size is {}x{}", c.width,
-                                         c.height, regs.width, regs.height));
+    throw std::runtime_error(
+        fmt::format("calibration is for {}x{}, the active size is {}x{}", c.width, c.height, regs.width, regs.height));
   regs.grid_l = c.left;
   regs.grid_r = c.right;
   regs.rect_enable = true;

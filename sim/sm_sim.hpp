@@ -22,12 +22,12 @@
 namespace sm {
 
 struct CameraTiming {
-  bool continuous = false;  // no blanking at all
-  int hblank = 80;          // idle cycles after each line
-  int vblank_lines = 22;    // idle lines (of width + hblank cycles) after each frame
+  bool continuous = false;    // no blanking at all
+  int hblank = 80;            // idle cycles after each line
+  int vblank_lines = 22;      // idle lines (of width + hblank cycles) after each frame
   double pixel_clock_hz = 0;  // 0: derived as (W+hblank)*(H+vblank)*fps
   double fps = 30.0;
-  int idle_percent = 0;     // random extra idle cycles on the input (tests)
+  int idle_percent = 0;          // random extra idle cycles on the input (tests)
   int backpressure_percent = 0;  // random tready=0 on the outputs (tests)
   uint32_t seed = 1;
   double clock_hz(int w, int h) const {
@@ -42,27 +42,27 @@ struct ObjWords {
 };
 
 struct FrameStats {
-  uint64_t sof_in_cycle = 0;      // cycle the frame's first pixel entered
-  uint64_t last_in_cycle = 0;     // cycle its last pixel entered
-  uint64_t first_out_cycle = 0;   // cycle its first disparity left
-  uint64_t last_out_cycle = 0;    // cycle its last disparity left
+  uint64_t sof_in_cycle = 0;     // cycle the frame's first pixel entered
+  uint64_t last_in_cycle = 0;    // cycle its last pixel entered
+  uint64_t first_out_cycle = 0;  // cycle its first disparity left
+  uint64_t last_out_cycle = 0;   // cycle its last disparity left
 };
 
 struct SimResult {
-  std::vector<DispImage> frames;       // disparity frames out of m_axis
+  std::vector<DispImage> frames;  // disparity frames out of m_axis
   std::vector<ObjWords> object_packets;
   std::vector<FrameStats> stats;
   uint64_t cycles = 0;
-  uint64_t input_stall_cycles = 0;     // camera pixel waiting with tready low
-  std::string framing_error;           // empty when every frame was well-formed
+  uint64_t input_stall_cycles = 0;  // camera pixel waiting with tready low
+  std::string framing_error;        // empty when every frame was well-formed
 };
 
 struct VcdWindow {
-  std::string path;       // empty: no dump
-  int frame = 0;          // start at this input frame ...
-  int line = 0;           // ... and this input line
-  uint64_t cycles = 0;    // dump this many cycles (0: use lines)
-  int lines = 4;          // or this many input line periods
+  std::string path;     // empty: no dump
+  int frame = 0;        // start at this input frame ...
+  int line = 0;         // ... and this input line
+  uint64_t cycles = 0;  // dump this many cycles (0: use lines)
+  int lines = 4;        // or this many input line periods
 };
 
 template <class Top>
@@ -87,9 +87,8 @@ class SimEngine {
   // Progress callback: called with (frames done, frames total) after each output frame.
   std::function<void(size_t, size_t)> on_frame;
 
-  SimResult run(const std::vector<std::pair<Image8, Image8>>& frames, int width, int height,
-                const CameraTiming& timing, const VcdWindow& vcd = {},
-                uint64_t max_cycles = 0) {
+  SimResult run(const std::vector<std::pair<Image8, Image8>>& frames, int width, int height, const CameraTiming& timing,
+                const VcdWindow& vcd = {}, uint64_t max_cycles = 0) {
     SimResult res;
     res.stats.resize(frames.size());
     std::mt19937 rng(timing.seed);
@@ -124,13 +123,12 @@ class SimEngine {
 
     while (oframe < frames.size()) {
       if (tb_.cycles() - start > max_cycles)
-        throw std::runtime_error(fmt::format("simulation made no progress: {} of {} frames out after {} cycles",
-                                             oframe, frames.size(), tb_.cycles() - start));
+        throw std::runtime_error(fmt::format("simulation made no progress: {} of {} frames out after {} cycles", oframe,
+                                             frames.size(), tb_.cycles() - start));
       // VCD window: opens when the camera reaches the chosen frame/line.
-      if (!vcd.path.empty() && !vcd_on && vcd_end == 0 && f == static_cast<size_t>(vcd.frame) &&
-          y == vcd.line && x == 0) {
-        if (!tb_.open_trace(vcd.path))
-          throw std::runtime_error("this simulator was built without tracing (--trace)");
+      if (!vcd.path.empty() && !vcd_on && vcd_end == 0 && f == static_cast<size_t>(vcd.frame) && y == vcd.line &&
+          x == 0) {
+        if (!tb_.open_trace(vcd.path)) throw std::runtime_error("this simulator was built without tracing (--trace)");
         vcd_on = true;
         vcd_end = tb_.cycles() + (vcd.cycles ? vcd.cycles : vcd.lines * line_period);
       }
@@ -143,8 +141,7 @@ class SimEngine {
       bool present = have;
       if (present && timing.idle_percent > 0 && x == 0 && static_cast<int>(rng() % 100) < timing.idle_percent)
         present = false;  // a late line start: idle cycles between pixels are in the tests' timing
-      if (present && timing.idle_percent > 0 && static_cast<int>(rng() % 100) < timing.idle_percent)
-        present = false;
+      if (present && timing.idle_percent > 0 && static_cast<int>(rng() % 100) < timing.idle_percent) present = false;
       t.s_axis_tvalid = present;
       if (present) {
         const auto& fr = frames[f];
@@ -152,8 +149,10 @@ class SimEngine {
         t.s_axis_tuser = (x == 0 && y == 0);
         t.s_axis_tlast = (x == width - 1);
       }
-      t.m_axis_tready = !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
-      t.m_axis_obj_tready = !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
+      t.m_axis_tready =
+          !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
+      t.m_axis_obj_tready =
+          !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
       t.eval();
       const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
       if (t.s_axis_tvalid && !t.s_axis_tready) ++res.input_stall_cycles;

@@ -30,8 +30,8 @@ namespace {
 
 struct Input {
   std::vector<std::pair<sm::Image8, sm::Image8>> frames;
-  cv::Mat gt;             // CV_32F disparity, 0 = unknown (empty when none)
-  cv::Mat mask;           // 8-bit evaluation mask (empty: all known gt)
+  cv::Mat gt;    // CV_32F disparity, 0 = unknown (empty when none)
+  cv::Mat mask;  // 8-bit evaluation mask (empty: all known gt)
   std::string name;
 };
 
@@ -52,8 +52,7 @@ sm::Image8 to_size(const cv::Mat& grey, int w, int h, const std::string& what, b
 int main(int argc, char** argv) {
   CLI::App app{"Cycle-accurate simulation of the census stereo IP (Verilator)"};
   const sm::HwConfig hw = sm::verilated_config();
-  std::string left, right, seq_dir, video, scene_dir = SM_DEFAULT_SCENE, calib, out_dir = "out",
-                                            synth_json, vcd_path;
+  std::string left, right, seq_dir, video, scene_dir = SM_DEFAULT_SCENE, calib, out_dir = "out", synth_json, vcd_path;
   int frames_n = 2, width = hw.max_width, height = hw.max_height;
   int hblank = 80, vblank = 22;
   bool continuous = false, quiet = false, no_check = false;
@@ -86,7 +85,8 @@ int main(int argc, char** argv) {
   app.add_option("--vcd-lines", vcd_lines, "VCD window: line periods to dump")->capture_default_str();
   app.add_option("--vcd-cycles", vcd_cycles, "VCD window: cycles to dump (overrides lines)");
   app.add_option("--out", out_dir, "output folder (disparity, panel, report.json)")->capture_default_str();
-  app.add_option("--synth-json", synth_json, "synthesis report JSON (default: build/synth, else docs/synth, for this configuration)");
+  app.add_option("--synth-json", synth_json,
+                 "synthesis report JSON (default: build/synth, else docs/synth, for this configuration)");
   app.add_flag("--no-check", no_check, "skip the reference-model comparison");
   app.add_flag("-q,--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
       std::sort(ls.begin(), ls.end());
       std::sort(rs.begin(), rs.end());
       if (ls.empty() || ls.size() != rs.size())
-        fail(fmt::format("{}: {} left* and {} right* images (need equal, non-zero counts)", seq_dir, ls.size(), rs.size()));
+        fail(fmt::format("{}: {} left* and {} right* images (need equal, non-zero counts)", seq_dir, ls.size(),
+                         rs.size()));
       for (size_t i = 0; i < ls.size() && static_cast<int>(i) < frames_n; ++i)
         in.frames.emplace_back(to_size(read_grey(ls[i].string()), width, height, ls[i].string(), &resized),
                                to_size(read_grey(rs[i].string()), width, height, rs[i].string(), &resized));
@@ -147,8 +148,7 @@ int main(int argc, char** argv) {
       }
       in.name = scene_dir;
     }
-    if (resized && !quiet)
-      fmt::print(stderr, "note: input resized to the active size {}x{}\n", width, height);
+    if (resized && !quiet) fmt::print(stderr, "note: input resized to the active size {}x{}\n", width, height);
 
     // ---- registers ----
     sm::Regs regs = sm::Regs::defaults(hw);
@@ -173,7 +173,8 @@ int main(int argc, char** argv) {
     timing.pixel_clock_hz = pixel_clock;
     sm::VcdWindow vw;
     if (!vcd_path.empty()) {
-      fs::create_directories(fs::path(vcd_path).parent_path().empty() ? fs::path(".") : fs::path(vcd_path).parent_path());
+      fs::create_directories(fs::path(vcd_path).parent_path().empty() ? fs::path(".")
+                                                                      : fs::path(vcd_path).parent_path());
       vw.path = vcd_path;
       vw.frame = vcd_frame;
       vw.line = vcd_line;
@@ -229,16 +230,22 @@ int main(int argc, char** argv) {
     const uint64_t ip_cycles_per_frame = std::max<uint64_t>(pixels, continuous ? period : pixels);
     const double min_clock_30 = 30.0 * static_cast<double>(ip_cycles_per_frame);
     const double camera_clock = timing.clock_hz(width, height);
-    const uint64_t camera_period = continuous ? pixels
-        : static_cast<uint64_t>(width + hblank) * (height + vblank);
+    const uint64_t camera_period = continuous ? pixels : static_cast<uint64_t>(width + hblank) * (height + vblank);
     const bool fps_ok = res.input_stall_cycles == 0 && (period == 0 || period <= camera_period);
 
     rep["input"] = in.name;
-    rep["config"] = {{"max_width", hw.max_width}, {"max_height", hw.max_height}, {"disp", hw.disp},
-                     {"census", hw.census}, {"sw", hw.sw}, {"rect_radius", hw.rect_radius},
-                     {"width", width}, {"height", height}};
-    rep["timing"] = {{"continuous", continuous}, {"hblank", continuous ? 0 : hblank},
-                     {"vblank_lines", continuous ? 0 : vblank}, {"camera_pixel_clock_hz", camera_clock}};
+    rep["config"] = {{"max_width", hw.max_width},
+                     {"max_height", hw.max_height},
+                     {"disp", hw.disp},
+                     {"census", hw.census},
+                     {"sw", hw.sw},
+                     {"rect_radius", hw.rect_radius},
+                     {"width", width},
+                     {"height", height}};
+    rep["timing"] = {{"continuous", continuous},
+                     {"hblank", continuous ? 0 : hblank},
+                     {"vblank_lines", continuous ? 0 : vblank},
+                     {"camera_pixel_clock_hz", camera_clock}};
     rep["frames"] = in.frames.size();
     rep["cycles_per_frame_sof_to_last_pixel"] = frame_cycles;
     rep["steady_state_frame_period_cycles"] = period;
@@ -246,7 +253,8 @@ int main(int argc, char** argv) {
     rep["latency_lines"] = static_cast<double>(latency) / line_period;
     rep["input_stall_cycles"] = res.input_stall_cycles;
     rep["min_clock_hz_for_30fps"] = min_clock_30;
-    rep["fps_at_clock"] = {{"clock_mhz", clock_mhz}, {"fps", clock_mhz * 1e6 / static_cast<double>(ip_cycles_per_frame)}};
+    rep["fps_at_clock"] = {{"clock_mhz", clock_mhz},
+                           {"fps", clock_mhz * 1e6 / static_cast<double>(ip_cycles_per_frame)}};
     rep["meets_30fps_at_camera_clock"] = fps_ok;
     rep["framing_ok"] = res.framing_error.empty();
     if (!res.framing_error.empty()) rep["framing_error"] = res.framing_error;
@@ -307,10 +315,10 @@ int main(int argc, char** argv) {
     sm::tools::write_text_atomic(out_dir + "/report.json", rep.dump(2) + "\n");
 
     // ---- report ----
-    fmt::print("stereo_sim: {} frame(s) of {}x{}, DISP {}, census {}x{}, SW {}x{}\n", in.frames.size(), width,
-               height, hw.disp, hw.census, hw.census, hw.sw, hw.sw);
-    fmt::print("  cycles per frame (sof in -> last pixel out): {}  (W*H = {}, + {} latency)\n", frame_cycles,
-               pixels, frame_cycles - pixels);
+    fmt::print("stereo_sim: {} frame(s) of {}x{}, DISP {}, census {}x{}, SW {}x{}\n", in.frames.size(), width, height,
+               hw.disp, hw.census, hw.census, hw.sw, hw.sw);
+    fmt::print("  cycles per frame (sof in -> last pixel out): {}  (W*H = {}, + {} latency)\n", frame_cycles, pixels,
+               frame_cycles - pixels);
     if (period) fmt::print("  steady-state frame period: {} cycles\n", period);
     fmt::print("  latency: {} cycles = {:.2f} lines\n", latency, static_cast<double>(latency) / line_period);
     fmt::print("  input stalls: {} cycles\n", res.input_stall_cycles);
@@ -321,13 +329,13 @@ int main(int argc, char** argv) {
     if (!no_check)
       fmt::print("  bit-exact vs model: {}{}\n", mismatches == 0 ? "yes" : "NO, ",
                  mismatches == 0 ? "" : fmt::format("{} mismatches, first: {}", mismatches, first_mismatch));
-    if (rep.contains("bad1_percent")) fmt::print("  bad-1.0 vs ground truth: {:.2f} %\n", rep["bad1_percent"].get<double>());
+    if (rep.contains("bad1_percent"))
+      fmt::print("  bad-1.0 vs ground truth: {:.2f} %\n", rep["bad1_percent"].get<double>());
     if (rep.contains("synthesis")) {
       const json& t = rep["synthesis"];
       fmt::print("  synthesis: {} LUTs ({} LUT-RAM, {} SRL), {} FFs, {} RAMB36, {} DSP, {} LUT levels  [{}]\n",
-                 t.value("luts", 0), t.value("lutram", 0), t.value("srl", 0), t.value("ffs", 0),
-                 t.value("bram36", 0.0), t.value("dsp", 0), t.value("lut_levels", 0),
-                 rep["synthesis_report"].get<std::string>());
+                 t.value("luts", 0), t.value("lutram", 0), t.value("srl", 0), t.value("ffs", 0), t.value("bram36", 0.0),
+                 t.value("dsp", 0), t.value("lut_levels", 0), rep["synthesis_report"].get<std::string>());
     }
     fmt::print("  simulation: {:.2f} s wall, {:.2f} frames/s, {:.0f} cycles/s\n", wall, in.frames.size() / wall,
                res.cycles / wall);

@@ -57,7 +57,7 @@ struct Dut {
   std::mt19937 rng{12345};
   uint64_t cycle = 0;
   int frame_starts = 0;
-  uint8_t err_drive = 0;  // err_pulse for the next clock
+  uint8_t err_drive = 0;                                  // err_pulse for the next clock
   std::deque<std::pair<uint32_t, uint32_t>> grid_writes;  // (waddr, wdata)
   int soft_reset_pulses = 0;
 
@@ -191,8 +191,8 @@ struct Model {
     return v;
   }
   static int flag_bit(const std::string& cls) {
-    const char* names[8] = {"SHORT_LINE",  "LONG_LINE", "MISSING_SOF",  "EXTRA_SOF",
-                            "FEW_LINES",   "MANY_LINES", "OUT_OVERFLOW", "CLAMPED"};
+    const char* names[8] = {"SHORT_LINE", "LONG_LINE",  "MISSING_SOF",  "EXTRA_SOF",
+                            "FEW_LINES",  "MANY_LINES", "OUT_OVERFLOW", "CLAMPED"};
     for (int i = 0; i < 8; ++i)
       if (cls == names[i]) return i;
     throw std::runtime_error("unknown error class " + cls);
@@ -239,7 +239,9 @@ struct Model {
 
 // Shadow ports by field name; every shadow field of the map must be listed here.
 int64_t shadow_port(Top& t, const std::string& n) {
-  auto sx = [](uint32_t v, int bits) { return static_cast<int64_t>(static_cast<int32_t>(v << (32 - bits)) >> (32 - bits)); };
+  auto sx = [](uint32_t v, int bits) {
+    return static_cast<int64_t>(static_cast<int32_t>(v << (32 - bits)) >> (32 - bits));
+  };
   if (n == "CONTROL.GRID_BANK") return t.cfg_grid_bank;
   if (n == "WIDTH.VALUE") return t.cfg_width;
   if (n == "HEIGHT.VALUE") return t.cfg_height;
@@ -313,9 +315,8 @@ int main() {
     const sm::Regs def = sm::Regs::defaults(hw);
     check(m.fval.at("WIDTH.VALUE") == def.width && m.fval.at("HEIGHT.VALUE") == def.height &&
               m.fval.at("GAIN_L.VALUE") == def.gain_l && m.fval.at("OCC.VALUE") == def.occ &&
-              m.fval.at("FILTER_ENABLE.VALUE") == def.filter_enable &&
-              m.fval.at("OBJ_NEAR.VALUE") == def.obj_near && m.fval.at("OBJ_TOL.VALUE") == def.obj_tol &&
-              m.fval.at("OBJ_MIN_PIXELS.VALUE") == def.obj_min_pixels &&
+              m.fval.at("FILTER_ENABLE.VALUE") == def.filter_enable && m.fval.at("OBJ_NEAR.VALUE") == def.obj_near &&
+              m.fval.at("OBJ_TOL.VALUE") == def.obj_tol && m.fval.at("OBJ_MIN_PIXELS.VALUE") == def.obj_min_pixels &&
               m.fval.at("RECT_ENABLE.VALUE") == def.rect_enable,
           "reset values differ from sm::Regs::defaults");
     uint64_t sw = 0;
@@ -330,7 +331,7 @@ int main() {
     for (int b = 0; b < 32; ++b) vals.emplace_back(1u << b, 0xf);
     for (int i = 0; i < 24; ++i) {
       uint32_t v = rng();
-      if (i % 3 == 0) v &= 0x1ff;                 // in range of most registers
+      if (i % 3 == 0) v &= 0x1ff;                                                     // in range of most registers
       if (i % 3 == 1) v = static_cast<uint32_t>(-static_cast<int32_t>(rng() % 400));  // negatives
       vals.emplace_back(v, static_cast<uint8_t>(i < 16 ? 0xf : rng() % 16));
     }
@@ -339,8 +340,7 @@ int main() {
       bool soft = false;
       const bool ok = m.write(r, v, strb, d.frame_starts, &soft);
       const unsigned resp = d.write(r.addr, v, strb);
-      check(resp == (ok ? 0u : 2u),
-            fmt::format("write {} = 0x{:x} strb {:x}: resp {}", r.name, v, strb, resp));
+      check(resp == (ok ? 0u : 2u), fmt::format("write {} = 0x{:x} strb {:x}: resp {}", r.name, v, strb, resp));
       unsigned rresp = 9;
       const uint32_t got = d.read(r.addr, &rresp);
       const uint32_t want = m.read_value(r, d.frame_starts);
@@ -348,8 +348,8 @@ int main() {
                                                    r.name, v, strb, want, got));
       // CLAMPED flag as the model says (then clear it with W1C)
       const uint32_t fl = d.read(rm::kERR_FLAGS, &rresp);
-      check(fl == m.flags, fmt::format("ERR_FLAGS after {} = 0x{:x}: expected 0x{:x} got 0x{:x}", r.name, v,
-                                       m.flags, fl));
+      check(fl == m.flags,
+            fmt::format("ERR_FLAGS after {} = 0x{:x}: expected 0x{:x} got 0x{:x}", r.name, v, m.flags, fl));
       if (m.flags) {
         bool s = false;
         m.write(reg_at(rm::kERR_FLAGS), 0xff, 0xf, d.frame_starts, &s);
@@ -418,7 +418,11 @@ int main() {
   // rectifier's grid address {gy, gx} with a power-of-two row (model/calib_file.hpp).
   const int gw_pts = sm::RectGrid::points_w(hw.max_width), gh_pts = sm::RectGrid::points_h(hw.max_height);
   const int gwmax = sm::grid_gwmax(hw.max_width), ghmax = sm::grid_ghmax(hw.max_height);
-  const int pb = [&] { int b = 0; while ((1 << b) < gwmax * ghmax) ++b; return b; }();
+  const int pb = [&] {
+    int b = 0;
+    while ((1 << b) < gwmax * ghmax) ++b;
+    return b;
+  }();
   auto point_of = [&](int gx, int gy) { return gy * gwmax + gx; };
   for (int i = 0; i < 200; ++i) {
     const int cam = static_cast<int>(rng() % 2), bank = static_cast<int>(rng() % 2);
@@ -428,12 +432,11 @@ int main() {
     const uint32_t data = rng();
     d.grid_writes.clear();
     check(d.write(rm::grid_addr(cam, bank, point), data) == 0, "grid write resp");
-    const uint32_t want_addr = (static_cast<uint32_t>(cam) << (pb + 1)) | (static_cast<uint32_t>(bank) << pb) |
-                               static_cast<uint32_t>(point);
+    const uint32_t want_addr =
+        (static_cast<uint32_t>(cam) << (pb + 1)) | (static_cast<uint32_t>(bank) << pb) | static_cast<uint32_t>(point);
     check(d.grid_writes.size() == 1 && d.grid_writes[0].first == want_addr && d.grid_writes[0].second == data,
-          fmt::format("grid write cam {} bank {} point {}: forwarded {} writes, addr 0x{:x} (want 0x{:x})", cam,
-                      bank, point, d.grid_writes.size(),
-                      d.grid_writes.empty() ? 0 : d.grid_writes[0].first, want_addr));
+          fmt::format("grid write cam {} bank {} point {}: forwarded {} writes, addr 0x{:x} (want 0x{:x})", cam, bank,
+                      point, d.grid_writes.size(), d.grid_writes.empty() ? 0 : d.grid_writes[0].first, want_addr));
   }
   for (int i = 0; i < 20; ++i) {
     // outside the grid: a column past the last point, a row past the last, or above PB bits
@@ -445,7 +448,8 @@ int main() {
     else
       point = (1 << pb) + static_cast<int>(rng() % ((1 << rm::kGridPointBits) - (1 << pb)));
     expect_err(rm::grid_addr(static_cast<int>(rng() % 2), static_cast<int>(rng() % 2), point), true, true);
-    const uint32_t good = rm::grid_addr(0, 1, point_of(static_cast<int>(rng() % gw_pts), static_cast<int>(rng() % gh_pts)));
+    const uint32_t good =
+        rm::grid_addr(0, 1, point_of(static_cast<int>(rng() % gw_pts), static_cast<int>(rng() % gh_pts)));
     expect_err(good, true, false);  // write-only window
     d.grid_writes.clear();
     check(d.write(good, 5, 0x7) == 2 && d.grid_writes.empty(), "partial grid write accepted");

@@ -33,8 +33,8 @@ int main() {
   // random.
   std::vector<Params> prm = {{256, 256, 0, 0}, {1023, 700, 255, 100}, {100, 256, -256, -100}};
   while (prm.size() < heights.size())
-    prm.push_back({static_cast<uint16_t>(gain(rng)), static_cast<uint16_t>(gain(rng)),
-                   static_cast<int16_t>(off(rng)), static_cast<int16_t>(off(rng))});
+    prm.push_back({static_cast<uint16_t>(gain(rng)), static_cast<uint16_t>(gain(rng)), static_cast<int16_t>(off(rng)),
+                   static_cast<int16_t>(off(rng))});
 
   std::vector<sm::Image8> in_l, in_r, want_l, want_r;
   for (size_t f = 0; f < heights.size(); ++f) {
@@ -103,8 +103,8 @@ int main() {
       ++failed;
       if (first) {
         first = false;
-        std::printf("first mismatch: frame %d x %d y %d expected %d/%d got %d/%d\n", o.frame, o.x,
-                    o.y, el, er, top.m_left, top.m_right);
+        std::printf("first mismatch: frame %d x %d y %d expected %d/%d got %d/%d\n", o.frame, o.x, o.y, el, er,
+                    top.m_left, top.m_right);
       }
     }
   }

@@ -31,16 +31,13 @@ sm::CensusVec port_vec(const T& sig, int bits) {
   if constexpr (std::is_integral_v<T>) {
     v[0] = static_cast<uint64_t>(sig);
   } else {
-    for (int i = 0; i < (bits + 31) / 32; ++i)
-      v[i / 2] |= static_cast<uint64_t>(sig[i]) << (32 * (i % 2));
+    for (int i = 0; i < (bits + 31) / 32; ++i) v[i / 2] |= static_cast<uint64_t>(sig[i]) << (32 * (i % 2));
   }
   if (bits < 64) v[0] &= (uint64_t{1} << bits) - 1;
   return v;
 }
 
-std::string hex(const sm::CensusVec& v) {
-  return fmt::format("{:016x}{:016x}{:016x}{:016x}", v[3], v[2], v[1], v[0]);
-}
+std::string hex(const sm::CensusVec& v) { return fmt::format("{:016x}{:016x}{:016x}{:016x}", v[3], v[2], v[1], v[0]); }
 
 sm::Image8 random_image(int w, int h, std::mt19937& rng) {
   sm::Image8 im(w, h);
@@ -137,7 +134,6 @@ int main() {
     fmt::print("FAIL: not every pixel came out\n");
     ++failed;
   }
-  fmt::print("tb_census MAX_WIDTH={} CENSUS={} W={}: {} passed, {} failed\n", kMaxWidth, kCensus, w,
-             passed, failed);
+  fmt::print("tb_census MAX_WIDTH={} CENSUS={} W={}: {} passed, {} failed\n", kMaxWidth, kCensus, w, passed, failed);
   return failed == 0 && passed > 0 ? 0 : 1;
 }

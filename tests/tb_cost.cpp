@@ -86,8 +86,7 @@ int main() {
     for (auto& p : l.px) p = static_cast<uint8_t>(rng());
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
-        r.at(x, y) =
-            (x + shift < w && rng() % 8) ? l.at(x + shift, y) : static_cast<uint8_t>(rng());
+        r.at(x, y) = (x + shift < w && rng() % 8) ? l.at(x + shift, y) : static_cast<uint8_t>(rng());
     left.push_back(l);
     cl.push_back(sm::census_transform(l, hw));
     cr.push_back(sm::census_transform(r, hw));
@@ -142,8 +141,7 @@ int main() {
       const unsigned exp = cost[p.frame].at(p.x, p.y, d);
       if (got != exp) {
         if (failed == 0)
-          fmt::print("FIRST MISMATCH frame {} x {} y {} d {}: expected {} got {}\n", p.frame, p.x,
-                     p.y, d, exp, got);
+          fmt::print("FIRST MISMATCH frame {} x {} y {} d {}: expected {} got {}\n", p.frame, p.x, p.y, d, exp, got);
         ok = false;
       }
     }
@@ -156,7 +154,7 @@ int main() {
     fmt::print("FAIL: not every pixel came out\n");
     ++failed;
   }
-  fmt::print("tb_cost MAX_WIDTH={} CENSUS={} DISP={} W={}: {} passed, {} failed\n", kMaxWidth,
-             kCensus, kDisp, w, passed, failed);
+  fmt::print("tb_cost MAX_WIDTH={} CENSUS={} DISP={} W={}: {} passed, {} failed\n", kMaxWidth, kCensus, kDisp, w,
+             passed, failed);
   return failed == 0 && passed > 0 ? 0 : 1;
 }

@@ -89,8 +89,7 @@ int main(int argc, char** argv) {
   app.add_option("--idle", idle, "percent of cycles with ce = 0");
   CLI11_PARSE(app, argc, argv);
   if (width < kS + kP + 1 || width > kMaxWidth) {
-    fmt::print(stderr, "tb_dp: width {} outside {}..{} (DISP/2 + 3 .. MAX_WIDTH)\n", width,
-               kS + kP + 1, kMaxWidth);
+    fmt::print(stderr, "tb_dp: width {} outside {}..{} (DISP/2 + 3 .. MAX_WIDTH)\n", width, kS + kP + 1, kMaxWidth);
     return 2;
   }
   if (rows < 1 || frames < 1) {
@@ -116,8 +115,7 @@ int main(int argc, char** argv) {
           for (int d = 0; d < kDisp; ++d) v.at(x, y, d) = static_cast<uint8_t>(rng() % (top + 1));
       }
     }
-    const uint8_t o = static_cast<uint8_t>(kind == 0 ? rng() % 48 : kind == 1 ? rng() % 256
-                                                                              : rng() % 3);
+    const uint8_t o = static_cast<uint8_t>(kind == 0 ? rng() % 48 : kind == 1 ? rng() % 256 : rng() % 3);
     vol.push_back(v);
     occ.push_back(o);
     want.push_back(sm::trellis_dp(v, o, hw));
@@ -183,8 +181,8 @@ int main(int argc, char** argv) {
           ++passed;
         } else {
           if (failed == 0)
-            fmt::print("first mismatch: frame {} x {} y {} expected 0x{:04x} got 0x{:04x}\n",
-                       o.frame, o.x, o.y, exp, got);
+            fmt::print("first mismatch: frame {} x {} y {} expected 0x{:04x} got 0x{:04x}\n", o.frame, o.x, o.y, exp,
+                       got);
           ++failed;
         }
       }
@@ -195,7 +193,7 @@ int main(int argc, char** argv) {
     fmt::print("FAIL: not every pixel came out\n");
     ++failed;
   }
-  fmt::print("tb_dp MAX_WIDTH={} DISP={} CW={} width={}: {} passed, {} failed\n", kMaxWidth,
-             kDisp, kCw, width, passed, failed);
+  fmt::print("tb_dp MAX_WIDTH={} DISP={} CW={} width={}: {} passed, {} failed\n", kMaxWidth, kDisp, kCw, width, passed,
+             failed);
   return failed == 0 ? 0 : 1;
 }

@@ -54,7 +54,7 @@ bool check(bool ok, const std::string& what) {
 
 // ERR_FLAGS bit order.
 enum Fault { kShort = 0, kLong, kMissing, kExtra, kFew, kMany, kOverflow, kClamped, kNumFlags };
-const char* const kFaultName[kNumFlags] = {"SHORT_LINE", "LONG_LINE", "MISSING_SOF", "EXTRA_SOF",
+const char* const kFaultName[kNumFlags] = {"SHORT_LINE", "LONG_LINE",  "MISSING_SOF",  "EXTRA_SOF",
                                            "FEW_LINES",  "MANY_LINES", "OUT_OVERFLOW", "CLAMPED"};
 
 struct Pixel {
@@ -68,9 +68,9 @@ struct ExpFrame {
   int w = 0, h = 0;
   sm::Image8 l, r;
   sm::Regs regs;
-  bool faulty = false;  // the input of this frame was malformed
-  bool closed = false;  // all its pixels are known
-  int id = 0;           // frames started since reset
+  bool faulty = false;                        // the input of this frame was malformed
+  bool closed = false;                        // all its pixels are known
+  int id = 0;                                 // frames started since reset
   std::shared_ptr<sm::PipelineResult> model;  // computed once (frame or packet first)
   const sm::PipelineResult& result(const sm::HwConfig& hw) {
     if (!model) model = std::make_shared<sm::PipelineResult>(sm::run_pipeline(l, r, hw, regs, false));
@@ -190,8 +190,7 @@ enum class Ready { kAlways, kRandom, kBursty, kSlow };
 
 class FaultTb {
  public:
-  FaultTb(const sm::HwConfig& hw, uint32_t seed)
-      : hw_(hw), rng_(seed), axil_(tb_.top(), [this] { cycle(); }) {}
+  FaultTb(const sm::HwConfig& hw, uint32_t seed) : hw_(hw), rng_(seed), axil_(tb_.top(), [this] { cycle(); }) {}
 
   sm::AxilMaster<Top>& axil() { return axil_; }
   SeqModel& model() { return model_; }
@@ -227,9 +226,15 @@ class FaultTb {
     t.s_axis_tvalid = present;
     bool ready = true;
     switch (ready_) {
-      case Ready::kAlways: ready = true; break;
-      case Ready::kRandom: ready = rng_() % 100 >= 40; break;
-      case Ready::kSlow: ready = rng_() % 100 < 10; break;
+      case Ready::kAlways:
+        ready = true;
+        break;
+      case Ready::kRandom:
+        ready = rng_() % 100 >= 40;
+        break;
+      case Ready::kSlow:
+        ready = rng_() % 100 < 10;
+        break;
       case Ready::kBursty:
         if (burst_left_ == 0) {
           burst_ready_ = !burst_ready_;
@@ -272,8 +277,8 @@ class FaultTb {
     // Progress: with input offered and the output ready, some stream must move.
     if ((present && ready && !in_hs && !out_hs) && !in_reset_) {
       if (++stuck_ > kStuckBound) {
-        check(false, fmt::format("no progress for {} cycles at cycle {} (input offered, output ready)",
-                                 kStuckBound, tb_.cycles()));
+        check(false, fmt::format("no progress for {} cycles at cycle {} (input offered, output ready)", kStuckBound,
+                                 tb_.cycles()));
         throw std::runtime_error("deadlock");
       }
     } else if (in_hs || out_hs) {
@@ -384,9 +389,7 @@ class FaultTb {
     model_.ev.fill(0);
     clamped_ = false;
   }
-  uint32_t control_word() const {
-    return model_.enable ? (1u << sm::regmap::kCONTROL_ENABLE_LSB) : 0u;
-  }
+  uint32_t control_word() const { return model_.enable ? (1u << sm::regmap::kCONTROL_ENABLE_LSB) : 0u; }
   const std::array<uint64_t, kNumFlags>& fault_total() const { return fault_total_; }
 
  private:
@@ -433,8 +436,8 @@ class FaultTb {
       for (int x = 0; x < f.w; ++x)
         if (m.post.at(x, y) != cur_.at(x, y) && n++ == 0)
           fmt::print("first mismatch: output frame {} ({}x{}, {}) x {} y {}: expected 0x{:04x} got 0x{:04x}\n",
-                     frames_out_, f.w, f.h, f.faulty ? "faulty input" : "well-formed input", x, y,
-                     m.post.at(x, y), cur_.at(x, y));
+                     frames_out_, f.w, f.h, f.faulty ? "faulty input" : "well-formed input", x, y, m.post.at(x, y),
+                     cur_.at(x, y));
     check(n == 0, fmt::format("output frame {} bit-exact ({} pixels differ)", frames_out_, n));
     if (f.faulty) {
       ++faulty_out_;
@@ -445,7 +448,8 @@ class FaultTb {
     prev_faulty_ = f.faulty;
     done_pkts_[f.id % kKeep] = sm::object_packet(m.objects, false);
     out_id_ = f.id + 1;
-    if (verbose_) fmt::print("  out frame id {} {}x{} {} at cycle {}\n", f.id, f.w, f.h, f.faulty ? "faulty" : "ok", tb_.cycles());
+    if (verbose_)
+      fmt::print("  out frame id {} {}x{} {} at cycle {}\n", f.id, f.w, f.h, f.faulty ? "faulty" : "ok", tb_.cycles());
     ++frames_out_;
     model_.frames.pop_front();
   }
@@ -457,8 +461,8 @@ class FaultTb {
       if (f.id == id) {
         if (!check(f.closed, fmt::format("object packet of frame {} before its input was complete", id))) return;
         const auto want = sm::object_packet(f.result(hw_).objects, false);
-        check(pkt_ == want, fmt::format("object packet of frame {} ({} words, expected {})", id, pkt_.size(),
-                                        want.size()));
+        check(pkt_ == want,
+              fmt::format("object packet of frame {} ({} words, expected {})", id, pkt_.size(), want.size()));
         return;
       }
     if (id < out_id_) {
@@ -491,6 +495,7 @@ class FaultTb {
   std::vector<uint32_t> pkt_;
   int beats_ = 0, frames_out_ = 0, clean_out_ = 0, faulty_out_ = 0, recovered_ = 0;
   bool prev_faulty_ = false;
+
  public:
   bool verbose_ = getenv("SM_VERBOSE") != nullptr;
   bool clamped_ = false;
@@ -528,8 +533,8 @@ int main(int argc, char** argv) {
     const sm::tools::Scene sc = sm::tools::load_scene(argv[1]);
     const sm::Image8 sl = sm::tools::to_image8(sc.left), sr = sm::tools::to_image8(sc.right);
     if (sl.w < hw.max_width || sl.h < hw.max_height)
-      throw std::runtime_error(fmt::format("{}: scene {}x{} smaller than the configuration {}x{}", argv[1], sl.w,
-                                           sl.h, hw.max_width, hw.max_height));
+      throw std::runtime_error(fmt::format("{}: scene {}x{} smaller than the configuration {}x{}", argv[1], sl.w, sl.h,
+                                           hw.max_width, hw.max_height));
     FaultTb tb(hw, seed);
     auto& rng = tb.rng();
     auto& axil = tb.axil();
@@ -566,11 +571,12 @@ int main(int argc, char** argv) {
     auto idx = [&](int x, int y) { return static_cast<size_t>(y) * W() + x; };
 
     std::array<int, 24> injected{};
-    const char* const kind_name[] = {"well-formed", "short line", "long line", "too few lines",
-                                     "too many lines", "missing sof", "doubled sof", "sof mid-line",
-                                     "long tvalid gap", "back-pressure burst", "aresetn mid-frame",
-                                     "soft reset mid-frame", "frame while disabled", "size change",
-                                     "register faults", "rectification grid faults", "truncated stream"};
+    const char* const kind_name[] = {
+        "well-formed",          "short line",          "long line",         "too few lines",
+        "too many lines",       "missing sof",         "doubled sof",       "sof mid-line",
+        "long tvalid gap",      "back-pressure burst", "aresetn mid-frame", "soft reset mid-frame",
+        "frame while disabled", "size change",         "register faults",   "rectification grid faults",
+        "truncated stream"};
     const int n_kinds = 17;
 
     for (int f = 0; f < n_frames; ++f) {
@@ -586,7 +592,8 @@ int main(int argc, char** argv) {
       std::vector<Pixel> px = good();
       const int w = W(), h = H();
       switch (kind) {
-        case 0: break;
+        case 0:
+          break;
         case 1: {  // short line: tlast early
           const int y = static_cast<int>(rng() % h), x = static_cast<int>(rng() % (w - 1));
           std::vector<Pixel> out;
@@ -706,7 +713,10 @@ int main(int argc, char** argv) {
           tb.drain();
           tb.check_errors(fmt::format("before register faults (frame {})", f));
           sm::Regs r = tb.model().host;
-          struct Wr { uint32_t addr; uint32_t v; };
+          struct Wr {
+            uint32_t addr;
+            uint32_t v;
+          };
           std::vector<Wr> wr;
           const uint32_t big[] = {0u, 1u, 15u, 65u, 1000u, 0x10000u, 0xffffffffu, 0x80000000u};
           const uint32_t ws = big[rng() % 8], hs = big[rng() % 8];
@@ -818,8 +828,8 @@ int main(int argc, char** argv) {
         tb.check_errors(fmt::format("after frame {} ({})", f, kind_name[kind]));
       }
       if (f % 50 == 49)
-        fmt::print("{} input steps, {} frames out ({} faulty, {} well-formed), {} cycles\n", f + 1,
-                   tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.cycles());
+        fmt::print("{} input steps, {} frames out ({} faulty, {} well-formed), {} cycles\n", f + 1, tb.frames_out(),
+                   tb.faulty_out(), tb.clean_out(), tb.cycles());
     }
     // One last well-formed frame and the flush: every complete frame must be out.
     tb.queue(good());
@@ -831,12 +841,13 @@ int main(int argc, char** argv) {
     for (int k = 0; k < n_kinds; ++k) fmt::print(" {}={}", kind_name[k], injected[k]);
     fmt::print("\nfault events counted by the model and matched in ERR_CNT:");
     for (int k = 0; k < 7; ++k) fmt::print(" {}={}", kFaultName[k], tb.fault_total()[k]);
-    fmt::print("\n{} frames out: {} from faulty input, {} well-formed ({} right after a fault), all compared "
-               "bit-exactly; {} cycles\n",
-               tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.recovered(), tb.cycles());
-    check(tb.recovered() >= n_frames / 10, fmt::format("{} recovery frames (at least {})", tb.recovered(), n_frames / 10));
-    for (int k = 0; k < 6; ++k)
-      check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", kFaultName[k]));
+    fmt::print(
+        "\n{} frames out: {} from faulty input, {} well-formed ({} right after a fault), all compared "
+        "bit-exactly; {} cycles\n",
+        tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.recovered(), tb.cycles());
+    check(tb.recovered() >= n_frames / 10,
+          fmt::format("{} recovery frames (at least {})", tb.recovered(), n_frames / 10));
+    for (int k = 0; k < 6; ++k) check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", kFaultName[k]));
   } catch (const std::exception& e) {
     fmt::print("FAIL: exception: {}\n", e.what());
     ++failures;

@@ -75,10 +75,9 @@ int main(int argc, char** argv) {
     regs.push_back(r);
   };
   // 0: three boxes at known depths on a far background
-  add(box_scene(w, h, 2,
-                {{2, 2, w / 4, h / 3, D / 2 + 2},
-                 {w / 3, h / 2, w / 2, h - 3, D - 3},
-                 {w - 9, 1, w - 2, h - 2, D / 2 + 5}}),
+  add(box_scene(
+          w, h, 2,
+          {{2, 2, w / 4, h / 3, D / 2 + 2}, {w / 3, h / 2, w / 2, h - 3, D - 3}, {w - 9, 1, w - 2, h - 2, D / 2 + 5}}),
       D / 2, 1, 4);
   // 1: random map: many components, overflows the table and the list
   add(random_map(rng, w, h, D, 1), D / 2, 2, 0);
@@ -86,8 +85,8 @@ int main(int argc, char** argv) {
   {
     std::vector<Box> b;
     for (int i = 0; i < hw.max_objects + 2; ++i)
-      b.push_back({(i * 4) % (w - 3), 1 + (i * 4 / (w - 3)) * 5, (i * 4) % (w - 3) + 2,
-                   3 + (i * 4 / (w - 3)) * 5, D - 1 - static_cast<unsigned>(i % 3)});
+      b.push_back({(i * 4) % (w - 3), 1 + (i * 4 / (w - 3)) * 5, (i * 4) % (w - 3) + 2, 3 + (i * 4 / (w - 3)) * 5,
+                   D - 1 - static_cast<unsigned>(i % 3)});
     b.push_back({w - 2, h - 2, w - 1, h - 1, D - 1});
     add(box_scene(w, h, 0, b), D / 4, 0, 5);
   }
@@ -174,8 +173,7 @@ int main(int argc, char** argv) {
           if (cur_pkt != want_pkts.front()) {
             std::string msg = fmt::format("packet {}: words", pkts);
             for (size_t i = 0; i < std::max(cur_pkt.size(), want_pkts.front().size()); ++i)
-              msg += fmt::format(" {:08x}/{:08x}",
-                                 i < want_pkts.front().size() ? want_pkts.front()[i] : 0u,
+              msg += fmt::format(" {:08x}/{:08x}", i < want_pkts.front().size() ? want_pkts.front()[i] : 0u,
                                  i < cur_pkt.size() ? cur_pkt[i] : 0u);
             fail(msg + " (expected/got)");
           } else {
@@ -195,11 +193,9 @@ int main(int argc, char** argv) {
       }
       const ObjectList& e = want[lists];
       const int f = static_cast<int>(lists);
-      if (tb->obj_count != e.objects.size() || tb->too_many != e.too_many_objects ||
-          tb->table_full != e.table_full)
-        fail(fmt::format("frame {}: count/too_many/table_full expected {}/{}/{} got {}/{}/{}", f,
-                         e.objects.size(), e.too_many_objects, e.table_full, tb->obj_count,
-                         tb->too_many, tb->table_full));
+      if (tb->obj_count != e.objects.size() || tb->too_many != e.too_many_objects || tb->table_full != e.table_full)
+        fail(fmt::format("frame {}: count/too_many/table_full expected {}/{}/{} got {}/{}/{}", f, e.objects.size(),
+                         e.too_many_objects, e.table_full, tb->obj_count, tb->too_many, tb->table_full));
       else
         ++passed;
       for (size_t i = 0; i < e.objects.size() && i < tb->obj_count; ++i) {
@@ -216,17 +212,17 @@ int main(int argc, char** argv) {
         g.mean_disp = tb->rd_mean;
         g.max_disp = tb->rd_max;
         if (!(g == o))
-          fail(fmt::format(
-              "frame {} object {}: expected box ({},{})-({},{}) n {} sum {} mean {} "
-              "max {}, got ({},{})-({},{}) n {} sum {} mean {} max {}",
-              f, i, o.x0, o.y0, o.x1, o.y1, o.count, o.sum_disp, o.mean_disp, o.max_disp, g.x0,
-              g.y0, g.x1, g.y1, g.count, g.sum_disp, g.mean_disp, g.max_disp));
+          fail(
+              fmt::format("frame {} object {}: expected box ({},{})-({},{}) n {} sum {} mean {} "
+                          "max {}, got ({},{})-({},{}) n {} sum {} mean {} max {}",
+                          f, i, o.x0, o.y0, o.x1, o.y1, o.count, o.sum_disp, o.mean_disp, o.max_disp, g.x0, g.y0, g.x1,
+                          g.y1, g.count, g.sum_disp, g.mean_disp, g.max_disp));
         else
           ++passed;
       }
       if (f == 0 || f == 2 || f == 5)
-        fmt::print("frame {}: {} objects, too_many {}, table_full {}\n", f, e.objects.size(),
-                   e.too_many_objects, e.table_full);
+        fmt::print("frame {}: {} objects, too_many {}, table_full {}\n", f, e.objects.size(), e.too_many_objects,
+                   e.table_full);
       // the packet engine was busy at publication: this list's packet is dropped
       if (tvalid_pre) {
         lost_pending = true;
@@ -245,8 +241,8 @@ int main(int argc, char** argv) {
   }
   saw_flags[2] = pkts + 1 == in.size();
   if (!saw_flags[0] || !saw_flags[1] || !saw_flags[2])
-    fail(fmt::format("coverage: too_many {} table_full {} one lost packet {}", saw_flags[0],
-                     saw_flags[1], saw_flags[2]));
+    fail(fmt::format("coverage: too_many {} table_full {} one lost packet {}", saw_flags[0], saw_flags[1],
+                     saw_flags[2]));
   fmt::print("{} lists, {} packets; {} passed, {} failed\n", lists, pkts, passed, failed);
   return failed ? 1 : 0;
 }

@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
       top->width = sched[next].w;
       top->in_disp = s.frame >= 0 ? img[static_cast<size_t>(s.frame)][static_cast<size_t>(s.y * sched[next].w + s.x)]
                                   : static_cast<uint16_t>(rng());
-    } else {  // garbage
+    } else {                                              // garbage
       top->in_side = static_cast<uint8_t>(rng() & 0x1e);  // never real: not taken anyway
       top->in_disp = static_cast<uint16_t>(rng());
       if (rng() & 1) top->in_side = static_cast<uint8_t>(rng() & 0x1f);
@@ -118,8 +118,7 @@ int main(int argc, char** argv) {
         const Expect& e = expect[got];
         check(top->m_axis_tdata == e.data && top->m_axis_tuser == e.user && top->m_axis_tlast == e.last,
               fmt::format("frame {} x {} y {}: expected data 0x{:04x} user {} last {}, got 0x{:04x} {} {}", e.frame,
-                          e.x, e.y, e.data, e.user, e.last, top->m_axis_tdata, top->m_axis_tuser,
-                          top->m_axis_tlast));
+                          e.x, e.y, e.data, e.user, e.last, top->m_axis_tdata, top->m_axis_tuser, top->m_axis_tlast));
       }
       ++got;
     }

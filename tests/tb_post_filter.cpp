@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
   const std::vector<bool> enable = {true, true, false, true};
   std::vector<DispImage> in, want;
   for (size_t f = 0; f < heights.size(); ++f) {
-    DispImage m = (f % 2 == 0) ? random_map(rng, w, heights[f], 0, hw.disp - 1, 10)
-                               : structured_map(rng, w, heights[f], hw.disp);
+    DispImage m =
+        (f % 2 == 0) ? random_map(rng, w, heights[f], 0, hw.disp - 1, 10) : structured_map(rng, w, heights[f], hw.disp);
     if (f == 2) m = random_map(rng, w, heights[f], 3, 6, 20);  // many ties
     DispImage out = m;
     if (enable[f]) {
@@ -114,15 +114,14 @@ int main(int argc, char** argv) {
         const long lat = static_cast<long>(k - 1) - beat_of[o.frame][pix];  // beats since entry
         if (lat != latency) {
           if (failed == 0)
-            fmt::print("latency at frame {} x {} y {}: {} beats, documented {}\n", o.frame, o.x,
-                       o.y, lat, latency);
+            fmt::print("latency at frame {} x {} y {}: {} beats, documented {}\n", o.frame, o.x, o.y, lat, latency);
           ++failed;
         } else if (tb->m_disp == e) {
           ++passed;
         } else {
           if (failed == 0)
-            fmt::print("first mismatch: frame {} x {} y {} expected {:#06x} got {:#06x}\n", o.frame,
-                       o.x, o.y, e, tb->m_disp);
+            fmt::print("first mismatch: frame {} x {} y {} expected {:#06x} got {:#06x}\n", o.frame, o.x, o.y, e,
+                       tb->m_disp);
           ++failed;
         }
       }

@@ -30,9 +30,7 @@ constexpr int kMaxW = SM_P_MAX_WIDTH;
 constexpr int kMaxH = SM_P_MAX_HEIGHT;
 constexpr int kR = SM_P_RECT_RADIUS;
 
-int16_t q5(double v) {
-  return static_cast<int16_t>(std::clamp(std::lround(v * 32), -32768L, 32767L));
-}
+int16_t q5(double v) { return static_cast<int16_t>(std::clamp(std::lround(v * 32), -32768L, 32767L)); }
 
 sm::RectGrid smooth_grid(int w, int h, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -48,8 +46,7 @@ sm::RectGrid smooth_grid(int w, int h, std::mt19937& rng) {
 }
 
 sm::RectGrid wild_grid(int w, int h, std::mt19937& rng) {
-  std::uniform_int_distribution<int> dy(-2 * kR - 3, 2 * kR + 3), dx(-24, 24), fr(0, 31),
-      pick(0, 15);
+  std::uniform_int_distribution<int> dy(-2 * kR - 3, 2 * kR + 3), dx(-24, 24), fr(0, 31), pick(0, 15);
   sm::RectGrid g = sm::RectGrid::identity(w, h);
   for (int gy = 0; gy < g.gh; ++gy)
     for (int gx = 0; gx < g.gw; ++gx) {
@@ -144,8 +141,7 @@ int main() {
           writes.push_back({sm::grid_waddr(hw, b, gx, gy), static_cast<uint32_t>(garbage())});
       const sm::RectGrid& g = s.grid[b];
       for (int gy = 0; gy < g.gh; ++gy)
-        for (int gx = 0; gx < g.gw; ++gx)
-          writes.push_back({sm::grid_waddr(hw, b, gx, gy), sm::grid_wdata(g, gx, gy)});
+        for (int gx = 0; gx < g.gw; ++gx) writes.push_back({sm::grid_waddr(hw, b, gx, gy), sm::grid_wdata(g, gx, gy)});
     }
     size_t wi = 0;
     int vx = 0;  // column of the virtual row being streamed during the writes
@@ -217,8 +213,8 @@ int main() {
         ++failed;
         if (first_fail) {
           first_fail = false;
-          std::printf("first mismatch: session %zu frame %d x %d y %d expected %d got %d\n", si,
-                      o.frame, o.x, o.y, exp, top.m_pix);
+          std::printf("first mismatch: session %zu frame %d x %d y %d expected %d got %d\n", si, o.frame, o.x, o.y, exp,
+                      top.m_pix);
         }
       }
     }
@@ -227,7 +223,7 @@ int main() {
       return 1;
     }
   }
-  fmt::print("tb_rectify MAX_WIDTH={} MAX_HEIGHT={} RECT_RADIUS={}: {} passed, {} failed\n", kMaxW,
-             kMaxH, kR, passed, failed);
+  fmt::print("tb_rectify MAX_WIDTH={} MAX_HEIGHT={} RECT_RADIUS={}: {} passed, {} failed\n", kMaxW, kMaxH, kR, passed,
+             failed);
   return failed == 0 ? 0 : 1;
 }

@@ -262,14 +262,14 @@ void verify(const std::string& name, std::vector<Segment>& segs, const RunOut& o
   for (const auto& s : segs) all.insert(all.end(), s.px.begin(), s.px.end());
   const sm::SeqResult m = sm::seq_frames(all);
   const auto& F = m.frames;
-  fmt::print("{}: {} frames, {} beats, fault pulses {} {} {} {} {} {} (short long missing extra few many)\n",
-             name, F.size(), o.beats.size(), o.err[0], o.err[1], o.err[2], o.err[3], o.err[4], o.err[5]);
+  fmt::print("{}: {} frames, {} beats, fault pulses {} {} {} {} {} {} (short long missing extra few many)\n", name,
+             F.size(), o.beats.size(), o.err[0], o.err[1], o.err[2], o.err[3], o.err[4], o.err[5]);
   check(o.starts.size() == F.size(),
         fmt::format("{}: {} frame_start pulses, model has {} frames", name, o.starts.size(), F.size()));
   for (size_t f = 0; f < std::min(F.size(), o.starts.size()); ++f)
     check(o.starts[f] == std::make_pair(F[f].w, F[f].h),
-          fmt::format("{}: frame {} latched {}x{}, model {}x{}", name, f, o.starts[f].first, o.starts[f].second,
-                      F[f].w, F[f].h));
+          fmt::format("{}: frame {} latched {}x{}, model {}x{}", name, f, o.starts[f].first, o.starts[f].second, F[f].w,
+                      F[f].h));
   for (int e = 0; e < sm::kNumSeqErr; ++e)
     check(o.err[e] == m.err[e], fmt::format("{}: error class {}: {} pulses, model {}", name, e, o.err[e], m.err[e]));
 
@@ -290,8 +290,8 @@ void verify(const std::string& name, std::vector<Segment>& segs, const RunOut& o
       ++frame;
       if (!check(frame < static_cast<int>(F.size()), fmt::format("{}: more frames than the model", name))) return;
       if (last_w >= 0 && F[static_cast<size_t>(frame)].w != last_w)
-        check(vrows_since == kFlush, fmt::format("{}: width change before frame {} after {} virtual rows", name,
-                                                 frame, vrows_since));
+        check(vrows_since == kFlush,
+              fmt::format("{}: width change before frame {} after {} virtual rows", name, frame, vrows_since));
       check(tag == (frame & 3), fmt::format("{}: frame {} ftag {}", name, frame, tag));
       ftag = tag;
       row = 0;
@@ -312,16 +312,16 @@ void verify(const std::string& name, std::vector<Segment>& segs, const RunOut& o
     if (!check(b + static_cast<size_t>(w) <= o.beats.size(), fmt::format("{}: truncated row", name))) return;
     for (int x = 0; x < w; ++x) {
       const Beat& bt = o.beats[b + static_cast<size_t>(x)];
-      const uint8_t want_side = static_cast<uint8_t>((tag << 3) | (real ? 1 : 0) | (x == 0 ? 4 : 0) |
-                                                     (real && x == 0 && row == 0 ? 2 : 0));
-      if (!check(bt.side == want_side, fmt::format("{}: frame {} row {} x {}: side {:x} expected {:x}", name,
-                                                   frame, row, x, bt.side, want_side)))
+      const uint8_t want_side =
+          static_cast<uint8_t>((tag << 3) | (real ? 1 : 0) | (x == 0 ? 4 : 0) | (real && x == 0 && row == 0 ? 2 : 0));
+      if (!check(bt.side == want_side, fmt::format("{}: frame {} row {} x {}: side {:x} expected {:x}", name, frame,
+                                                   row, x, bt.side, want_side)))
         return;
       if (real) {
         const uint16_t want = F[static_cast<size_t>(frame)].px[static_cast<size_t>(row * w + x)];
         const uint16_t got = static_cast<uint16_t>(bt.left | (bt.right << 8));
-        if (!check(got == want, fmt::format("{}: frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", name, frame,
-                                            x, row, want, got)) &&
+        if (!check(got == want, fmt::format("{}: frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", name, frame, x,
+                                            row, want, got)) &&
             first_mismatch) {
           first_mismatch = false;
         }
@@ -380,17 +380,17 @@ int main(int argc, char** argv) {
       g.vblank = static_cast<int>(g_rng() % 3) * W;
       s.push_back(g);
     };
-    seg(lines({W, W}, false));                           // missing sof after reset
-    seg(good(W, H));                                      // good
-    seg(lines({W, W - 5, W, W + 7, W, W}));               // short line, long line
-    seg(lines({W, W, -(W / 2)}));                         // sof mid-line follows
-    seg(lines({W, W, W}));                                // sof at a line start too early
+    seg(lines({W, W}, false));                                    // missing sof after reset
+    seg(good(W, H));                                              // good
+    seg(lines({W, W - 5, W, W + 7, W, W}));                       // short line, long line
+    seg(lines({W, W, -(W / 2)}));                                 // sof mid-line follows
+    seg(lines({W, W, W}));                                        // sof at a line start too early
     seg(lines(std::vector<int>(static_cast<size_t>(H + 2), W)));  // too many lines
     seg(good(W, H));
     seg(lines(std::vector<int>(static_cast<size_t>(H - 1), W)));
-    s.back().px.back().last = false;                      // long last line, then the next frame
-    seg(lines({-(W + 3), W, W, W, W, W + 1}));            // long first line without tlast
-    seg(lines({1, W, W, W, W, W}));                        // one-pixel line
+    s.back().px.back().last = false;            // long last line, then the next frame
+    seg(lines({-(W + 3), W, W, W, W, W + 1}));  // long first line without tlast
+    seg(lines({1, W, W, W, W, W}));             // one-pixel line
     seg(good(W, H));
     const RunOut o = run(s, 15, 25, 3);
     verify("faults", s, o);
@@ -412,8 +412,8 @@ int main(int argc, char** argv) {
     // height change without a pause; the frame is longer than the input FIFO, so its
     // sof has been taken before the host values change for the next segment
     seg(W2, H + 4, true, false, 0);
-    seg(W, H, true, false, 0);      // width change, no blanking: flush rows are inserted
-    seg(W, H, false, true, 0);      // disabled: dropped silently
+    seg(W, H, true, false, 0);  // width change, no blanking: flush rows are inserted
+    seg(W, H, false, true, 0);  // disabled: dropped silently
     seg(W, H, true, true, W);
     const RunOut o = run(s, 10, 20, 4);
     verify("width/enable", s, o);

@@ -176,12 +176,10 @@ int main(int argc, char** argv) {
   const auto sched = sm::test::make_schedule(width, heights, kR + 2);
   std::vector<size_t> frame_start(frames.size(), 0);
   for (size_t i = 0; i < sched.size(); ++i)
-    if (sched[i].frame >= 0 && sched[i].x == 0 && sched[i].y == 0)
-      frame_start[static_cast<size_t>(sched[i].frame)] = i;
+    if (sched[i].frame >= 0 && sched[i].x == 0 && sched[i].y == 0) frame_start[static_cast<size_t>(sched[i].frame)] = i;
 
   sm::Testbench<SM_VTOP> tb;
-  if (!trace.empty() && !tb.open_trace(trace))
-    fmt::print("note: model built without tracing, --trace ignored\n");
+  if (!trace.empty() && !tb.open_trace(trace)) fmt::print("note: model built without tracing, --trace ignored\n");
   sm::test::CeGen ceg(seed * 7919u + 1u, idle);
   std::mt19937& grng = ceg.rng();
   const int cost_bits = kDisp * hwid, agg_bits = kDisp * cw;
@@ -220,8 +218,7 @@ int main(int argc, char** argv) {
     if (b.frame >= 0) {
       const Frame& f = frames[static_cast<size_t>(b.frame)];
       if (b.x == 0 && b.y == 0) table_now = pack_table(f.table);
-      for (int d = 0; d < kDisp; ++d)
-        put_field(cost_in, d * hwid, hwid, f.raw.at(b.x, b.y, d));
+      for (int d = 0; d < kDisp; ++d) put_field(cost_in, d * hwid, hwid, f.raw.at(b.x, b.y, d));
       to_port(tb->s_cost, cost_in);
       tb->s_left = f.left.at(b.x, b.y);
     } else {
@@ -242,12 +239,10 @@ int main(int argc, char** argv) {
       ++failed;
       break;
     }
-    const size_t want_t = frame_start[static_cast<size_t>(o.frame)] +
-                          static_cast<size_t>(o.y) * width + o.x +
+    const size_t want_t = frame_start[static_cast<size_t>(o.frame)] + static_cast<size_t>(o.y) * width + o.x +
                           static_cast<size_t>(kR) * width + kR + (kPipe - 1);
     if (t != want_t) {
-      fmt::print("FAIL: pixel (frame {}, x {}, y {}) left after beat {}, expected {}\n", o.frame,
-                 o.x, o.y, t, want_t);
+      fmt::print("FAIL: pixel (frame {}, x {}, y {}) left after beat {}, expected {}\n", o.frame, o.x, o.y, t, want_t);
       ++failed;
       break;
     }
@@ -260,8 +255,7 @@ int main(int argc, char** argv) {
       if (g != e) {
         ok = false;
         if (!reported)
-          fmt::print("first mismatch: frame {} x {} y {} level {}: expected {}, got {}\n", o.frame,
-                     o.x, o.y, d, e, g);
+          fmt::print("first mismatch: frame {} x {} y {} level {}: expected {}, got {}\n", o.frame, o.x, o.y, d, e, g);
         reported = true;
       }
     }
@@ -271,8 +265,9 @@ int main(int argc, char** argv) {
     fmt::print("FAIL: not every pixel left the block\n");
     ++failed;
   }
-  fmt::print("sm_sw_aggregate MAX_WIDTH={} DISP={} CENSUS={} SW={} COST_SHIFT={} width={}: "
-             "{} passed, {} failed\n",
-             kMaxWidth, kDisp, kCensus, kSw, kCostShift, width, passed, failed);
+  fmt::print(
+      "sm_sw_aggregate MAX_WIDTH={} DISP={} CENSUS={} SW={} COST_SHIFT={} width={}: "
+      "{} passed, {} failed\n",
+      kMaxWidth, kDisp, kCensus, kSw, kCostShift, width, passed, failed);
   return failed == 0 ? 0 : 1;
 }

@@ -52,8 +52,8 @@ int compare(const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm
     for (int y = 0; y < m.post.h; ++y)
       for (int x = 0; x < m.post.w; ++x)
         if (m.post.at(x, y) != res.frames[f].at(x, y) && n++ == 0)
-          fmt::print("first mismatch frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}\n", f, x, y,
-                     m.post.at(x, y), res.frames[f].at(x, y));
+          fmt::print("first mismatch frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}\n", f, x, y, m.post.at(x, y),
+                     res.frames[f].at(x, y));
     check(n == 0, fmt::format("frame {} bit-exact ({} pixels differ)", f, n));
     bad += n;
     const auto want = sm::object_packet(m.objects, false);
@@ -118,7 +118,8 @@ int main(int argc, char** argv) {
       check(res.input_stall_cycles == 0, fmt::format("camera never stalled ({} stall cycles)", res.input_stall_cycles));
       const uint64_t camera_period = static_cast<uint64_t>(l.w + timing.hblank) * (l.h + timing.vblank_lines);
       const uint64_t period = res.stats[1].last_out_cycle - res.stats[0].last_out_cycle;
-      check(period <= camera_period, fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
+      check(period <= camera_period,
+            fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
       const uint64_t frame_cycles = res.stats[0].last_out_cycle - res.stats[0].sof_in_cycle + 1;
       const double seconds = frame_cycles / timing.clock_hz(l.w, l.h);
       check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,

@@ -59,8 +59,7 @@ int main() {
   const int w = 37;
   std::vector<int> heights;
   // H = 1 and 2 are shorter than the window; 0 virtual rows puts frames back to back.
-  const auto sched = build(
-      w, {{6, 0}, {1, 0}, {2, 1}, {9, 0}, {3, 2}, {kDRows + 1, 0}, {5, kDRows + 2}}, &heights);
+  const auto sched = build(w, {{6, 0}, {1, 0}, {2, 1}, {9, 0}, {3, 2}, {kDRows + 1, 0}, {5, kDRows + 2}}, &heights);
   sm::Testbench<SM_VTOP> tb;
   sm::test::CeGen ce_gen(0x5eed1u, 30);
   std::mt19937 rng(7);
@@ -125,7 +124,7 @@ int main() {
     }
     tb.tick();
   }
-  fmt::print("tb_win_ctrl D_ROWS={} D_COLS={} R={}/{}/{}/{}: {} passed, {} failed\n", kDRows,
-             kDCols, kRUp, kRDn, kRL, kRR, passed, failed);
+  fmt::print("tb_win_ctrl D_ROWS={} D_COLS={} R={}/{}/{}/{}: {} passed, {} failed\n", kDRows, kDCols, kRUp, kRDn, kRL,
+             kRR, passed, failed);
   return failed == 0 && passed > 0 ? 0 : 1;
 }

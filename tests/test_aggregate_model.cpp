@@ -35,8 +35,8 @@ sm::Image8 mixed_image(int w, int h, uint32_t seed) {
   sm::Image8 im(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      im.at(x, y) = ((x / 5 + y / 3) % 2) ? static_cast<uint8_t>(rng())
-                                          : static_cast<uint8_t>(60 + 3 * x + (rng() % 4));
+      im.at(x, y) =
+          ((x / 5 + y / 3) % 2) ? static_cast<uint8_t>(rng()) : static_cast<uint8_t>(60 + 3 * x + (rng() % 4));
   return im;
 }
 
@@ -53,8 +53,7 @@ TEST_CASE("RECIP known values", "[aggregate]") {
   CHECK(sm::sw_recip(100) == 41);  // 40.96
   CHECK(sm::sw_recip(196) == 21);  // 20.90: largest index, SW = 7
   // Every entry is 4096 / s rounded to nearest (no ties occur for s > 1).
-  for (uint32_t s = 1; s <= 196; ++s)
-    CHECK(sm::sw_recip(s) == static_cast<uint32_t>(std::lround(4096.0 / s)));
+  for (uint32_t s = 1; s <= 196; ++s) CHECK(sm::sw_recip(s) == static_cast<uint32_t>(std::lround(4096.0 / s)));
 }
 
 TEST_CASE("weight codes", "[aggregate]") {
@@ -97,8 +96,7 @@ TEST_CASE("a constant cost volume stays constant", "[aggregate]") {
     int bad = 0;
     for (int y = 0; y < raw.h; ++y)
       for (int x = 0; x < raw.w; ++x)
-        for (int d = 0; d < hw.disp; ++d)
-          bad += out.at(x, y, d) != (raw.at(x, y, d) >> p.shift);
+        for (int d = 0; d < hw.disp; ++d) bad += out.at(x, y, d) != (raw.at(x, y, d) >> p.shift);
     INFO("census " << p.census << " sw " << p.sw << " shift " << p.shift);
     CHECK(bad == 0);
   }
@@ -149,15 +147,13 @@ TEST_CASE("all-equal codes give the box-filter mean", "[aggregate]") {
       // Window sums and in-image counts from OpenCV, zero outside the image.
       const cv::Mat ones(h, w, CV_32F, cv::Scalar(1.0f));
       cv::Mat count;
-      cv::boxFilter(ones, count, CV_32F, cv::Size(sw, sw), cv::Point(-1, -1), false,
-                    cv::BORDER_CONSTANT);
+      cv::boxFilter(ones, count, CV_32F, cv::Size(sw, sw), cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
       int bad = 0;
       for (int d = 0; d < hw.disp; ++d) {
         cv::Mat c(h, w, CV_32F), sum;
         for (int y = 0; y < h; ++y)
           for (int x = 0; x < w; ++x) c.at<float>(y, x) = static_cast<float>(raw.at(x, y, d) >> 2);
-        cv::boxFilter(c, sum, CV_32F, cv::Size(sw, sw), cv::Point(-1, -1), false,
-                      cv::BORDER_CONSTANT);
+        cv::boxFilter(c, sum, CV_32F, cv::Size(sw, sw), cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
         for (int y = 0; y < h; ++y)
           for (int x = 0; x < w; ++x) {
             const long s = std::lround(sum.at<float>(y, x));
@@ -230,6 +226,5 @@ TEST_CASE("cost shift, zero weight sum and bad input", "[aggregate]") {
   // Every weight 0: wsum 0, RECIP(0) = 0, the output is 0.
   CHECK(sm::sw_aggregate(raw, left, all_codes(0), hw).at(2, 2, 0) == 0);
   CHECK_THROWS_AS(sm::sw_aggregate(raw, sm::Image8(4, 5), all_codes(1), hw), std::invalid_argument);
-  CHECK_THROWS_AS(sm::sw_aggregate(sm::CostVolume(5, 5, 6), left, all_codes(1), hw),
-                  std::invalid_argument);
+  CHECK_THROWS_AS(sm::sw_aggregate(sm::CostVolume(5, 5, 6), left, all_codes(1), hw), std::invalid_argument);
 }

@@ -122,10 +122,8 @@ TEST_CASE("minimum cost finds the shift of a random texture", "[cost]") {
   std::mt19937 rng(78);
   // the left pixel x is the right pixel x - shift
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      right.at(x, y) = x + shift < w ? left.at(x + shift, y) : static_cast<uint8_t>(rng());
-  const auto cost =
-      sm::hamming_cost(sm::census_transform(left, hw), sm::census_transform(right, hw), hw);
+    for (int x = 0; x < w; ++x) right.at(x, y) = x + shift < w ? left.at(x + shift, y) : static_cast<uint8_t>(rng());
+  const auto cost = sm::hamming_cost(sm::census_transform(left, hw), sm::census_transform(right, hw), hw);
   // The true level costs 0 everywhere its windows are identical; another level can tie
   // only by chance (a locally extreme centre gives an all-ones vector at any level), so
   // the true level must be the unique minimum almost everywhere.

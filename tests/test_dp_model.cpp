@@ -159,14 +159,12 @@ TEST_CASE("trellis_dp: three-way tie picks choice 0, a 1-vs-2 tie picks choice 1
 
 namespace {
 // A(x, d) = 0 at the true disparity (where x - d >= 0), `high` elsewhere.
-sm::CostVolume ideal_volume(const std::vector<int>& dt, int disp, const std::vector<int>& bad = {},
-                            int high = 15) {
+sm::CostVolume ideal_volume(const std::vector<int>& dt, int disp, const std::vector<int>& bad = {}, int high = 15) {
   const int n = static_cast<int>(dt.size());
   sm::CostVolume v(n, 1, disp);
   for (int x = 0; x < n; ++x)
     for (int d = 0; d < disp; ++d) {
-      const bool good = d == dt[x] && x - d >= 0 &&
-                        std::find(bad.begin(), bad.end(), x) == bad.end();
+      const bool good = d == dt[x] && x - d >= 0 && std::find(bad.begin(), bad.end(), x) == bad.end();
       v.at(x, 0, d) = static_cast<uint8_t>(good ? 0 : high);
     }
   return v;
@@ -230,8 +228,8 @@ TEST_CASE("trellis_dp: step down (foreground left): every left pixel matched", "
 TEST_CASE("trellis_dp: fill rule on hand-made match lists", "[dp]") {
   std::vector<sm::DispPix> out;
   sm::dp_fill({-1, -1, 5, -1, -1, 2, 7, -1, 3, -1}, out);
-  CHECK(out == std::vector<sm::DispPix>{0x8005, 0x8005, 0x8005, 0x8002, 0x8002, 0x8002, 0x8007,
-                                        0x8003, 0x8003, 0x8003});
+  CHECK(out ==
+        std::vector<sm::DispPix>{0x8005, 0x8005, 0x8005, 0x8002, 0x8002, 0x8002, 0x8007, 0x8003, 0x8003, 0x8003});
   sm::dp_fill({-1, -1, -1}, out);
   CHECK(out == std::vector<sm::DispPix>{0x8000, 0x8000, 0x8000});
 }

@@ -57,8 +57,7 @@ TEST_CASE("3x3 median equals cv::medianBlur on the interior", "[unit][post]") {
     }
 }
 
-TEST_CASE("median window hand cases: border rule, invalid pixels, 1x5 and 5x3 windows",
-          "[unit][post]") {
+TEST_CASE("median window hand cases: border rule, invalid pixels, 1x5 and 5x3 windows", "[unit][post]") {
   const HwConfig hw = small_hw();
   // horizontal 1x5 at x=2 of the row 1 5 2 9 3 -> sorted 1 2 3 5 9 -> 3
   DispImage r(5, 1);
@@ -190,8 +189,7 @@ TEST_CASE("objects: tolerance, merging shapes, mean and nearest disparity", "[un
   CHECK(l.objects[1].count == 27 + 9);
 }
 
-TEST_CASE("objects: overflow of the list and of the label table raise the flags",
-          "[unit][objects]") {
+TEST_CASE("objects: overflow of the list and of the label table raise the flags", "[unit][objects]") {
   const HwConfig hw = small_hw();  // K = 4, 16 labels
   Regs regs = Regs::defaults(hw);
   regs.obj_near = 10;
@@ -214,7 +212,7 @@ TEST_CASE("objects: overflow of the list and of the label table raise the flags"
   CHECK(l.table_full);
   CHECK(l.too_many_objects);
   for (const Object& o : l.objects) CHECK(o.count == 1);  // the box was dropped
-  regs.obj_min_pixels = 2;  // singletons no longer qualify: nothing listed, flag stays
+  regs.obj_min_pixels = 2;                                // singletons no longer qualify: nothing listed, flag stays
   l = separate_objects(s, regs, hw);
   CHECK(l.objects.empty());
   CHECK(l.table_full);

@@ -17,8 +17,8 @@ sm::Image8 smooth_image(int w, int h) {
   sm::Image8 img(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      img.at(x, y) = static_cast<uint8_t>(std::lround(
-          128 + 60 * std::sin(x / 7.0) * std::cos(y / 9.0) + 30 * std::sin((x + y) / 13.0)));
+      img.at(x, y) = static_cast<uint8_t>(
+          std::lround(128 + 60 * std::sin(x / 7.0) * std::cos(y / 9.0) + 30 * std::sin((x + y) / 13.0)));
   return img;
 }
 
@@ -70,8 +70,7 @@ cv::Mat inner_mask(const cv::Mat& mapx, const cv::Mat& mapy, int w, int h, float
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const float sx = mapx.at<float>(y, x), sy = mapy.at<float>(y, x);
-      m.at<uint8_t>(y, x) =
-          sx >= margin && sx <= w - 1 - margin && sy >= margin && sy <= h - 1 - margin;
+      m.at<uint8_t>(y, x) = sx >= margin && sx <= w - 1 - margin && sy >= margin && sy <= h - 1 - margin;
     }
   return m;
 }
@@ -92,16 +91,13 @@ TEST_CASE("brightness known answers", "[unit]") {
   CHECK(sm::brightness(in, 256, 0) == in);
   // gain 0.5: (v*128 + 128) >> 8 rounds half up: 1 -> 1, 3 -> 2, 255 -> 128
   auto h = sm::brightness(in, 128, 0);
-  CHECK(std::vector<int>(h.px.begin(), h.px.end()) ==
-        std::vector<int>{0, 1, 2, 50, 64, 100, 127, 128});
+  CHECK(std::vector<int>(h.px.begin(), h.px.end()) == std::vector<int>{0, 1, 2, 50, 64, 100, 127, 128});
   // gain 1.5 saturates at 255; offset +10
   auto g = sm::brightness(in, 384, 10);
-  CHECK(std::vector<int>(g.px.begin(), g.px.end()) ==
-        std::vector<int>{10, 12, 15, 160, 202, 255, 255, 255});
+  CHECK(std::vector<int>(g.px.begin(), g.px.end()) == std::vector<int>{10, 12, 15, 160, 202, 255, 255, 255});
   // offset -256 clamps everything to 0, +255 clamps to 255 except nothing below
   auto lo = sm::brightness(in, 1023, -256);
-  CHECK(std::vector<int>(lo.px.begin(), lo.px.end()) ==
-        std::vector<int>{0, 0, 0, 144, 255, 255, 255, 255});
+  CHECK(std::vector<int>(lo.px.begin(), lo.px.end()) == std::vector<int>{0, 0, 0, 144, 255, 255, 255, 255});
   auto hi = sm::brightness(in, 0, 255);
   for (auto p : hi.px) CHECK(p == 255);
   // the offset register is 9 bits two's complement: 0x1ff is -1
@@ -148,8 +144,7 @@ TEST_CASE("rectify identity, passthrough and hand-computed shifts", "[unit]") {
   // half-pixel shift in x: (a * 128 + b * 128 + 128) >> 8 = (a + b + 1) >> 1
   auto half = sm::rectify(in, shifted_identity(w, h, 16, 0), true, hw);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x + 1 < w; ++x)
-      REQUIRE(half.at(x, y) == ((in.at(x, y) + in.at(x + 1, y) + 1) >> 1));
+    for (int x = 0; x + 1 < w; ++x) REQUIRE(half.at(x, y) == ((in.at(x, y) + in.at(x + 1, y) + 1) >> 1));
   // last column: the right tap is outside -> (a * 128 + 128) >> 8
   CHECK(half.at(w - 1, 5) == ((in.at(w - 1, 5) * 128 + 128) >> 8));
 }
@@ -183,16 +178,13 @@ TEST_CASE("rect_radius_needed", "[unit]") {
   sm::RectGrid g = sm::RectGrid::identity(w, h);
   for (int gy = 0; gy < g.gh; ++gy)
     for (int gx = 0; gx < g.gw; ++gx)
-      g.sy[static_cast<size_t>(gy) * g.gw + gx] =
-          static_cast<int16_t>((16 * gy + gx * 1.7 - 2.3) * 32);
+      g.sy[static_cast<size_t>(gy) * g.gw + gx] = static_cast<int16_t>((16 * gy + gx * 1.7 - 2.3) * 32);
   const int need = sm::rect_radius_needed(g, w, h);
   const auto img = smooth_image(w, h);
   REQUIRE(need >= 2);
   REQUIRE(need < 31);
-  CHECK(sm::rectify(img, g, true, hw_with_radius(need)) ==
-        sm::rectify(img, g, true, hw_with_radius(31)));
-  CHECK(sm::rectify(img, g, true, hw_with_radius(need - 1)) !=
-        sm::rectify(img, g, true, hw_with_radius(31)));
+  CHECK(sm::rectify(img, g, true, hw_with_radius(need)) == sm::rectify(img, g, true, hw_with_radius(31)));
+  CHECK(sm::rectify(img, g, true, hw_with_radius(need - 1)) != sm::rectify(img, g, true, hw_with_radius(31)));
 }
 
 TEST_CASE("grid_from_maps samples, rounds to Q.5 and saturates", "[unit]") {
@@ -216,13 +208,11 @@ TEST_CASE("grid_from_maps samples, rounds to Q.5 and saturates", "[unit]") {
   CHECK(g.sx[2 * 4 + 3] == 32767);
   CHECK(g.sy[2 * 4 + 3] == -32768);
   // a map smaller than the grid extent is rejected
-  CHECK_THROWS_AS(
-      sm::grid_from_maps(std::vector<float>(48 * 33), std::vector<float>(48 * 33), 48, 33, w, h),
-      std::invalid_argument);
+  CHECK_THROWS_AS(sm::grid_from_maps(std::vector<float>(48 * 33), std::vector<float>(48 * 33), 48, 33, w, h),
+                  std::invalid_argument);
   // a grid of the wrong size is rejected by rectify
-  CHECK_THROWS_AS(
-      sm::rectify(sm::Image8(w, h), sm::RectGrid::identity(w + 16, h), true, hw_with_radius(4)),
-      std::invalid_argument);
+  CHECK_THROWS_AS(sm::rectify(sm::Image8(w, h), sm::RectGrid::identity(w + 16, h), true, hw_with_radius(4)),
+                  std::invalid_argument);
 }
 
 TEST_CASE("rectify of a homography matches OpenCV warpPerspective", "[unit]") {
@@ -245,19 +235,16 @@ TEST_CASE("rectify of a homography matches OpenCV warpPerspective", "[unit]") {
   REQUIRE(need <= 15);
   const auto out = sm::rectify(img, grid, true, hw_with_radius(15));
   cv::Mat ref;
-  cv::warpPerspective(to_mat(img), ref, cv::Mat(hm), cv::Size(w, h),
-                      cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, 0);
-  const Diff d = compare(
-      out, ref, inner_mask(mapx(cv::Rect(0, 0, w, h)), mapy(cv::Rect(0, 0, w, h)), w, h, 1));
-  std::printf("homography vs warpPerspective: %ld px, mean |diff| %.3f, max %d\n", d.n, d.mean,
-              d.max);
+  cv::warpPerspective(to_mat(img), ref, cv::Mat(hm), cv::Size(w, h), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                      cv::BORDER_CONSTANT, 0);
+  const Diff d = compare(out, ref, inner_mask(mapx(cv::Rect(0, 0, w, h)), mapy(cv::Rect(0, 0, w, h)), w, h, 1));
+  std::printf("homography vs warpPerspective: %ld px, mean |diff| %.3f, max %d\n", d.n, d.mean, d.max);
   REQUIRE(d.n > w * h / 2);
   CHECK(d.mean <= 1.0);
   CHECK(d.max <= 4);
 }
 
-TEST_CASE("rectify of a distorted camera matches OpenCV initUndistortRectifyMap + remap",
-          "[unit]") {
+TEST_CASE("rectify of a distorted camera matches OpenCV initUndistortRectifyMap + remap", "[unit]") {
   const int w = 320, h = 240;
   const auto img = smooth_image(w, h);  // stands for the distorted camera image
   const cv::Matx33d k(300, 0, 161.5, 0, 302, 118.2, 0, 0, 1);
@@ -279,14 +266,13 @@ TEST_CASE("rectify of a distorted camera matches OpenCV initUndistortRectifyMap 
     for (int x = 0; x < w; ++x) {
       int sx, sy;
       sm::rect_source_q4(grid, x, y, sx, sy);
-      const double e = std::max(std::fabs(sx / 16.0 - mx.at<float>(y, x)),
-                                std::fabs(sy / 16.0 - my.at<float>(y, x)));
+      const double e = std::max(std::fabs(sx / 16.0 - mx.at<float>(y, x)), std::fabs(sy / 16.0 - my.at<float>(y, x)));
       max_err = std::max(max_err, e);
       sum_err += e;
     }
   const int need = sm::rect_radius_needed(grid, w, h);
-  std::printf("distortion map: grid position error mean %.4f max %.4f px, radius needed %d\n",
-              sum_err / (w * h), max_err, need);
+  std::printf("distortion map: grid position error mean %.4f max %.4f px, radius needed %d\n", sum_err / (w * h),
+              max_err, need);
   CHECK(sum_err / (w * h) <= 0.1);
   CHECK(max_err <= 0.25);
 

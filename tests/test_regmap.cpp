@@ -66,10 +66,10 @@ TEST_CASE("field widths and ranges follow the spec", "[regmap]") {
   CHECK(field("HEIGHT.VALUE").max.eval(hw) == 240);
   CHECK(field("ID.VALUE").reset.eval(hw) == 0x534D4331);
   // every pipeline parameter of sm::Regs is shadowed
-  for (const char* n : {"WIDTH.VALUE", "HEIGHT.VALUE", "GAIN_L.VALUE", "GAIN_R.VALUE", "OFFSET_L.VALUE",
-                        "OFFSET_R.VALUE", "RECT_ENABLE.VALUE", "OCC.VALUE", "SW_TABLE0.CODES",
-                        "SW_TABLE1.CODES", "FILTER_ENABLE.VALUE", "OBJ_NEAR.VALUE", "OBJ_TOL.VALUE",
-                        "OBJ_MIN_PIXELS.VALUE", "CONTROL.GRID_BANK"})
+  for (const char* n :
+       {"WIDTH.VALUE", "HEIGHT.VALUE", "GAIN_L.VALUE", "GAIN_R.VALUE", "OFFSET_L.VALUE", "OFFSET_R.VALUE",
+        "RECT_ENABLE.VALUE", "OCC.VALUE", "SW_TABLE0.CODES", "SW_TABLE1.CODES", "FILTER_ENABLE.VALUE", "OBJ_NEAR.VALUE",
+        "OBJ_TOL.VALUE", "OBJ_MIN_PIXELS.VALUE", "CONTROL.GRID_BANK"})
     CHECK(field(n).shadow);
 }
 

@@ -61,12 +61,9 @@ TEST_CASE("same seed gives the same scene, another seed a different one", "[unit
 TEST_CASE("sm_scene writes byte-identical files for the same seed", "[unit][scene]") {
   const fs::path d1 = scratch("scene_det1"), d2 = scratch("scene_det2");
   const std::string args = " --width 80 --height 40 --levels 24 --seed 9 --objects 3 --noise 1.5";
-  REQUIRE(std::system(
-              (std::string("\"") + SM_SCENE_EXE + "\" --out " + d1.string() + args).c_str()) == 0);
-  REQUIRE(std::system(
-              (std::string("\"") + SM_SCENE_EXE + "\" --out " + d2.string() + args).c_str()) == 0);
-  for (const char* f : {"left.png", "right.png", "gt.png", "nonocc.png", "scale.txt", "camera.json",
-                        "calib.json"}) {
+  REQUIRE(std::system((std::string("\"") + SM_SCENE_EXE + "\" --out " + d1.string() + args).c_str()) == 0);
+  REQUIRE(std::system((std::string("\"") + SM_SCENE_EXE + "\" --out " + d2.string() + args).c_str()) == 0);
+  for (const char* f : {"left.png", "right.png", "gt.png", "nonocc.png", "scale.txt", "camera.json", "calib.json"}) {
     INFO(f);
     const std::string a = slurp(d1 / f);
     CHECK(!a.empty());
@@ -103,8 +100,7 @@ TEST_CASE("fronto-parallel plane: every visible left pixel is right pixel x - d"
   }
 }
 
-TEST_CASE("scene with objects: visible pixels at integer disparity match exactly",
-          "[unit][scene]") {
+TEST_CASE("scene with objects: visible pixels at integer disparity match exactly", "[unit][scene]") {
   for (uint64_t seed : {1u, 2u, 5u}) {
     SceneParams p = small(seed);
     p.width = 160;
@@ -168,8 +164,7 @@ TEST_CASE("right camera gain/offset and noise", "[unit][scene]") {
   CHECK(same(noisy.gt, clean.gt));
 }
 
-TEST_CASE("vertical shift: raw right image and calibration grid follow the homography",
-          "[unit][scene]") {
+TEST_CASE("vertical shift: raw right image and calibration grid follow the homography", "[unit][scene]") {
   SceneParams p = small(8);
   const auto rect = render_scene(p);
   p.vshift = 3;
@@ -177,8 +172,7 @@ TEST_CASE("vertical shift: raw right image and calibration grid follow the homog
   CHECK(same(rect.gt, raw.gt));
   // raw = rect shifted down by 3 rows (integer shift: exact).
   for (int y = 3; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x)
-      REQUIRE(raw.right.at<uint8_t>(y, x) == rect.right.at<uint8_t>(y - 3, x));
+    for (int x = 0; x < p.width; ++x) REQUIRE(raw.right.at<uint8_t>(y, x) == rect.right.at<uint8_t>(y - 3, x));
   // The bottom 3 rows of the rectified view are not seen by the shifted camera.
   for (int x = 10; x < p.width; ++x) CHECK(raw.nonocc.at<uint8_t>(p.height - 1, x) == 0);
 
@@ -197,8 +191,7 @@ TEST_CASE("vertical shift: raw right image and calibration grid follow the homog
   CHECK(c.rect_radius_needed >= 3);
 }
 
-TEST_CASE("rotation: the raw right image is the rectified one rotated about the centre",
-          "[unit][scene]") {
+TEST_CASE("rotation: the raw right image is the rectified one rotated about the centre", "[unit][scene]") {
   SceneParams p = small(12);
   p.objects = 0;
   p.bg_slant_x = 0;

@@ -34,8 +34,7 @@ fs::path tmp_root() { return fs::path(SM_TEST_TMP) / "cli"; }
 
 Run run(const std::string& exe, const std::string& args) {
   const fs::path o = tmp_root() / "stdout.txt", e = tmp_root() / "stderr.txt";
-  const std::string cmd =
-      "\"" + exe + "\" " + args + " > \"" + o.string() + "\" 2> \"" + e.string() + "\"";
+  const std::string cmd = "\"" + exe + "\" " + args + " > \"" + o.string() + "\" 2> \"" + e.string() + "\"";
   const int st = std::system(cmd.c_str());
   Run r;
   r.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
@@ -81,9 +80,7 @@ struct Fixture {
     std::ofstream((in / "text.png").string()) << "definitely not a PNG\n";
     const std::string png = slurp(scene / "left.png");
     std::ofstream((in / "trunc.png").string(), std::ios::binary) << png.substr(0, png.size() / 2);
-    cv::Mat narrow =
-        cv::imread((scene / "right.png").string(), cv::IMREAD_GRAYSCALE)(cv::Rect(0, 0, 60, 48))
-            .clone();
+    cv::Mat narrow = cv::imread((scene / "right.png").string(), cv::IMREAD_GRAYSCALE)(cv::Rect(0, 0, 60, 48)).clone();
     cv::imwrite((in / "narrow.png").string(), narrow);
     std::ofstream((in / "bad.json").string()) << "{ \"occ\": ";
     std::ofstream((in / "unknown.json").string()) << "{ \"occc\": 3 }";
@@ -101,43 +98,30 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
   fs::create_directories(out);
   const std::string o = " -o " + (out / "d.png").string();
   SECTION("missing file") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.I("nope.png") + " " + fx.R() + o),
-                 "nope.png: no such file");
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.I("nope.png") + " " + fx.R() + o), "nope.png: no such file");
   }
-  SECTION("not a PNG") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.I("text.png") + o), "text.png");
-  }
+  SECTION("not a PNG") { expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.I("text.png") + o), "text.png"); }
   SECTION("truncated PNG") {
     expect_error(run(SM_STEREO_MODEL_EXE, fx.I("trunc.png") + " " + fx.R() + o), "truncated");
   }
-  SECTION("size mismatch") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.I("narrow.png") + o), "differs");
-  }
+  SECTION("size mismatch") { expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.I("narrow.png") + o), "differs"); }
   SECTION("size above MAX_WIDTH") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --max-width 32"),
-                 "above MAX_WIDTH");
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --max-width 32"), "above MAX_WIDTH");
   }
   SECTION("malformed --regs") {
-    expect_error(
-        run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("bad.json")),
-        "malformed JSON");
-    expect_error(
-        run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("unknown.json")),
-        "occc");
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("bad.json")), "malformed JSON");
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("unknown.json")), "occc");
   }
   SECTION("illegal parameter") {
     expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 15"), "disp 15");
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --occ 300"),
-                 "occ");
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --occ 300"), "occ");
   }
   SECTION("missing calibration") {
-    expect_error(run(SM_STEREO_MODEL_EXE,
-                     fx.L() + " " + fx.R() + o + " --disp 16 --calib " + fx.I("none.json")),
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --calib " + fx.I("none.json")),
                  "none.json");
   }
   SECTION("unwritable output") {
-    expect_error(run(SM_STEREO_MODEL_EXE,
-                     fx.L() + " " + fx.R() + " --disp 16 -o " + (out / "no" / "d.png").string()),
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --disp 16 -o " + (out / "no" / "d.png").string()),
                  "cannot write");
   }
   expect_only(out, {});
@@ -148,9 +132,8 @@ TEST_CASE("stereo_model writes the model's disparity", "[unit][tools][cli]") {
   const fs::path out = fx.dir / "out_ok";
   fs::remove_all(out);
   fs::create_directories(out);
-  const Run r = run(SM_STEREO_MODEL_EXE,
-                    fx.L() + " " + fx.R() + " --disp 16 --census 7 --sw 3 --occ 20 -v -o " +
-                        (out / "d.png").string() + " --objects-json " + (out / "o.json").string());
+  const Run r = run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --disp 16 --census 7 --sw 3 --occ 20 -v -o " +
+                                             (out / "d.png").string() + " --objects-json " + (out / "o.json").string());
   INFO(r.err);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("census") != std::string::npos);  // -v: per-stage timing
@@ -168,20 +151,17 @@ TEST_CASE("stereo_model writes the model's disparity", "[unit][tools][cli]") {
   hw.sw = 3;
   sm::Regs regs = sm::Regs::defaults(hw);
   regs.occ = 20;
-  const auto res =
-      sm::run_pipeline(sm::tools::load_grey(fx.L()), sm::tools::load_grey(fx.R()), hw, regs, false);
+  const auto res = sm::run_pipeline(sm::tools::load_grey(fx.L()), sm::tools::load_grey(fx.R()), hw, regs, false);
   const cv::Mat ref = sm::tools::disp_to_grey(sm::tools::disp_to_float(res.post), 16);
   CHECK(cv::norm(d, ref, cv::NORM_INF) == 0);
   const auto j = nlohmann::json::parse(slurp(out / "o.json"));
   CHECK(j["objects"].size() == res.objects.objects.size());
   // --regs file gives the same result as the options.
   std::ofstream((out / "r.json").string()) << R"({"disp": 16, "census": 7, "sw": 3, "occ": 20})";
-  const Run r2 =
-      run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --regs " + (out / "r.json").string() +
-                                   " -o " + (out / "d2.png").string());
+  const Run r2 = run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --regs " + (out / "r.json").string() + " -o " +
+                                              (out / "d2.png").string());
   REQUIRE(r2.rc == 0);
-  CHECK(cv::norm(cv::imread((out / "d2.png").string(), cv::IMREAD_UNCHANGED), ref, cv::NORM_INF) ==
-        0);
+  CHECK(cv::norm(cv::imread((out / "d2.png").string(), cv::IMREAD_UNCHANGED), ref, cv::NORM_INF) == 0);
 }
 
 TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {
@@ -191,13 +171,11 @@ TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {
   const std::string j = " --json " + (out / "r.json").string();
   expect_error(run(SM_EVALUATE_EXE, (fx.dir / "nowhere").string() + j), "nowhere: not a directory");
   expect_error(run(SM_EVALUATE_EXE, fx.in.string() + j), "no scenes");
-  expect_error(run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --scenes tsukuba" + j),
-               "no scene 'tsukuba'");
+  expect_error(run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --scenes tsukuba" + j), "no scene 'tsukuba'");
   // A scene with a truncated ground truth / mismatched right image.
   const fs::path broken = fx.dir / "broken" / "s";
   fs::create_directories(broken);
-  for (const char* f : {"left.png", "right.png", "nonocc.png", "scale.txt"})
-    fs::copy_file(fx.scene / f, broken / f);
+  for (const char* f : {"left.png", "right.png", "nonocc.png", "scale.txt"}) fs::copy_file(fx.scene / f, broken / f);
   fs::copy_file(fx.in / "trunc.png", broken / "gt.png");
   expect_error(run(SM_EVALUATE_EXE, (fx.dir / "broken").string() + " -q" + j), "gt.png");
   fs::copy_file(fx.scene / "gt.png", broken / "gt.png", fs::copy_options::overwrite_existing);
@@ -212,8 +190,7 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   fs::remove_all(out);
   fs::create_directories(out);
   const Run r = run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --levels 16 -q --json " +
-                                         (out / "r.json").string() + " --disp-images " +
-                                         (out / "img").string());
+                                         (out / "r.json").string() + " --disp-images " + (out / "img").string());
   INFO(r.err);
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("mean") != std::string::npos);
@@ -261,8 +238,7 @@ TEST_CASE("sm_scene rejects bad parameters cleanly", "[unit][tools][cli]") {
   fs::remove_all(out);
   fs::create_directories(out);
   expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --width 8"), "image size");
-  expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --levels 16 --bg-disp 30"),
-               "exceeds levels");
+  expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --levels 16 --bg-disp 30"), "exceeds levels");
   std::ofstream((out / "file").string()) << "x";
   expect_error(run(SM_SCENE_EXE, "--out " + (out / "file").string()), "cannot create directory");
   expect_only(out, {"file"});

@@ -92,8 +92,7 @@ TEST_CASE("image loading: colour to grey, errors name the file", "[unit][tools]"
     cv::randu(noise, 0, 255);
     cv::imencode(".png", noise, buf);
     std::ofstream f((d / "trunc.png").string(), std::ios::binary);
-    f.write(reinterpret_cast<const char*>(buf.data()),
-            static_cast<std::streamsize>(buf.size() / 2));
+    f.write(reinterpret_cast<const char*>(buf.data()), static_cast<std::streamsize>(buf.size() / 2));
   }
   CHECK(fails_with((d / "trunc.png").string(), "truncated"));
   { std::ofstream((d / "empty.png").string()); }
@@ -112,10 +111,8 @@ TEST_CASE("atomic writes leave the final file only", "[unit][tools]") {
   CHECK(n == 2);
   CHECK(cv::imread((d / "a.png").string(), cv::IMREAD_UNCHANGED).at<uint8_t>(3, 3) == 7);
   // Unwritable target: error, and nothing left behind.
-  CHECK_THROWS_AS(write_image_atomic((d / "no_dir" / "x.png").string(), cv::Mat(4, 4, CV_8UC1)),
-                  ToolError);
-  CHECK_THROWS_AS(write_image_atomic((d / "x.unknownext").string(), cv::Mat(4, 4, CV_8UC1)),
-                  ToolError);
+  CHECK_THROWS_AS(write_image_atomic((d / "no_dir" / "x.png").string(), cv::Mat(4, 4, CV_8UC1)), ToolError);
+  CHECK_THROWS_AS(write_image_atomic((d / "x.unknownext").string(), cv::Mat(4, 4, CV_8UC1)), ToolError);
   n = 0;
   for (const auto& e : fs::directory_iterator(d)) {
     (void)e;

@@ -47,24 +47,22 @@ std::string lower(std::string s) {
 // a text file of the same paths one per line. Relative paths are relative to the list.
 std::vector<Pair> find_pairs(const std::string& input) {
   std::vector<Pair> pairs;
-  if (!fs::exists(input))
-    throw std::runtime_error(fmt::format("{}: no such file or folder", input));
+  if (!fs::exists(input)) throw std::runtime_error(fmt::format("{}: no such file or folder", input));
   if (fs::is_directory(input)) {
     std::map<std::string, Pair> by_key;
     for (const auto& e : fs::directory_iterator(input)) {
       if (!e.is_regular_file()) continue;
       const std::string name = e.path().filename().string(), l = lower(name);
       const std::string ext = lower(e.path().extension().string());
-      if (ext != ".jpg" && ext != ".jpeg" && ext != ".png" && ext != ".bmp" && ext != ".pgm" &&
-          ext != ".tif" && ext != ".tiff")
+      if (ext != ".jpg" && ext != ".jpeg" && ext != ".png" && ext != ".bmp" && ext != ".pgm" && ext != ".tif" &&
+          ext != ".tiff")
         continue;
       if (l.rfind("left", 0) == 0) by_key[l.substr(4)].left = e.path().string();
       if (l.rfind("right", 0) == 0) by_key[l.substr(5)].right = e.path().string();
     }
     for (const auto& [key, p] : by_key)
       if (!p.left.empty() && !p.right.empty()) pairs.push_back(p);
-    if (pairs.empty())
-      throw std::runtime_error(fmt::format("{}: no left*/right* image pairs in the folder", input));
+    if (pairs.empty()) throw std::runtime_error(fmt::format("{}: no left*/right* image pairs in the folder", input));
     return pairs;
   }
   std::vector<std::string> names;
@@ -73,8 +71,7 @@ std::vector<Pair> find_pairs(const std::string& input) {
     cv::FileStorage fsr(input, cv::FileStorage::READ);
     if (fsr.isOpened()) {
       const cv::FileNode n = fsr["imagelist"];
-      if (n.type() != cv::FileNode::SEQ)
-        throw std::runtime_error(fmt::format("{}: no 'imagelist' sequence", input));
+      if (n.type() != cv::FileNode::SEQ) throw std::runtime_error(fmt::format("{}: no 'imagelist' sequence", input));
       for (const auto& it : n) names.push_back(static_cast<std::string>(it));
       read = true;
     }
@@ -91,13 +88,11 @@ std::vector<Pair> find_pairs(const std::string& input) {
     }
   }
   if (names.empty() || names.size() % 2)
-    throw std::runtime_error(fmt::format("{}: the image list must hold left/right pairs ({} names)",
-                                         input, names.size()));
+    throw std::runtime_error(
+        fmt::format("{}: the image list must hold left/right pairs ({} names)", input, names.size()));
   const fs::path base = fs::path(input).parent_path();
   for (size_t i = 0; i < names.size(); i += 2) {
-    auto full = [&](const std::string& n) {
-      return fs::path(n).is_absolute() ? n : (base / n).string();
-    };
+    auto full = [&](const std::string& n) { return fs::path(n).is_absolute() ? n : (base / n).string(); };
     pairs.push_back({full(names[i]), full(names[i + 1])});
   }
   return pairs;
@@ -110,8 +105,7 @@ cv::Mat load_gray(const std::string& path) {
 }
 
 bool find_corners(const cv::Mat& img, cv::Size board, int win, std::vector<cv::Point2f>& c) {
-  if (!cv::findChessboardCorners(img, board, c,
-                                 cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
+  if (!cv::findChessboardCorners(img, board, c, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
     return false;
   cv::cornerSubPix(img, c, cv::Size(win, win), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.01));
@@ -143,8 +137,7 @@ cv::Mat to_mat(const sm::Image8& im) {
   return m;
 }
 
-sm::RectGrid grid_for(const cv::Mat& k, const cv::Mat& d, const cv::Mat& r, const cv::Mat& p, int w,
-                      int h) {
+sm::RectGrid grid_for(const cv::Mat& k, const cv::Mat& d, const cv::Mat& r, const cv::Mat& p, int w, int h) {
   const int mw = (sm::RectGrid::points_w(w) - 1) * sm::kGridStep + 1;
   const int mh = (sm::RectGrid::points_h(h) - 1) * sm::kGridStep + 1;
   cv::Mat mx, my;
@@ -163,20 +156,16 @@ int run(int argc, char** argv) {
   app.add_option("--square", square, "square size (unit of T)")->capture_default_str();
   app.add_option("--width", width, "active image width of the IP")->capture_default_str();
   app.add_option("--height", height, "active image height of the IP")->capture_default_str();
-  app.add_option("--rect-radius", rect_radius, "RECT_RADIUS the IP is built with")
-      ->capture_default_str();
-  app.add_option("--alpha", alpha, "stereoRectify free scaling (0: valid pixels only, 1: all)")
-      ->capture_default_str();
+  app.add_option("--rect-radius", rect_radius, "RECT_RADIUS the IP is built with")->capture_default_str();
+  app.add_option("--alpha", alpha, "stereoRectify free scaling (0: valid pixels only, 1: all)")->capture_default_str();
   app.add_option("-o,--out", out_json, "calibration JSON (registers)")->capture_default_str();
   double check_vdisp = 0;
   app.add_option("--check-vdisp", check_vdisp,
                  "fail when the mean |vertical disparity| of the rectified corners exceeds this "
                  "(px; 0: no check)");
   std::string save_dir;
-  app.add_option("--save-rectified", save_dir,
-                 "folder to write the model-rectified pairs to (side by side, PNG)");
-  app.add_option("--yaml", out_yaml, "camera parameters (cv::FileStorage YAML)")
-      ->capture_default_str();
+  app.add_option("--save-rectified", save_dir, "folder to write the model-rectified pairs to (side by side, PNG)");
+  app.add_option("--yaml", out_yaml, "camera parameters (cv::FileStorage YAML)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   cv::Size board;
@@ -184,8 +173,7 @@ int run(int argc, char** argv) {
     char x = 0, extra = 0;
     if (std::sscanf(board_s.c_str(), "%d%c%d%c", &board.width, &x, &board.height, &extra) != 3 ||
         (x != 'x' && x != 'X') || board.width < 2 || board.height < 2)
-      throw std::runtime_error(
-          fmt::format("--board '{}': expected <cols>x<rows>, e.g. 9x6", board_s));
+      throw std::runtime_error(fmt::format("--board '{}': expected <cols>x<rows>, e.g. 9x6", board_s));
   }
   if (width < 16 || width > 4095 || height < 16 || height > 4095)
     throw std::runtime_error(fmt::format("--width/--height {}x{} outside 16..4095", width, height));
@@ -205,15 +193,12 @@ int run(int argc, char** argv) {
   cv::Size src_size;
   for (const auto& p : pairs) {
     const cv::Mat l = load_gray(p.left), r = load_gray(p.right);
-    if (l.size() != r.size())
-      throw std::runtime_error(fmt::format("{}: size differs from {}", p.right, p.left));
+    if (l.size() != r.size()) throw std::runtime_error(fmt::format("{}: size differs from {}", p.right, p.left));
     if (src_size.area() == 0) src_size = l.size();
-    if (l.size() != src_size)
-      throw std::runtime_error(fmt::format("{}: size differs from the first image", p.left));
+    if (l.size() != src_size) throw std::runtime_error(fmt::format("{}: size differs from the first image", p.left));
     std::vector<cv::Point2f> cl, cr;
     const bool ok = find_corners(l, board, 11, cl) && find_corners(r, board, 11, cr);
-    fmt::print("{} / {}: {}\n", fs::path(p.left).filename().string(),
-               fs::path(p.right).filename().string(),
+    fmt::print("{} / {}: {}\n", fs::path(p.left).filename().string(), fs::path(p.right).filename().string(),
                ok ? "board found" : "board NOT found, skipped");
     if (!ok) continue;
     // Corners at the IP size (pixel centres map as in cv::resize).
@@ -230,19 +215,17 @@ int run(int argc, char** argv) {
     small_r.push_back(sr);
   }
   if (obj.size() < 3)
-    throw std::runtime_error(
-        fmt::format("{}: the board was found in only {} pairs, need 3", input, obj.size()));
+    throw std::runtime_error(fmt::format("{}: the board was found in only {} pairs, need 3", input, obj.size()));
 
   cv::Mat k1, d1, k2, d2, rot, tr, e, f;
   std::vector<cv::Mat> rv, tv;
   const double rms_l = cv::calibrateCamera(obj, pts_l, size, k1, d1, rv, tv);
   const double rms_r = cv::calibrateCamera(obj, pts_r, size, k2, d2, rv, tv);
-  const double rms = cv::stereoCalibrate(
-      obj, pts_l, pts_r, k1, d1, k2, d2, size, rot, tr, e, f, cv::CALIB_USE_INTRINSIC_GUESS,
-      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-6));
+  const double rms =
+      cv::stereoCalibrate(obj, pts_l, pts_r, k1, d1, k2, d2, size, rot, tr, e, f, cv::CALIB_USE_INTRINSIC_GUESS,
+                          cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-6));
   cv::Mat r1, r2, p1, p2, q;
-  cv::stereoRectify(k1, d1, k2, d2, size, rot, tr, r1, r2, p1, p2, q, cv::CALIB_ZERO_DISPARITY,
-                    alpha, size);
+  cv::stereoRectify(k1, d1, k2, d2, size, rot, tr, r1, r2, p1, p2, q, cv::CALIB_ZERO_DISPARITY, alpha, size);
 
   sm::CalibFile cal;
   cal.width = width;
@@ -255,20 +238,16 @@ int run(int argc, char** argv) {
 
   {
     cv::FileStorage y(out_yaml, cv::FileStorage::WRITE);
-    if (!y.isOpened())
-      throw std::runtime_error(fmt::format("{}: cannot open for writing", out_yaml));
-    y << "image_width" << width << "image_height" << height << "source_width" << src_size.width
-      << "source_height" << src_size.height << "board" << board << "square" << square
-      << "pairs_used" << static_cast<int>(obj.size()) << "rms_left" << rms_l << "rms_right" << rms_r
-      << "rms_stereo" << rms << "K1" << k1 << "D1" << d1 << "K2" << k2 << "D2" << d2 << "R" << rot
-      << "T" << tr << "E" << e << "F" << f << "R1" << r1 << "R2" << r2 << "P1" << p1 << "P2" << p2
-      << "Q" << q << "rect_radius_needed" << cal.rect_radius_needed;
+    if (!y.isOpened()) throw std::runtime_error(fmt::format("{}: cannot open for writing", out_yaml));
+    y << "image_width" << width << "image_height" << height << "source_width" << src_size.width << "source_height"
+      << src_size.height << "board" << board << "square" << square << "pairs_used" << static_cast<int>(obj.size())
+      << "rms_left" << rms_l << "rms_right" << rms_r << "rms_stereo" << rms << "K1" << k1 << "D1" << d1 << "K2" << k2
+      << "D2" << d2 << "R" << rot << "T" << tr << "E" << e << "F" << f << "R1" << r1 << "R2" << r2 << "P1" << p1 << "P2"
+      << p2 << "Q" << q << "rect_radius_needed" << cal.rect_radius_needed;
   }
-  fmt::print(
-      "pairs used {} of {}; RMS reprojection error: left {:.4f}, right {:.4f}, stereo {:.4f} px\n",
-      obj.size(), pairs.size(), rms_l, rms_r, rms);
-  fmt::print("line-buffer radius needed: left {}, right {} (configured RECT_RADIUS {})\n", need_l,
-             need_r, rect_radius);
+  fmt::print("pairs used {} of {}; RMS reprojection error: left {:.4f}, right {:.4f}, stereo {:.4f} px\n", obj.size(),
+             pairs.size(), rms_l, rms_r, rms);
+  fmt::print("line-buffer radius needed: left {}, right {} (configured RECT_RADIUS {})\n", need_l, need_r, rect_radius);
 
   // Check with the model's rectify at the configured radius (bit-exact with the RTL).
   sm::HwConfig hw;
@@ -284,8 +263,7 @@ int run(int argc, char** argv) {
     if (!save_dir.empty()) {
       cv::Mat both;
       cv::hconcat(rl, rr, both);
-      const std::string path =
-          (fs::path(save_dir) / fmt::format("rectified_{:02d}.png", i)).string();
+      const std::string path = (fs::path(save_dir) / fmt::format("rectified_{:02d}.png", i)).string();
       if (!cv::imwrite(path, both)) throw std::runtime_error(fmt::format("{}: cannot write", path));
     }
     std::vector<cv::Point2f> cl, cr;
@@ -293,8 +271,7 @@ int run(int argc, char** argv) {
     // the detector may number a board from either end; pair corners the consistent way
     auto mean_dy = [&](bool reverse) {
       double s = 0;
-      for (size_t k = 0; k < cl.size(); ++k)
-        s += std::fabs(cl[k].y - cr[reverse ? cr.size() - 1 - k : k].y);
+      for (size_t k = 0; k < cl.size(); ++k) s += std::fabs(cl[k].y - cr[reverse ? cr.size() - 1 - k : k].y);
       return s / static_cast<double>(cl.size());
     };
     const bool rev = mean_dy(true) < mean_dy(false);
@@ -313,16 +290,13 @@ int run(int argc, char** argv) {
         "vertical disparity of chessboard corners on the model-rectified images (RECT_RADIUS {}): "
         "mean |dy| {:.3f} px, max {:.3f} px over {} corners in {} pairs\n",
         hw.rect_radius, sum_dy / static_cast<double>(n_dy), max_dy, n_dy, n_pairs);
-    fmt::print("(the IP's RECT_RADIUS must be at least {} for this calibration)\n",
-               cal.rect_radius_needed);
+    fmt::print("(the IP's RECT_RADIUS must be at least {} for this calibration)\n", cal.rect_radius_needed);
   }
 
   const double mean_dy = n_dy ? sum_dy / static_cast<double>(n_dy) : 0.0;
   if (check_vdisp > 0 && (n_dy == 0 || mean_dy > check_vdisp)) {
-    fmt::print(
-        stderr,
-        "error: mean |vertical disparity| {:.3f} px over {} corners exceeds --check-vdisp {}\n",
-        mean_dy, n_dy, check_vdisp);
+    fmt::print(stderr, "error: mean |vertical disparity| {:.3f} px over {} corners exceeds --check-vdisp {}\n", mean_dy,
+               n_dy, check_vdisp);
     return 1;
   }
   if (cal.rect_radius_needed > rect_radius) {

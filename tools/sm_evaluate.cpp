@@ -51,8 +51,7 @@ std::vector<Method> all_methods(int occ) {
                  hw.max_height = l.rows;
                  sm::Regs regs = sm::Regs::defaults(hw);
                  if (occ >= 0) regs.occ = static_cast<uint8_t>(occ);
-                 const auto res = sm::run_pipeline(sm::tools::to_image8(l), sm::tools::to_image8(r),
-                                                   hw, regs, false);
+                 const auto res = sm::run_pipeline(sm::tools::to_image8(l), sm::tools::to_image8(r), hw, regs, false);
                  return sm::tools::disp_to_float(res.post);
                }});
   m.push_back({"bm", [](const cv::Mat& l, const cv::Mat& r, int levels) {
@@ -63,15 +62,14 @@ std::vector<Method> all_methods(int occ) {
                }});
   m.push_back({"sgbm", [](const cv::Mat& l, const cv::Mat& r, int levels) {
                  const int bs = 5;  // parameters of OpenCV's stereo_match sample
-                 auto sg = cv::StereoSGBM::create(0, round16(levels), bs, 8 * bs * bs, 32 * bs * bs,
-                                                  1, 63, 10, 100, 32, cv::StereoSGBM::MODE_SGBM);
+                 auto sg = cv::StereoSGBM::create(0, round16(levels), bs, 8 * bs * bs, 32 * bs * bs, 1, 63, 10, 100, 32,
+                                                  cv::StereoSGBM::MODE_SGBM);
                  cv::Mat d;
                  sg->compute(l, r, d);
                  return from_fixed16(d);
                }});
   m.push_back({"binsgbm", [](const cv::Mat& l, const cv::Mat& r, int levels) {
-                 auto sg = cv::stereo::StereoBinarySGBM::create(0, round16(levels), 9, 100, 1000, 1,
-                                                                0, 5, 400, 200);
+                 auto sg = cv::stereo::StereoBinarySGBM::create(0, round16(levels), 9, 100, 1000, 1, 0, 5, 400, 200);
                  cv::Mat d;
                  sg->compute(l, r, d);
                  return from_fixed16(d);
@@ -94,22 +92,16 @@ int run(int argc, char** argv) {
   int levels = 128, synthetic = 0, occ = -1;
   bool quiet = false;
   CLI::App app{"bad-1.0 and run time of the model and OpenCV matchers on a stereo dataset"};
-  app.add_option(
-      "dataset", dataset,
-      "dataset folder (scene subfolders with left/right/gt.png, scale.txt) or one scene folder");
+  app.add_option("dataset", dataset,
+                 "dataset folder (scene subfolders with left/right/gt.png, scale.txt) or one scene folder");
   app.add_option("--scenes", scenes_opt, "comma-separated scene names (default: all)");
   app.add_option("--json", json_path, "write the results as JSON");
-  app.add_option("--levels", levels,
-                 "disparity levels of every method (0: per scene, from scale.txt)")
+  app.add_option("--levels", levels, "disparity levels of every method (0: per scene, from scale.txt)")
       ->capture_default_str();
-  app.add_option("--disp-images", disp_dir,
-                 "write <scene>_<method>.png colour disparity maps here");
-  app.add_option("--methods", methods_opt, "comma-separated subset of model,bm,sgbm,binsgbm")
-      ->capture_default_str();
-  app.add_option("--synthetic", synthetic,
-                 "evaluate N synthetic scenes (sm_scene seeds 1..N) instead of a dataset");
-  app.add_option("--synthetic-size", synth_size, "WxH of the synthetic scenes")
-      ->capture_default_str();
+  app.add_option("--disp-images", disp_dir, "write <scene>_<method>.png colour disparity maps here");
+  app.add_option("--methods", methods_opt, "comma-separated subset of model,bm,sgbm,binsgbm")->capture_default_str();
+  app.add_option("--synthetic", synthetic, "evaluate N synthetic scenes (sm_scene seeds 1..N) instead of a dataset");
+  app.add_option("--synthetic-size", synth_size, "WxH of the synthetic scenes")->capture_default_str();
   app.add_option("--occ", occ, "model: DP occlusion penalty register (default: Regs default)")
       ->check(CLI::Range(0, 255));
   app.add_flag("-q,--quiet", quiet, "no progress lines");
@@ -170,8 +162,7 @@ int run(int argc, char** argv) {
     auto dirs = sm::tools::list_scenes(dataset);
     const auto wanted = split(scenes_opt);
     for (const auto& wn : wanted)
-      if (std::none_of(dirs.begin(), dirs.end(),
-                       [&](const std::string& d) { return fs::path(d).filename() == wn; }))
+      if (std::none_of(dirs.begin(), dirs.end(), [&](const std::string& d) { return fs::path(d).filename() == wn; }))
         throw ToolError(fmt::format("{}: no scene '{}'", dataset, wn));
     for (const auto& d : dirs) {
       const std::string n = fs::path(d).filename().string();
@@ -180,21 +171,17 @@ int run(int argc, char** argv) {
       loaders.push_back([d]() { return sm::tools::load_scene(d); });
     }
     if (loaders.empty())
-      throw ToolError(
-          fmt::format("{}: no scenes (folders with left.png right.png gt.png scale.txt)", dataset));
+      throw ToolError(fmt::format("{}: no scenes (folders with left.png right.png gt.png scale.txt)", dataset));
   }
   if (!disp_dir.empty()) {
     std::error_code ec;
     fs::create_directories(disp_dir, ec);
-    if (!fs::is_directory(disp_dir))
-      throw ToolError(fmt::format("{}: cannot create directory", disp_dir));
+    if (!fs::is_directory(disp_dir)) throw ToolError(fmt::format("{}: cannot create directory", disp_dir));
   }
 
   json jout;
-  jout["dataset"] =
-      synthetic > 0 ? fmt::format("synthetic x{} ({})", synthetic, synth_size) : dataset;
-  jout["metric"] =
-      "bad-1.0 %: |d - gt| > 1 over known gt pixels (nonocc mask where present); invalid = bad";
+  jout["dataset"] = synthetic > 0 ? fmt::format("synthetic x{} ({})", synthetic, synth_size) : dataset;
+  jout["metric"] = "bad-1.0 %: |d - gt| > 1 over known gt pixels (nonocc mask where present); invalid = bad";
   jout["threads"] = 1;
   jout["scenes"] = json::array();
   std::map<std::string, double> sum_bad, sum_ms;
@@ -211,22 +198,15 @@ int run(int argc, char** argv) {
     const sm::tools::Scene sc = loaders[i]();
     const int lv = levels ? levels : std::min(254, (sc.levels + 1) / 2 * 2);
     Row row{names[i], fmt::format("{}x{}", sc.left.cols, sc.left.rows), lv, {}};
-    json js = {{"name", names[i]},
-               {"width", sc.left.cols},
-               {"height", sc.left.rows},
-               {"levels", lv},
-               {"scene_levels", sc.levels},
-               {"gt_scale", sc.scale},
-               {"nonocc_mask", !sc.nonocc.empty()}};
+    json js = {{"name", names[i]},          {"width", sc.left.cols}, {"height", sc.left.rows},           {"levels", lv},
+               {"scene_levels", sc.levels}, {"gt_scale", sc.scale},  {"nonocc_mask", !sc.nonocc.empty()}};
     for (const auto& m : methods) {
       ++step;
       if (!quiet)
-        fmt::print(stderr, "[{}/{}] {} ({}, {} levels): {} ...\n", step, total_steps, names[i],
-                   row.size, lv, m.name);
+        fmt::print(stderr, "[{}/{}] {} ({}, {} levels): {} ...\n", step, total_steps, names[i], row.size, lv, m.name);
       const auto t0 = std::chrono::steady_clock::now();
       const cv::Mat est = m.run(sc.left, sc.right, lv);
-      const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       const auto st = sm::tools::bad1(est, sc.gt, sc.nonocc);
       row.r.emplace_back(st, ms);
       sum_bad[m.name] += st.bad_pct();
@@ -237,16 +217,14 @@ int run(int argc, char** argv) {
                                {"invalid", st.invalid},
                                {"ms", ms}};
       if (!disp_dir.empty())
-        sm::tools::write_image_atomic(
-            (fs::path(disp_dir) / fmt::format("{}_{}.png", names[i], m.name)).string(),
-            sm::tools::disp_to_colour(est, lv));
+        sm::tools::write_image_atomic((fs::path(disp_dir) / fmt::format("{}_{}.png", names[i], m.name)).string(),
+                                      sm::tools::disp_to_colour(est, lv));
     }
     if (!disp_dir.empty()) {
       cv::Mat g = sc.gt.clone();
       g.setTo(-1.0f, sc.gt <= 0);
-      sm::tools::write_image_atomic(
-          (fs::path(disp_dir) / fmt::format("{}_gt.png", names[i])).string(),
-          sm::tools::disp_to_colour(g, lv));
+      sm::tools::write_image_atomic((fs::path(disp_dir) / fmt::format("{}_gt.png", names[i])).string(),
+                                    sm::tools::disp_to_colour(g, lv));
     }
     jout["scenes"].push_back(js);
     rows.push_back(row);
@@ -254,8 +232,7 @@ int run(int argc, char** argv) {
 
   // Table: bad-1.0 % (invalid share in brackets) and ms per method.
   std::string head = fmt::format("{:<12} {:>8} {:>6}", "scene", "size", "levels");
-  for (const auto& m : methods)
-    head += fmt::format(" | {:>18} {:>8}", m.name + " bad1% (inv%)", "ms");
+  for (const auto& m : methods) head += fmt::format(" | {:>18} {:>8}", m.name + " bad1% (inv%)", "ms");
   fmt::print("{}\n{}\n", head, std::string(head.size(), '-'));
   for (const auto& row : rows) {
     std::string line = fmt::format("{:<12} {:>8} {:>6}", row.name, row.size, row.levels);

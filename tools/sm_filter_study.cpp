@@ -26,9 +26,7 @@ struct Candidate {
   std::vector<Filter> chain;
 };
 Filter rk(int ry, int rx, int rank) {
-  return [ry, rx, rank](const DispImage& d, const HwConfig& hw) {
-    return post_rank(d, hw, ry, rx, rank);
-  };
+  return [ry, rx, rank](const DispImage& d, const HwConfig& hw) { return post_rank(d, hw, ry, rx, rank); };
 }
 Filter med(int ry, int rx) {
   return [ry, rx](const DispImage& d, const HwConfig& hw) { return post_median(d, hw, ry, rx); };
@@ -43,8 +41,7 @@ int main(int argc, char** argv) {
   std::string json_out;
   std::string dump_dir;
   app.add_option("--datasets", datasets, "folder of scene folders (e.g. ../shared/datasets)");
-  app.add_option("--synthetic", synthetic, "number of synthetic 320x240 scenes")
-      ->check(CLI::Range(0, 100));
+  app.add_option("--synthetic", synthetic, "number of synthetic 320x240 scenes")->check(CLI::Range(0, 100));
   app.add_option("--disp", disp, "disparity levels (DISP)")->check(CLI::Range(4, 254));
   app.add_option("--json", json_out, "write the table as JSON");
   app.add_option("--dump", dump_dir, "write <scene>_dp.png and <scene>_err.png (bad pixels) here");
@@ -95,8 +92,7 @@ int main(int argc, char** argv) {
       p.seed = 100 + i;
       p.noise = 2.0;
       SyntheticScene s = render_scene(p);
-      inputs.push_back(
-          {fmt::format("synthetic{}", i), to_image8(s.left), to_image8(s.right), s.gt, s.nonocc});
+      inputs.push_back({fmt::format("synthetic{}", i), to_image8(s.left), to_image8(s.right), s.gt, s.nonocc});
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "sm_filter_study: {}\n", e.what());
@@ -128,8 +124,7 @@ int main(int argc, char** argv) {
           const float e = f.at<float>(y, x);
           if (!eval) continue;
           const bool bad = e < 0 || std::fabs(e - g) > 1.0f;
-          err.at<cv::Vec3b>(y, x) =
-              bad ? (e > g ? cv::Vec3b(0, 0, 255) : cv::Vec3b(255, 0, 0)) : cv::Vec3b(80, 80, 80);
+          err.at<cv::Vec3b>(y, x) = bad ? (e > g ? cv::Vec3b(0, 0, 255) : cv::Vec3b(255, 0, 0)) : cv::Vec3b(80, 80, 80);
         }
       try {
         write_image_atomic(dump_dir + "/" + in.name + "_dp.png", disp_to_grey(f, disp));
@@ -146,10 +141,7 @@ int main(int argc, char** argv) {
       const BadStats ba = bad1(disp_to_float(d), in.gt, cv::Mat());
       table[c].push_back(b.bad_pct());
       table_all[c].push_back(ba.bad_pct());
-      js.push_back({{"scene", in.name},
-                    {"chain", cands[c].name},
-                    {"bad1", b.bad_pct()},
-                    {"bad1_all", ba.bad_pct()}});
+      js.push_back({{"scene", in.name}, {"chain", cands[c].name}, {"bad1", b.bad_pct()}, {"bad1_all", ba.bad_pct()}});
     }
     fmt::print(stderr, "{} done\n", in.name);
   }

@@ -95,8 +95,7 @@ Val parse_val(const json& j, const std::string& what, const std::vector<std::str
   return v;
 }
 
-Field parse_field(const json& j, const std::string& where, const std::vector<std::string>& params,
-                  bool need_access) {
+Field parse_field(const json& j, const std::string& where, const std::vector<std::string>& params, bool need_access) {
   Field f;
   f.name = j.at("name").get<std::string>();
   const auto w = where + "." + f.name;
@@ -176,8 +175,7 @@ Map parse(const json& j) {
   m.grid_point_bits = static_cast<int>(parse_num(g.at("point_bits"), "grid_window.point_bits"));
   m.grid_desc = g.value("desc", "");
   for (const auto& f : g.at("fields")) m.grid_fields.push_back(parse_field(f, "GRID", m.params, false));
-  if ((4u << (m.grid_point_bits + 2)) != m.grid_size)
-    fail("grid_window: size must be 4 * 2^(point_bits + 2)");
+  if ((4u << (m.grid_point_bits + 2)) != m.grid_size) fail("grid_window: size must be 4 * 2^(point_bits + 2)");
   const uint64_t top = uint64_t{1} << m.addr_bits;
   for (const auto& r : m.regs)
     if (r.addr >= m.obj_base || r.addr >= m.grid_base) fail(r.name + ": overlaps a window");
@@ -216,8 +214,7 @@ std::string gen_vh(const Map& m) {
     << fmt::format("{}", fmt::join(m.params, ", ")) << ").\n";
   o << fmt::format("localparam SM_ADDR_BITS = {};\n", m.addr_bits);
   for (const auto& r : m.regs) {
-    o << fmt::format("localparam [{}:0] SM_{}_ADDR = {}'h{:X};\n", m.addr_bits - 1, r.name, m.addr_bits,
-                     r.addr);
+    o << fmt::format("localparam [{}:0] SM_{}_ADDR = {}'h{:X};\n", m.addr_bits - 1, r.name, m.addr_bits, r.addr);
     for (const auto& f : r.fields) {
       const auto p = fmt::format("SM_{}_{}", r.name, f.name);
       o << fmt::format("localparam {}_LSB = {};\n", p, f.lsb);
@@ -309,18 +306,17 @@ struct Reg {
   o << "\n// Field positions: k<REG>_<FIELD>_LSB / _W.\n";
   for (const auto& r : m.regs)
     for (const auto& f : r.fields)
-      o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", r.name,
-                       f.name, f.lsb, f.width);
+      o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", r.name, f.name, f.lsb,
+                       f.width);
   size_t nf = 0;
   for (const auto& r : m.regs) nf += r.fields.size();
   o << fmt::format("\ninline const std::array<Field, {}>& fields() {{\n  static const std::array<Field, {}> f{{{{\n",
                    nf, nf);
   for (const auto& r : m.regs)
     for (const auto& f : r.fields)
-      o << fmt::format("      {{\"{}.{}\", {}, {}, {}, {}, {}, {}, {}, {}, {}}},\n", r.name, f.name, f.lsb,
-                       f.width, access_enum(f.access), cval(f.reset), f.min.present ? "true" : "false",
-                       cval(f.min), cval(f.max), f.is_signed ? "true" : "false",
-                       f.shadow ? "true" : "false");
+      o << fmt::format("      {{\"{}.{}\", {}, {}, {}, {}, {}, {}, {}, {}, {}}},\n", r.name, f.name, f.lsb, f.width,
+                       access_enum(f.access), cval(f.reset), f.min.present ? "true" : "false", cval(f.min), cval(f.max),
+                       f.is_signed ? "true" : "false", f.shadow ? "true" : "false");
   o << "  }};\n  return f;\n}\n";
   o << fmt::format("\ninline const std::array<Reg, {}>& registers() {{\n  static const std::array<Reg, {}> r{{{{\n",
                    m.regs.size(), m.regs.size());
@@ -336,13 +332,13 @@ struct Reg {
   o << fmt::format("constexpr uint32_t kObjFirstIdx = {};  // word index of object 0\n", m.obj_offset / 4);
   o << fmt::format("constexpr uint32_t kObjWords = {};  // words per object\n", m.obj_stride / 4);
   for (const auto& f : m.obj_header.fields)
-    o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", m.obj_header.name,
-                     f.name, f.lsb, f.width);
+    o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", m.obj_header.name, f.name,
+                     f.lsb, f.width);
   for (size_t w = 0; w < m.obj_words.size(); ++w) {
     o << fmt::format("constexpr uint32_t k{}_WORD = {};\n", m.obj_words[w].name, m.obj_words[w].addr / 4);
     for (const auto& f : m.obj_words[w].fields)
-      o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n",
-                       m.obj_words[w].name, f.name, f.lsb, f.width);
+      o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", m.obj_words[w].name,
+                       f.name, f.lsb, f.width);
   }
   o << "// Byte address of word `word` of object i; of the header for obj_header_addr().\n";
   o << "constexpr uint32_t obj_header_addr() { return kObjBase; }\n";
@@ -350,8 +346,8 @@ struct Reg {
        "  return kObjBase + 4u * (kObjFirstIdx + kObjWords * static_cast<uint32_t>(i) + "
        "static_cast<uint32_t>(word));\n}\n\n";
   o << "// Rectification grid window: address = base + 4 * {cam, bank, point}.\n";
-  o << fmt::format("constexpr uint32_t kGridBase = 0x{:X};\nconstexpr uint32_t kGridSize = 0x{:X};\n",
-                   m.grid_base, m.grid_size);
+  o << fmt::format("constexpr uint32_t kGridBase = 0x{:X};\nconstexpr uint32_t kGridSize = 0x{:X};\n", m.grid_base,
+                   m.grid_size);
   o << fmt::format("constexpr int kGridPointBits = {};\n", m.grid_point_bits);
   o << "constexpr uint32_t grid_addr(int cam, int bank, int point) {\n"
        "  return kGridBase + 4u * ((static_cast<uint32_t>(cam) << (kGridPointBits + 1)) |\n"
@@ -369,8 +365,10 @@ struct Reg {
 std::string md_escape(const std::string& s) {
   std::string r;
   for (char c : s) {
-    if (c == '|') r += "\\|";
-    else r += c;
+    if (c == '|')
+      r += "\\|";
+    else
+      r += c;
   }
   return r;
 }
@@ -398,14 +396,14 @@ std::string gen_md(const Map& m) {
   o << "# " << m.title << "\n\n";
   o << "<!-- Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit; the ctest "
        "regmap_doc_current checks that this file is up to date. -->\n\n";
-  o << fmt::format("Address width {} bits (byte addresses). Access: `ro` read-only, `rw` read/write, "
-                   "`w1c` write 1 to clear, `wp` write 1 for a one-clock pulse (reads 0); `shadow` "
-                   "fields reach the pipeline at the next frame start.\n\n",
-                   m.addr_bits);
+  o << fmt::format(
+      "Address width {} bits (byte addresses). Access: `ro` read-only, `rw` read/write, "
+      "`w1c` write 1 to clear, `wp` write 1 for a one-clock pulse (reads 0); `shadow` "
+      "fields reach the pipeline at the next frame start.\n\n",
+      m.addr_bits);
   for (const auto& n : m.notes) o << "- " << n << "\n";
   o << "\n## Summary\n\n| address | register | description |\n|---|---|---|\n";
-  for (const auto& r : m.regs)
-    o << fmt::format("| 0x{:04X} | {} | {} |\n", r.addr, r.name, md_escape(r.desc));
+  for (const auto& r : m.regs) o << fmt::format("| 0x{:04X} | {} | {} |\n", r.addr, r.name, md_escape(r.desc));
   o << fmt::format("| 0x{:04X}..0x{:04X} | object list | read-only window |\n", m.obj_base,
                    m.obj_base + m.obj_size - 1);
   o << fmt::format("| 0x{:04X}..0x{:04X} | grid window | write-only window |\n", m.grid_base,
@@ -420,8 +418,8 @@ std::string gen_md(const Map& m) {
   o << fmt::format("### {} (0x{:04X})\n\n", m.obj_header.name, m.obj_base);
   md_fields(o, m.obj_header.fields, false);
   for (const auto& w : m.obj_words) {
-    o << fmt::format("### {} (0x{:04X} + 0x{:X} * i + 0x{:X})\n\n", w.name, m.obj_base + m.obj_offset,
-                     m.obj_stride, w.addr);
+    o << fmt::format("### {} (0x{:04X} + 0x{:X} * i + 0x{:X})\n\n", w.name, m.obj_base + m.obj_offset, m.obj_stride,
+                     w.addr);
     md_fields(o, w.fields, false);
   }
   o << fmt::format("## Rectification grid window (0x{:04X}..0x{:04X})\n\n{}\n\n", m.grid_base,

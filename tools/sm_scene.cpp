@@ -18,26 +18,19 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "output directory (created)")->required();
   app.add_option("--width", p.width, "image width")->capture_default_str();
   app.add_option("--height", p.height, "image height")->capture_default_str();
-  app.add_option("--levels", p.levels, "disparity levels (gt stays in 0..levels-1)")
-      ->capture_default_str();
+  app.add_option("--levels", p.levels, "disparity levels (gt stays in 0..levels-1)")->capture_default_str();
   app.add_option("--seed", p.seed, "random seed (same seed -> same bytes)")->capture_default_str();
-  app.add_option("--objects", p.objects, "rectangles/discs in front of the background")
-      ->capture_default_str();
+  app.add_option("--objects", p.objects, "rectangles/discs in front of the background")->capture_default_str();
   app.add_option("--bg-disp", p.bg_disp, "background disparity at (0,0) (default 4% of levels)");
-  app.add_option("--bg-slant-x", p.bg_slant_x,
-                 "background disparity change across the width (default 10% of levels)");
-  app.add_option("--bg-slant-y", p.bg_slant_y,
-                 "background disparity change down the height (default 12% of levels)");
+  app.add_option("--bg-slant-x", p.bg_slant_x, "background disparity change across the width (default 10% of levels)");
+  app.add_option("--bg-slant-y", p.bg_slant_y, "background disparity change down the height (default 12% of levels)");
   app.add_option("--gain-l", p.gain_l, "left camera gain")->capture_default_str();
-  app.add_option("--offset-l", p.offset_l, "left camera offset (grey levels)")
-      ->capture_default_str();
+  app.add_option("--offset-l", p.offset_l, "left camera offset (grey levels)")->capture_default_str();
   app.add_option("--gain-r", p.gain_r, "right camera gain")->capture_default_str();
-  app.add_option("--offset-r", p.offset_r, "right camera offset (grey levels)")
-      ->capture_default_str();
+  app.add_option("--offset-r", p.offset_r, "right camera offset (grey levels)")->capture_default_str();
   app.add_option("--rot-deg", p.rot_deg, "right camera rotation about the image centre (degrees)")
       ->capture_default_str();
-  app.add_option("--vshift", p.vshift, "right camera vertical offset (pixels)")
-      ->capture_default_str();
+  app.add_option("--vshift", p.vshift, "right camera vertical offset (pixels)")->capture_default_str();
   app.add_option("--noise", p.noise, "Gaussian noise sigma (grey levels)")->capture_default_str();
   app.add_flag("--no-nonocc", no_nonocc, "do not write nonocc.png");
   app.add_flag("-v,--verbose", verbose, "print a summary");

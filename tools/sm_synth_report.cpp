@@ -60,8 +60,7 @@ json load_stat(const std::string& path) {
   std::string text, line;
   while (std::getline(f, line)) {
     auto p = line.find_first_not_of(" \t\r");
-    if (p != std::string::npos && std::string("\"{}[]").find(line[p]) == std::string::npos)
-      continue;
+    if (p != std::string::npos && std::string("\"{}[]").find(line[p]) == std::string::npos) continue;
     text += line;
     text += '\n';
   }
@@ -105,11 +104,10 @@ std::string strip_clk_suffix(const std::string& t) {  // RAM64X1D_1 (falling edg
 // LUTs occupied by one distributed-RAM primitive.
 int lutram_luts(const std::string& type) {
   static const std::map<std::string, int> k = {
-      {"RAM16X1S", 1},  {"RAM32X1S", 1}, {"RAM64X1S", 1}, {"RAM128X1S", 2}, {"RAM256X1S", 4},
-      {"RAM512X1S", 8}, {"RAM16X1D", 2}, {"RAM32X1D", 2}, {"RAM64X1D", 2},  {"RAM128X1D", 4},
-      {"RAM256X1D", 8}, {"RAM32M", 4},   {"RAM64M", 4},   {"RAM32M16", 8},  {"RAM64M8", 8},
-      {"RAM16X2S", 2},  {"RAM16X4S", 4}, {"RAM16X8S", 8}, {"RAM32X2S", 2},  {"RAM32X4S", 4},
-      {"RAM32X8S", 8},  {"RAM64X2S", 2}};
+      {"RAM16X1S", 1}, {"RAM32X1S", 1}, {"RAM64X1S", 1}, {"RAM128X1S", 2}, {"RAM256X1S", 4}, {"RAM512X1S", 8},
+      {"RAM16X1D", 2}, {"RAM32X1D", 2}, {"RAM64X1D", 2}, {"RAM128X1D", 4}, {"RAM256X1D", 8}, {"RAM32M", 4},
+      {"RAM64M", 4},   {"RAM32M16", 8}, {"RAM64M8", 8},  {"RAM16X2S", 2},  {"RAM16X4S", 4},  {"RAM16X8S", 8},
+      {"RAM32X2S", 2}, {"RAM32X4S", 4}, {"RAM32X8S", 8}, {"RAM64X2S", 2}};
   auto it = k.find(strip_clk_suffix(type));
   return it == k.end() ? 1 : it->second;
 }
@@ -122,16 +120,14 @@ double bram36_of(const std::string& t) {
   return 0.0;
 }
 int lut_size(const std::string& t) {  // 1..6 for LUTn / LUT6_2, 0 otherwise
-  if (t.size() >= 4 && starts(t, "LUT") && t[3] >= '1' && t[3] <= '6' &&
-      (t.size() == 4 || t == "LUT6_2"))
+  if (t.size() >= 4 && starts(t, "LUT") && t[3] >= '1' && t[3] <= '6' && (t.size() == 4 || t == "LUT6_2"))
     return t[3] - '0';
   return 0;
 }
 
 struct Res {
   std::map<std::string, int64_t> lut_by_size, bram_cells, other;
-  int64_t luts_logic = 0, ffs = 0, latches = 0, lutram = 0, srl = 0, dsp = 0, muxf = 0, carry = 0,
-          unmapped = 0;
+  int64_t luts_logic = 0, ffs = 0, latches = 0, lutram = 0, srl = 0, dsp = 0, muxf = 0, carry = 0, unmapped = 0;
   double bram36 = 0;
 
   void add_cell(const std::string& t, int64_t n) {
@@ -274,8 +270,7 @@ Depth logic_depth(const json& net, const std::string& top) {
   const json* mod = nullptr;
   for (auto& [name, m] : net["modules"].items()) {
     auto a = m.value("attributes", json::object());
-    bool is_top =
-        a.contains("top") && a["top"] != "00000000000000000000000000000000" && a["top"] != 0;
+    bool is_top = a.contains("top") && a["top"] != "00000000000000000000000000000000" && a["top"] != 0;
     if (is_top || (!mod && norm(name) == norm(top))) mod = &m;
     if (is_top) break;
   }
@@ -293,8 +288,8 @@ Depth logic_depth(const json& net, const std::string& top) {
     int state = 0;              // 0 new, 1 on stack, 2 done
   };
   std::vector<Cell> cells;
-  std::unordered_map<int64_t, int> driver;   // bit -> comb cell index
-  std::unordered_map<int64_t, int> seq_out;  // bit -> 1: boundary output (register)
+  std::unordered_map<int64_t, int> driver;                      // bit -> comb cell index
+  std::unordered_map<int64_t, int> seq_out;                     // bit -> 1: boundary output (register)
   std::vector<std::pair<int, std::vector<int64_t>>> endpoints;  // (cell or -1, bits)
   auto bits_of = [](const json& conn) {
     std::vector<int64_t> b;
@@ -311,13 +306,12 @@ Depth logic_depth(const json& net, const std::string& top) {
       cl.kind = COMB, cl.weight = 1;
     else if (lram)
       cl.kind = COMB, cl.weight = 1;
-    else if (starts(t, "MUXF") || t == "CARRY4" || t == "CARRY8" || t == "MUXCY" || t == "XORCY" ||
-             t == "INV" || t == "BUF")
+    else if (starts(t, "MUXF") || t == "CARRY4" || t == "CARRY8" || t == "MUXCY" || t == "XORCY" || t == "INV" ||
+             t == "BUF")
       cl.kind = COMB, cl.weight = 0;
     else if (t == "GND" || t == "VCC")
       cl.kind = SRC;
-    else if (starts(t, "$_") && !starts(t, "$_DFF") && !starts(t, "$_SDFF") &&
-             !starts(t, "$_DLATCH"))
+    else if (starts(t, "$_") && !starts(t, "$_DFF") && !starts(t, "$_SDFF") && !starts(t, "$_DLATCH"))
       cl.kind = COMB, cl.weight = 1;  // unmapped gate: count it like a LUT
     int idx = static_cast<int>(cells.size());
     auto dirs = c.value("port_directions", json::object());
@@ -459,27 +453,23 @@ json params_json(const std::vector<std::string>& ps) {
 }
 
 std::string num(double v) {
-  return v == static_cast<int64_t>(v) ? fmt::format("{}", static_cast<int64_t>(v))
-                                      : fmt::format("{:.1f}", v);
+  return v == static_cast<int64_t>(v) ? fmt::format("{}", static_cast<int64_t>(v)) : fmt::format("{:.1f}", v);
 }
 
 void print_report(const json& r, bool md) {
   auto row = [&](const std::string& name, const json& b, int64_t inst) {
-    std::string lv =
-        b.contains("lut_levels") ? fmt::format("{}", b["lut_levels"].get<int>()) : std::string("-");
+    std::string lv = b.contains("lut_levels") ? fmt::format("{}", b["lut_levels"].get<int>()) : std::string("-");
     std::string in = inst > 0 ? fmt::format("{}", inst) : std::string("");
     if (md)
-      fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", name, in, b.value("luts", 0),
-                 b.value("ffs", 0), num(b.value("bram36", 0.0)), b.value("lutram", 0),
-                 b.value("srl", 0), b.value("dsp", 0), lv);
+      fmt::print("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", name, in, b.value("luts", 0), b.value("ffs", 0),
+                 num(b.value("bram36", 0.0)), b.value("lutram", 0), b.value("srl", 0), b.value("dsp", 0), lv);
     else
-      fmt::print("{:<24} {:>4} {:>9} {:>9} {:>7} {:>7} {:>6} {:>4} {:>6}\n", name, in,
-                 b.value("luts", 0), b.value("ffs", 0), num(b.value("bram36", 0.0)),
-                 b.value("lutram", 0), b.value("srl", 0), b.value("dsp", 0), lv);
+      fmt::print("{:<24} {:>4} {:>9} {:>9} {:>7} {:>7} {:>6} {:>4} {:>6}\n", name, in, b.value("luts", 0),
+                 b.value("ffs", 0), num(b.value("bram36", 0.0)), b.value("lutram", 0), b.value("srl", 0),
+                 b.value("dsp", 0), lv);
   };
-  fmt::print("{} {} ({}, {}; {}; {:.0f} s)\n", md ? "####" : "==", r.value("top", ""),
-             r.value("config", ""), r.value("family", ""), r.value("mode", ""),
-             r.value("seconds", 0.0));
+  fmt::print("{} {} ({}, {}; {}; {:.0f} s)\n", md ? "####" : "==", r.value("top", ""), r.value("config", ""),
+             r.value("family", ""), r.value("mode", ""), r.value("seconds", 0.0));
   if (r.contains("missing_blocks") && !r["missing_blocks"].empty())
     fmt::print("{}INCOMPLETE: not synthesized: {}\n", md ? "\n" : "", r["missing_blocks"].dump());
   if (md)
@@ -487,8 +477,8 @@ void print_report(const json& r, bool md) {
         "\n| block | inst | LUTs | FFs | BRAM36 | LUT-RAM | SRL | DSP | LUT levels |\n"
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   else
-    fmt::print("{:<24} {:>4} {:>9} {:>9} {:>7} {:>7} {:>6} {:>4} {:>6}\n", "block", "inst", "LUTs",
-               "FFs", "BRAM36", "LUTRAM", "SRL", "DSP", "levels");
+    fmt::print("{:<24} {:>4} {:>9} {:>9} {:>7} {:>7} {:>6} {:>4} {:>6}\n", "block", "inst", "LUTs", "FFs", "BRAM36",
+               "LUTRAM", "SRL", "DSP", "levels");
   for (auto& [name, b] : r["blocks"].items()) row(name, b, b.value("instances", int64_t{0}));
   row(md ? "**total**" : "total", r["total"], 0);
   const json& t = r["total"];
@@ -497,8 +487,7 @@ void print_report(const json& r, bool md) {
       "the longest path {}{}\n",
       md ? "\n" : "", t["lut_by_size"].dump(), t.value("muxf", 0), t.value("carry", 0),
       t.value("lut_levels_reg2reg", 0), t.value("carry_on_path", 0),
-      t.value("unmapped", 0) ? fmt::format("; UNMAPPED cells {}", t["unmapped"].get<int>())
-                             : std::string());
+      t.value("unmapped", 0) ? fmt::format("; UNMAPPED cells {}", t["unmapped"].get<int>()) : std::string());
 }
 
 }  // namespace
@@ -532,8 +521,7 @@ int main(int argc, char** argv) {
   comb->add_option("--config", config, "configuration name")->required();
   comb->add_option("--param", params, "NAME=VALUE of the configuration");
   comb->add_option("-o", out, "output JSON")->required();
-  comb->add_option("parts", inputs, "part reports; report.json@N counts a part N times")
-      ->required();
+  comb->add_option("parts", inputs, "part reports; report.json@N counts a part N times")->required();
   comb->add_flag("--quiet", quiet, "no table on stdout");
   std::vector<std::string> missing;
   comb->add_option("--missing", missing, "blocks that could not be synthesized");
@@ -620,9 +608,8 @@ int main(int argc, char** argv) {
       lv_r = std::max(lv_r, p["total"].value("lut_levels_reg2reg", 0));
       loops += p.value("comb_loops", 0);
       secs += p.value("seconds", 0.0);
-      parts.push_back({{"top", p.value("top", "")},
-                       {"seconds", p.value("seconds", 0.0)},
-                       {"command", p.value("command", "")}});
+      parts.push_back(
+          {{"top", p.value("top", "")}, {"seconds", p.value("seconds", 0.0)}, {"command", p.value("command", "")}});
     }
     r["tool"] = "sm_synth_report";
     r["yosys"] = yosys;
@@ -664,13 +651,12 @@ int main(int argc, char** argv) {
       if (!r.contains("total") || !r.contains("blocks")) fail(fmt::format("{}: not a report", in));
       print_report(r, md);
       if (need_bram && r["total"].value("bram36", 0.0) <= 0) {
-        fmt::print(stderr, "sm_synth_report: {}: {} has no block RAM but is expected to use it\n",
-                   in, r.value("top", ""));
+        fmt::print(stderr, "sm_synth_report: {}: {} has no block RAM but is expected to use it\n", in,
+                   r.value("top", ""));
         bad++;
       }
       if (r["total"].value("unmapped", 0) > 0) {
-        fmt::print(stderr, "sm_synth_report: {}: {} unmapped Yosys cells\n", in,
-                   r["total"]["unmapped"].get<int>());
+        fmt::print(stderr, "sm_synth_report: {}: {} unmapped Yosys cells\n", in, r["total"]["unmapped"].get<int>());
         bad++;
       }
     }

@@ -37,8 +37,7 @@ std::vector<uint8_t> parse_sw_table(const std::string& s) {
       throw ToolError(fmt::format("--sw-table: '{}' is not a code 0..3", item));
     }
   }
-  if (v.empty() || v.size() > 32)
-    throw ToolError("--sw-table: expected 1..32 comma-separated codes");
+  if (v.empty() || v.size() > 32) throw ToolError("--sw-table: expected 1..32 comma-separated codes");
   return v;
 }
 
@@ -81,8 +80,7 @@ void apply_regs_json(const std::string& path, sm::HwConfig& hw, sm::Regs& r) {
         {"filter_enable", {0, 7, [&](long x) { r.filter_enable = static_cast<uint8_t>(x); }}},
         {"obj_near", {0, 255, [&](long x) { r.obj_near = static_cast<uint8_t>(x); }}},
         {"obj_tol", {0, 255, [&](long x) { r.obj_tol = static_cast<uint8_t>(x); }}},
-        {"obj_min_pixels",
-         {0, 65535, [&](long x) { r.obj_min_pixels = static_cast<uint16_t>(x); }}},
+        {"obj_min_pixels", {0, 65535, [&](long x) { r.obj_min_pixels = static_cast<uint16_t>(x); }}},
         {"width", {16, 4095, [](long) {}}},  // the active size is the image size
         {"height", {16, 4095, [](long) {}}}};
     if (auto f = ints.find(k); f != ints.end()) {
@@ -115,8 +113,7 @@ int run(int argc, char** argv) {
   CLI::App app{"Bit-exact reference model of the census stereo IP on one image pair"};
   app.add_option("left", left, "left image (PNG/JPEG; reference view)")->required();
   app.add_option("right", right, "right image")->required();
-  app.add_option("-o,--out", out, "disparity PNG (grey, 0..255 over 0..DISP-1, invalid = 0)")
-      ->required();
+  app.add_option("-o,--out", out, "disparity PNG (grey, 0..255 over 0..DISP-1, invalid = 0)")->required();
   app.add_option("--colour", colour, "colour-mapped disparity PNG (default: <out>_colour.png)");
   app.add_option("--stage", stage, "disparity written: dp (trellis output) or post (filtered)")
       ->check(CLI::IsMember({"dp", "post"}))
@@ -134,27 +131,19 @@ int run(int argc, char** argv) {
       app.add_option("--cost-shift", hw.cost_shift, "COST_SHIFT")->capture_default_str(),
       app.add_option("--max-objects", hw.max_objects, "MAX_OBJECTS")->capture_default_str(),
       app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str()};
-  auto* o_gl =
-      app.add_option("--gain-l", gain_l, "left gain, Q2.8 (256 = 1.0)")->capture_default_str();
+  auto* o_gl = app.add_option("--gain-l", gain_l, "left gain, Q2.8 (256 = 1.0)")->capture_default_str();
   auto* o_gr = app.add_option("--gain-r", gain_r, "right gain, Q2.8")->capture_default_str();
-  auto* o_ol =
-      app.add_option("--offset-l", offset_l, "left offset -256..255")->capture_default_str();
-  auto* o_or =
-      app.add_option("--offset-r", offset_r, "right offset -256..255")->capture_default_str();
-  auto* o_nr =
-      app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
+  auto* o_ol = app.add_option("--offset-l", offset_l, "left offset -256..255")->capture_default_str();
+  auto* o_or = app.add_option("--offset-r", offset_r, "right offset -256..255")->capture_default_str();
+  auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
   auto* o_occ = app.add_option("--occ", occ, "DP occlusion penalty 0..255")->capture_default_str();
   auto* o_swt =
-      app.add_option("--sw-table", sw_table,
-                     "weight codes 0..3 by |dI|>>3, comma-separated (default 3,3,2,2,1,1,1,1)");
-  auto* o_fe = app.add_option("--filter-enable", filter_enable, "post filters, bit n = filter n+1")
-                   ->capture_default_str();
-  auto* o_on =
-      app.add_option("--obj-near", obj_near, "objects: near threshold")->capture_default_str();
-  auto* o_ot =
-      app.add_option("--obj-tol", obj_tol, "objects: merge tolerance")->capture_default_str();
-  auto* o_om = app.add_option("--obj-min-pixels", obj_min_pixels, "objects: minimum size")
-                   ->capture_default_str();
+      app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated (default 3,3,2,2,1,1,1,1)");
+  auto* o_fe =
+      app.add_option("--filter-enable", filter_enable, "post filters, bit n = filter n+1")->capture_default_str();
+  auto* o_on = app.add_option("--obj-near", obj_near, "objects: near threshold")->capture_default_str();
+  auto* o_ot = app.add_option("--obj-tol", obj_tol, "objects: merge tolerance")->capture_default_str();
+  auto* o_om = app.add_option("--obj-min-pixels", obj_min_pixels, "objects: minimum size")->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   try {
     app.parse(argc, argv);
@@ -166,8 +155,7 @@ int run(int argc, char** argv) {
   const sm::Image8 L = sm::tools::load_grey(left);
   const sm::Image8 R = sm::tools::load_grey(right);
   if (L.w != R.w || L.h != R.h)
-    throw ToolError(
-        fmt::format("{}: size {}x{} differs from {} ({}x{})", right, R.w, R.h, left, L.w, L.h));
+    throw ToolError(fmt::format("{}: size {}x{} differs from {} ({}x{})", right, R.w, R.h, left, L.w, L.h));
 
   // Defaults (MAX_WIDTH x MAX_HEIGHT = image size), then --regs, then explicit options.
   const sm::HwConfig cli_hw = hw;
@@ -190,10 +178,9 @@ int run(int argc, char** argv) {
     throw ToolError(fmt::format("bad hardware configuration: {}", e.what()));
   }
   if (L.w > hw.max_width || L.h > hw.max_height)
-    throw ToolError(fmt::format("{}: size {}x{} above MAX_WIDTH x MAX_HEIGHT = {}x{}", left, L.w,
-                                L.h, hw.max_width, hw.max_height));
-  if (L.w < 16 || L.h < 16)
-    throw ToolError(fmt::format("{}: size {}x{} below 16x16", left, L.w, L.h));
+    throw ToolError(fmt::format("{}: size {}x{} above MAX_WIDTH x MAX_HEIGHT = {}x{}", left, L.w, L.h, hw.max_width,
+                                hw.max_height));
+  if (L.w < 16 || L.h < 16) throw ToolError(fmt::format("{}: size {}x{} below 16x16", left, L.w, L.h));
   r.width = L.w;
   r.height = L.h;
   r.grid_l = sm::RectGrid::identity(L.w, L.h);
@@ -225,8 +212,8 @@ int run(int argc, char** argv) {
       throw ToolError(e.what());
     }
     if (c.width != L.w || c.height != L.h)
-      throw ToolError(fmt::format("{}: calibration is for {}x{}, images are {}x{}", calib, c.width,
-                                  c.height, L.w, L.h));
+      throw ToolError(
+          fmt::format("{}: calibration is for {}x{}, images are {}x{}", calib, c.width, c.height, L.w, L.h));
     r.grid_l = c.left;
     r.grid_r = c.right;
     if (!o_nr->count()) r.rect_enable = true;
@@ -247,8 +234,7 @@ int run(int argc, char** argv) {
   sm::tools::write_image_atomic(out, sm::tools::disp_to_grey(df, hw.disp));
   sm::tools::write_image_atomic(colour, sm::tools::disp_to_colour(df, hw.disp));
   if (!objects_json.empty()) {
-    json j = {{"too_many_objects", res.objects.too_many_objects},
-              {"table_full", res.objects.table_full}};
+    json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
     for (const auto& o : res.objects.objects)
       j["objects"].push_back({{"x0", o.x0},
@@ -262,8 +248,7 @@ int run(int argc, char** argv) {
   }
   if (verbose) {
     double total = 0;
-    fmt::print("stereo_model: {}x{} DISP {} CENSUS {} SW {}\n", L.w, L.h, hw.disp, hw.census,
-               hw.sw);
+    fmt::print("stereo_model: {}x{} DISP {} CENSUS {} SW {}\n", L.w, L.h, hw.disp, hw.census, hw.sw);
     for (const auto& [name, ms] : res.stage_ms) {
       fmt::print("  {:<12} {:9.1f} ms\n", name, ms);
       total += ms;
@@ -271,8 +256,8 @@ int run(int argc, char** argv) {
     fmt::print("  {:<12} {:9.1f} ms\n", "total", total);
     long valid = 0;
     for (auto p : d.px) valid += sm::disp_valid(p);
-    fmt::print("  {} valid pixels of {}, {} objects -> {}, {}\n", valid, d.px.size(),
-               res.objects.objects.size(), out, colour);
+    fmt::print("  {} valid pixels of {}, {} objects -> {}, {}\n", valid, d.px.size(), res.objects.objects.size(), out,
+               colour);
   }
   return 0;
 }

@@ -64,11 +64,9 @@ class OutputOrder {
     b.side = side;
     const bool want_sof = x_ == 0 && y_ == 0;
     const bool want_sol = x_ == 0;
-    if (((side & kSof) != 0) != want_sof || ((side & kSol) != 0) != want_sol ||
-        ((side >> 3) & 3) != (frame_ & 3))
-      throw std::runtime_error("output sideband wrong at frame " + std::to_string(frame_) +
-                               " x " + std::to_string(x_) + " y " + std::to_string(y_) +
-                               " side " + std::to_string(side));
+    if (((side & kSof) != 0) != want_sof || ((side & kSol) != 0) != want_sol || ((side >> 3) & 3) != (frame_ & 3))
+      throw std::runtime_error("output sideband wrong at frame " + std::to_string(frame_) + " x " + std::to_string(x_) +
+                               " y " + std::to_string(y_) + " side " + std::to_string(side));
     if (++x_ == w_) {
       x_ = 0;
       if (++y_ == heights_[frame_]) {

@@ -46,8 +46,7 @@ class StderrMute {
 
 std::string temp_name(const fs::path& p) {
   fs::path dir = p.parent_path();
-  std::string name =
-      fmt::format(".{}.tmp{}{}", p.stem().string(), getpid(), p.extension().string());
+  std::string name = fmt::format(".{}.tmp{}{}", p.stem().string(), getpid(), p.extension().string());
   return (dir / name).string();
 }
 
@@ -72,8 +71,7 @@ cv::Mat read_image(const std::string& path, int flags) {
       m.release();
     }
   }
-  if (m.empty())
-    throw ToolError(fmt::format("{}: not a readable image (unknown format or truncated)", path));
+  if (m.empty()) throw ToolError(fmt::format("{}: not a readable image (unknown format or truncated)", path));
   return m;
 }
 
@@ -102,15 +100,13 @@ Image8 load_grey(const std::string& path) { return to_image8(load_grey_mat(path)
 Image8 to_image8(const cv::Mat& grey) {
   CV_Assert(grey.type() == CV_8UC1);
   Image8 img(grey.cols, grey.rows);
-  for (int y = 0; y < grey.rows; ++y)
-    std::copy(grey.ptr<uint8_t>(y), grey.ptr<uint8_t>(y) + grey.cols, &img.at(0, y));
+  for (int y = 0; y < grey.rows; ++y) std::copy(grey.ptr<uint8_t>(y), grey.ptr<uint8_t>(y) + grey.cols, &img.at(0, y));
   return img;
 }
 
 cv::Mat to_mat(const Image8& img) {
   cv::Mat m(img.h, img.w, CV_8UC1);
-  for (int y = 0; y < img.h; ++y)
-    std::copy(&img.at(0, y), &img.at(0, y) + img.w, m.ptr<uint8_t>(y));
+  for (int y = 0; y < img.h; ++y) std::copy(&img.at(0, y), &img.at(0, y) + img.w, m.ptr<uint8_t>(y));
   return m;
 }
 
@@ -189,8 +185,7 @@ Scene load_scene(const std::string& dir) {
   Scene s;
   s.dir = dir;
   s.name = fs::path(dir).lexically_normal().filename().string();
-  if (s.name.empty() || s.name == ".")
-    s.name = fs::path(dir).lexically_normal().parent_path().filename().string();
+  if (s.name.empty() || s.name == ".") s.name = fs::path(dir).lexically_normal().parent_path().filename().string();
   const fs::path d(dir);
   const std::string scale_path = (d / "scale.txt").string();
   {
@@ -202,13 +197,12 @@ Scene load_scene(const std::string& dir) {
   s.left = load_grey_mat((d / "left.png").string());
   s.right = load_grey_mat((d / "right.png").string());
   if (s.left.size() != s.right.size())
-    throw ToolError(fmt::format("{}: left {}x{} and right {}x{} differ in size", dir, s.left.cols,
-                                s.left.rows, s.right.cols, s.right.rows));
+    throw ToolError(fmt::format("{}: left {}x{} and right {}x{} differ in size", dir, s.left.cols, s.left.rows,
+                                s.right.cols, s.right.rows));
   const std::string gt_path = (d / "gt.png").string();
   cv::Mat raw = read_image(gt_path, cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
   if (raw.size() != s.left.size())
-    throw ToolError(
-        fmt::format("{}: size {}x{} differs from left.png", gt_path, raw.cols, raw.rows));
+    throw ToolError(fmt::format("{}: size {}x{} differs from left.png", gt_path, raw.cols, raw.rows));
   raw.convertTo(s.gt, CV_32F, 1.0 / s.scale);
   const fs::path nonocc = d / "nonocc.png";
   if (fs::exists(nonocc)) {

@@ -44,8 +44,7 @@ uint64_t mix(uint64_t z) {  // splitmix64 finaliser
 
 // Lattice value in [-1, 1] for integer lattice point (i, j) of one octave of one texture.
 double lattice(uint64_t key, int64_t i, int64_t j) {
-  const uint64_t h =
-      mix(key ^ mix(static_cast<uint64_t>(i) * 0x100000001b3ULL ^ mix(static_cast<uint64_t>(j))));
+  const uint64_t h = mix(key ^ mix(static_cast<uint64_t>(i) * 0x100000001b3ULL ^ mix(static_cast<uint64_t>(j))));
   return static_cast<double>(h >> 11) * (2.0 / 9007199254740992.0) - 1.0;
 }
 
@@ -62,8 +61,7 @@ double value_noise(uint64_t key, double u, double v, double cell) {
 
 // Piecewise-constant blocks: sharp edges for the census transform to lock onto.
 double blocks(uint64_t key, double u, double v, double cell) {
-  return lattice(key, static_cast<int64_t>(std::floor(u / cell)),
-                 static_cast<int64_t>(std::floor(v / cell)));
+  return lattice(key, static_cast<int64_t>(std::floor(u / cell)), static_cast<int64_t>(std::floor(v / cell)));
 }
 
 enum class Shape { kPlane, kRect, kDisc };
@@ -92,9 +90,8 @@ struct Surface {
   // Left-view x of the surface point that the right view sees at (xr, y): xr = xl - d(xl, y).
   double left_x(double xr, double y) const { return (xr + a + c * y) / (1.0 - b); }
   double texture(double u, double v) const {
-    return base + block_amp * blocks(key ^ 1, u, v, block_cell) +
-           30.0 * value_noise(key ^ 2, u, v, 7.0) + 22.0 * value_noise(key ^ 3, u, v, 3.0) +
-           14.0 * value_noise(key ^ 4, u, v, 1.5);
+    return base + block_amp * blocks(key ^ 1, u, v, block_cell) + 30.0 * value_noise(key ^ 2, u, v, 7.0) +
+           22.0 * value_noise(key ^ 3, u, v, 3.0) + 14.0 * value_noise(key ^ 4, u, v, 1.5);
   }
 };
 
@@ -178,12 +175,9 @@ cv::Vec2d apply(const cv::Matx33d& h, double x, double y) {
 
 SyntheticScene render_scene(const SceneParams& p) {
   if (p.width < 16 || p.height < 16 || p.width > 4095 || p.height > 4095)
-    throw std::invalid_argument(
-        fmt::format("image size {}x{} outside 16..4095", p.width, p.height));
-  if (p.levels < 2 || p.levels > 255)
-    throw std::invalid_argument(fmt::format("levels {} outside 2..255", p.levels));
-  if (p.objects < 0 || p.objects > 64)
-    throw std::invalid_argument(fmt::format("objects {} outside 0..64", p.objects));
+    throw std::invalid_argument(fmt::format("image size {}x{} outside 16..4095", p.width, p.height));
+  if (p.levels < 2 || p.levels > 255) throw std::invalid_argument(fmt::format("levels {} outside 2..255", p.levels));
+  if (p.objects < 0 || p.objects > 64) throw std::invalid_argument(fmt::format("objects {} outside 0..64", p.objects));
   if (p.noise < 0) throw std::invalid_argument("noise must be >= 0");
   const std::vector<Surface> surf = build_surfaces(p);
   if (std::fabs(surf[0].b) >= 0.5) throw std::invalid_argument("background slant too steep");
@@ -195,8 +189,7 @@ SyntheticScene render_scene(const SceneParams& p) {
   out.gt.create(H, W, CV_32F);
   out.nonocc.create(H, W, CV_8UC1);
 
-  const double cxm = (W - 1) / 2.0, cym = (H - 1) / 2.0,
-               th = p.rot_deg * 3.14159265358979323846 / 180.0;
+  const double cxm = (W - 1) / 2.0, cym = (H - 1) / 2.0, th = p.rot_deg * 3.14159265358979323846 / 180.0;
   const bool warped = p.rot_deg != 0.0 || p.vshift != 0.0;
   if (warped) {
     const cv::Matx33d t1(1, 0, -cxm, 0, 1, -cym, 0, 0, 1);
@@ -213,8 +206,7 @@ SyntheticScene render_scene(const SceneParams& p) {
     for (int x = 0; x < W; ++x) {
       const Hit hl = cast_left(surf, x, y);
       const Surface& sl = surf[hl.idx];
-      out.left.at<uint8_t>(y, x) =
-          to_pixel(sl.texture(x, y), p.gain_l, p.offset_l, p.noise, noise_l);
+      out.left.at<uint8_t>(y, x) = to_pixel(sl.texture(x, y), p.gain_l, p.offset_l, p.noise, noise_l);
       out.gt.at<float>(y, x) = static_cast<float>(hl.d);
       out.min_disp = std::min(out.min_disp, hl.d);
       out.max_disp = std::max(out.max_disp, hl.d);
@@ -237,19 +229,16 @@ SyntheticScene render_scene(const SceneParams& p) {
         yr = q[1];
       }
       const Hit hr = cast_right(surf, xr, yr);
-      out.right.at<uint8_t>(y, x) =
-          to_pixel(surf[hr.idx].texture(hr.xl, yr), p.gain_r, p.offset_r, p.noise, noise_r);
+      out.right.at<uint8_t>(y, x) = to_pixel(surf[hr.idx].texture(hr.xl, yr), p.gain_r, p.offset_r, p.noise, noise_r);
     }
   if (out.max_disp > p.levels - 1)
     throw std::invalid_argument(
         fmt::format("scene disparity {:.2f} exceeds levels-1 = {}", out.max_disp, p.levels - 1));
-  if (out.min_disp < 0)
-    throw std::invalid_argument(fmt::format("negative scene disparity {:.2f}", out.min_disp));
+  if (out.min_disp < 0) throw std::invalid_argument(fmt::format("negative scene disparity {:.2f}", out.min_disp));
   return out;
 }
 
-void write_scene(const SyntheticScene& s, const SceneParams& p, const std::string& dir,
-                 bool with_nonocc) {
+void write_scene(const SyntheticScene& s, const SceneParams& p, const std::string& dir, bool with_nonocc) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir, ec);

@@ -19,10 +19,10 @@ struct SceneParams {
   int height = 240;
   int levels = 128;  // disparities stay in 0..levels-1
   uint64_t seed = 1;
-  int objects = 5;           // rectangles / discs in front of the background
-  double bg_disp = -1;       // background disparity at (0,0); < 0: automatic (4% of levels)
-  double bg_slant_x = -1e9;  // background disparity change across the width; auto if < -1e8
-  double bg_slant_y = -1e9;  // ... down the height; auto if < -1e8
+  int objects = 5;                      // rectangles / discs in front of the background
+  double bg_disp = -1;                  // background disparity at (0,0); < 0: automatic (4% of levels)
+  double bg_slant_x = -1e9;             // background disparity change across the width; auto if < -1e8
+  double bg_slant_y = -1e9;             // ... down the height; auto if < -1e8
   double gain_l = 1.0, offset_l = 0.0;  // camera response: out = in * gain + offset
   double gain_r = 1.0, offset_r = 0.0;
   double rot_deg = 0.0;  // right camera rotated by this angle about the image centre
@@ -49,7 +49,6 @@ SyntheticScene render_scene(const SceneParams& p);
 // homography as rectifier grids, model/calib_file.hpp) into dir (created). Every file
 // is written under a temporary name and renamed.
 constexpr int kGtScale = 256;
-void write_scene(const SyntheticScene& s, const SceneParams& p, const std::string& dir,
-                 bool with_nonocc = true);
+void write_scene(const SyntheticScene& s, const SceneParams& p, const std::string& dir, bool with_nonocc = true);
 
 }  // namespace sm::tools
