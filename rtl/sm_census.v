@@ -2,11 +2,10 @@
 // Census transform of both rectified images (docs/algorithm.md, section 3).
 // One sm_linebuf holds the CENSUS-1 previous rows of both cameras ({right, left} per
 // word), so a full window column arrives per beat; a CENSUS x CENSUS window slides over
-// it and every neighbour is compared with the centre in parallel. Only the window's
-// newest column is flip-flops: the CENSUS-1 older columns live in a circular buffer of
-// LUT-RAM that every beat writes once and reads at every older column's address
-// (quad-port RAM32M: four LUTs hold two bits of up to four columns' reads, where a
-// shifting register window needs one flip-flop per bit and column).
+// it and every neighbour is compared with the centre in parallel. The window's CENSUS
+// columns live in a circular buffer of LUT-RAM (sm_colwin) that every beat writes once
+// and reads at every column's address, where a shifting register window would need
+// one flip-flop per bit and column.
 //
 // Latency: the output beat after the ce of input beat n is the pixel of input beat
 // n - (R*width + R) - 2 (R = (CENSUS-1)/2): the window delay of sm_win_ctrl plus

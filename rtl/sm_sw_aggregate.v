@@ -13,20 +13,19 @@
 // window delay of R rows and R columns):
 //   ce 0  line-buffer read of the entering column; window-controller masks registered;
 //         sw_table latched when the centre is sof
-//   ce 1  column into the window (newest column in registers, the SW-1 older ones in a
-//         small circular buffer); weight codes of the window being formed registered
+//   ce 1  column into the window (a circular buffer of SW columns, sm_colwin); weight
+//         codes of the window being formed registered
 //   ce 2  per level (sm_sw_level): A_raw = sum of the SW*SW weighted costs;
 //         weight sum and RECIP(weight sum) from the ROM, once per pixel
 //   ce 3  per level: A_raw * RECIP
 //   ce 4  per level: round, shift by 12, saturate to CW bits
 //   ce 5  per level: output register
 //
-// Resources: the window of SW x SW x DISP costs is the block's largest state. Only its
-// newest column is flip-flops; the SW-1 older columns live in a circular buffer that
-// every beat writes once and reads at SW-1 addresses -- a quad-port LUT-RAM (RAM32M)
-// holds two bits of four columns in four LUTs where flip-flops would need eight. The
-// per-level sums are one adder tree each (no row-sum registers): the narrow A_raw is
-// the only per-level register before the multiplier.
+// Resources: the window of SW x SW x DISP costs is the block's largest state. It lives
+// in LUT-RAM (sm_colwin), written once per beat and read at SW addresses, instead of
+// SW x SW x DISP x CW shifting flip-flops. The per-level sums are one adder tree each
+// (no row-sum registers): the narrow A_raw is the only per-level register before the
+// multiplier.
 module sm_sw_aggregate #(
     parameter MAX_WIDTH  = 320,  // widest active line
     parameter DISP       = 128,  // disparity levels
