@@ -7,8 +7,23 @@
 #   class and header, and SM_P_<NAME>=<VALUE> for every parameter. OPT_FAST / OPT_SLOW
 #   are extra compiler flags for the generated files Verilator marks as run every
 #   cycle / run once (construction, initial blocks, trace declarations).
+#
+# verilate() lists the generated C++ files when CMake configures, and runs Verilator
+# again at configure time only when its command line changes. An RTL edit that changes
+# how many files Verilator writes would leave a build compiling stale files. So every
+# RTL file is a configure dependency and a digest of the RTL is part of the command
+# line: an RTL edit re-configures, and the file lists are taken afresh.
+file(GLOB SM_RTL_FILES CONFIGURE_DEPENDS ${SM_RTL_DIR}/*.v ${SM_RTL_DIR}/*.vh
+     ${SM_RTL_DIR}/*.json)
+set(_sm_rtl_md5 "")
+foreach(f ${SM_RTL_FILES})
+  file(MD5 ${f} _m)
+  string(APPEND _sm_rtl_md5 ${_m})
+endforeach()
+string(MD5 SM_RTL_DIGEST "${_sm_rtl_md5}")
+set_property(DIRECTORY ${CMAKE_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${SM_RTL_FILES})
 set(SM_VERILATOR_ARGS --x-assign fast --x-initial fast -O3 --assert -Wno-fatal
-    -y ${SM_RTL_DIR} -y ${SM_GEN_DIR} -I${SM_GEN_DIR})
+    -y ${SM_RTL_DIR} -y ${SM_GEN_DIR} -I${SM_GEN_DIR} +define+SM_RTL_DIGEST=${SM_RTL_DIGEST})
 function(sm_verilated)
   cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS;TRACE_DEPTH" "PARAMS;OPT_FAST;OPT_SLOW"
                         ${ARGN})

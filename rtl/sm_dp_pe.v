@@ -44,16 +44,21 @@ module sm_dp_pe #(
   generate
     if (DELAY == 0) begin : g_nodelay
       assign a = cost;
-    end else begin : g_delay
-      reg [CW-1:0] sr_q[0:DELAY-1];
-      integer k;
+    end else if (DELAY == 1) begin : g_delay1
+      reg [CW-1:0] sr_q;
       always @(posedge clk) begin
-        if (ce) begin
-          sr_q[0] <= cost;
-          for (k = 1; k < DELAY; k = k + 1) sr_q[k] <= sr_q[k-1];
-        end
+        if (ce) sr_q <= cost;
       end
-      assign a = sr_q[DELAY-1];
+      assign a = sr_q;
+    end else begin : g_delay
+      // One packed vector, stage k at [k*CW +: CW]: the same flip-flop chain (SRLs after
+      // mapping) as an array of stages, but Verilator shifts it as a few machine words
+      // per clock instead of copying every stage through a delayed-assignment temporary.
+      reg [DELAY*CW-1:0] sr_q;
+      always @(posedge clk) begin
+        if (ce) sr_q <= {sr_q[(DELAY-1)*CW-1:0], cost};
+      end
+      assign a = sr_q[(DELAY-1)*CW +: CW];
     end
   endgenerate
 

@@ -9,7 +9,7 @@
 //    to six bits and each group is replaced by its count (one LUT6 per output bit,
 //    weights 1, 2, 4 go to this column and the next two), until no column holds more
 //    than two bits;
-//  - a final two-row carry-chain adder.
+//  - a final two-row adder, a ripple of full adders on whole bit planes.
 // The heap's shape is computed by constant functions from N, so any N works.
 //
 // Bit-plane order: the inputs and every heap hold bit i of all L lanes together, at
@@ -34,7 +34,6 @@ module sm_popcount #(
 );
   localparam OW  = $clog2(N + 1);
   localparam NG  = (N + 2) / 3;  // leaf groups of three pairs
-  localparam NP  = 3 * NG;       // padded input width
   localparam HB  = 32;           // bits per number in the packed shape tables
   localparam NC  = OW;           // heap columns: a bit of weight 2^OW is always 0
   localparam NCP = NC + 2;       // columns in the tables; the top two stay empty
@@ -121,16 +120,42 @@ module sm_popcount #(
   endfunction
   localparam NS = num_stages(SHAPE);
 
+  // Start of each stage's heap in one flat vector (in bits per lane): stage s at
+  // [(HOFF(s) + bit)*L +: L].
+  function integer hoff(input integer st);
+    integer k;
+    begin
+      hoff = 0;
+      for (k = 0; k < st; k = k + 1) hoff = hoff + OFFS[(k*NCP + NC)*HB +: HB];
+    end
+  endfunction
+  localparam HTOT = hoff(NS + 1);
+
   // ---- leaves: 2-bit counts of three XOR'ed pairs ----------------------------------
-  // Group q takes input bits q, q + NG and q + 2*NG. Padding bits are equal in a and b,
-  // so they XOR to 0. The leaves are not registered: at 6-input LUTs, leaves and
+  // Group q takes input bits q, q + NG and q + 2*NG (bits past N count as 0). The leaves are not registered: at 6-input LUTs, leaves and
   // compression stages are 1 + NS levels (5 for N = 225), and the two rows left after
   // them are 2*OW bits a lane against 2*NG leaf bits (the paper configuration's 128
   // lanes: 2,048 flip-flops instead of 19,200).
-  wire [NP*L-1:0] x  = {{((NP - N) * L) {1'b0}}, a ^ b};
-  wire [NG*L-1:0] x0 = x[0 +: NG*L];
-  wire [NG*L-1:0] x1 = x[NG*L +: NG*L];
-  wire [NG*L-1:0] x2 = x[2*NG*L +: NG*L];
+  // x_q: input bits q*NG .. q*NG + NG - 1 of a ^ b, zero past N. Formed group by group
+  // rather than as one padded a ^ b that is then sliced: Verilator copies every
+  // intermediate long vector, and the leaves are the widest stage.
+  genvar q;
+  generate
+    for (q = 0; q < 3; q = q + 1) begin : g_x
+      localparam NR = (N - q * NG >= NG) ? NG : (N - q * NG > 0) ? N - q * NG : 0;
+      wire [NG*L-1:0] xk;
+      if (NR == NG) begin : g_full
+        assign xk = a[q*NG*L +: NG*L] ^ b[q*NG*L +: NG*L];
+      end else if (NR > 0) begin : g_part
+        assign xk = {{((NG - NR) * L) {1'b0}}, a[q*NG*L +: NR*L] ^ b[q*NG*L +: NR*L]};
+      end else begin : g_none
+        assign xk = {NG * L{1'b0}};
+      end
+    end
+  endgenerate
+  wire [NG*L-1:0] x0 = g_x[0].xk;
+  wire [NG*L-1:0] x1 = g_x[1].xk;
+  wire [NG*L-1:0] x2 = g_x[2].xk;
   wire [NG*L-1:0] leaf0 = x0 ^ x1 ^ x2;  // weight 1 of every group
   wire [NG*L-1:0] leaf1 = (x0 & x1) | (x0 & x2) | (x1 & x2);  // weight 2
 
@@ -138,16 +163,23 @@ module sm_popcount #(
   // A 6:3 counter is plain logic (an arithmetic "+" would become carry chains):
   //   s1, c1 = sum and carry of inputs 0..2; s2, c2 = of inputs 3..5; k = s1 & s2;
   //   weight 1 = s1 ^ s2, weight 2 = c1 ^ c2 ^ k, weight 4 = majority(c1, c2, k).
+  //
+  // Every stage's heap, column by column, bit-plane order. One flat vector rather than a
+  // vector per generate block: only constant slices of it are used, so Verilator can
+  // split it (split_var) into one variable per counter output instead of inserting
+  // every output into, and extracting every input from, one long vector.
+  wire [HTOT*L-1:0] heap  /*verilator split_var*/;
   genvar s, c, t;
   generate
     for (s = 0; s <= NS; s = s + 1) begin : g_st
-      localparam TOT = OFFS[(s*NCP + NC)*HB +: HB];
-      wire [TOT*L-1:0] v;  // the heap after s stages, column by column, bit-plane order
+      localparam HS = hoff(s);      // this stage's heap in `heap`
+      localparam HP = hoff(s - 1);  // the previous stage's (s >= 1)
       if (s == 0) begin : g_leaf
         if (NC > 1) begin : g_two
-          assign v = {leaf1, leaf0};
+          assign heap[HS*L +: NG*L]      = leaf0;
+          assign heap[(HS+NG)*L +: NG*L] = leaf1;
         end else begin : g_one
-          assign v = leaf0;  // N = 1: bit 1 is always 0
+          assign heap[HS*L +: NG*L] = leaf0;  // N = 1: bit 1 is always 0
           wire unused_leaf1 = |leaf1;
         end
       end else begin : g_cmp
@@ -172,32 +204,32 @@ module sm_popcount #(
           localparam O2 = OFFS[(s*NCP + c + 2)*HB +: HB] + PS2 + NCH2 + NCH1;
           if (RM <= 2) begin : g_pass
             for (t = 0; t < RM; t = t + 1) begin : g_p
-              assign v[(Z0 + t)*L +: L] = g_st[s-1].v[(IN0 + 6 * G + t)*L +: L];
+              assign heap[(HS + Z0 + t)*L +: L] = heap[(HP + IN0 + 6 * G + t)*L +: L];
             end
           end
           // The G full groups: input j of group t is bit IN0 + j*G + t; the outputs of
           // group t go to bits O0 + t, O1 + t, O2 + t.
           if (G > 0) begin : g_full
             localparam GL = G * L;
-            wire [GL-1:0] i0 = g_st[s-1].v[(IN0        )*L +: GL];
-            wire [GL-1:0] i1 = g_st[s-1].v[(IN0 +     G)*L +: GL];
-            wire [GL-1:0] i2 = g_st[s-1].v[(IN0 + 2 * G)*L +: GL];
-            wire [GL-1:0] i3 = g_st[s-1].v[(IN0 + 3 * G)*L +: GL];
-            wire [GL-1:0] i4 = g_st[s-1].v[(IN0 + 4 * G)*L +: GL];
-            wire [GL-1:0] i5 = g_st[s-1].v[(IN0 + 5 * G)*L +: GL];
+            wire [GL-1:0] i0 = heap[(HP + IN0        )*L +: GL];
+            wire [GL-1:0] i1 = heap[(HP + IN0 +     G)*L +: GL];
+            wire [GL-1:0] i2 = heap[(HP + IN0 + 2 * G)*L +: GL];
+            wire [GL-1:0] i3 = heap[(HP + IN0 + 3 * G)*L +: GL];
+            wire [GL-1:0] i4 = heap[(HP + IN0 + 4 * G)*L +: GL];
+            wire [GL-1:0] i5 = heap[(HP + IN0 + 5 * G)*L +: GL];
             wire [GL-1:0] s1 = i0 ^ i1 ^ i2;
             wire [GL-1:0] c1 = (i0 & i1) | (i0 & i2) | (i1 & i2);
             wire [GL-1:0] s2 = i3 ^ i4 ^ i5;
             wire [GL-1:0] c2 = (i3 & i4) | (i3 & i5) | (i4 & i5);
             wire [GL-1:0] k  = s1 & s2;
-            assign v[O0*L +: GL] = s1 ^ s2;
+            assign heap[(HS + O0)*L +: GL] = s1 ^ s2;
             if (c + 1 < NC) begin : g_w2
-              assign v[O1*L +: GL] = c1 ^ c2 ^ k;
+              assign heap[(HS + O1)*L +: GL] = c1 ^ c2 ^ k;
             end else begin : g_no_w2
               wire unused_w2 = |(c1 ^ c2 ^ k);  // weight 2^NC: always 0
             end
             if (c + 2 < NC) begin : g_w4
-              assign v[O2*L +: GL] = (c1 & c2) | (c1 & k) | (c2 & k);
+              assign heap[(HS + O2)*L +: GL] = (c1 & c2) | (c1 & k) | (c2 & k);
             end else begin : g_no_w4
               wire unused_w4 = |((c1 & c2) | (c1 & k) | (c2 & k));  // weight >= 2^NC
             end
@@ -205,7 +237,7 @@ module sm_popcount #(
           // The partial group of RM = 3..5 bits, if any (bits IN0 + 6*G onwards; the
           // missing inputs are 0); its outputs go to bits O0 + G, O1 + G, O2 + G.
           if (RM >= 3) begin : g_part
-            wire [6*L-1:0] in6 = {{((6 - RM) * L) {1'b0}}, g_st[s-1].v[(IN0 + 6 * G)*L +: RM*L]};
+            wire [6*L-1:0] in6 = {{((6 - RM) * L) {1'b0}}, heap[(HP + IN0 + 6 * G)*L +: RM*L]};
             wire [L-1:0] i0 = in6[0 +: L];
             wire [L-1:0] i1 = in6[L +: L];
             wire [L-1:0] i2 = in6[2*L +: L];
@@ -217,14 +249,14 @@ module sm_popcount #(
             wire [L-1:0] s2 = i3 ^ i4 ^ i5;
             wire [L-1:0] c2 = (i3 & i4) | (i3 & i5) | (i4 & i5);
             wire [L-1:0] k  = s1 & s2;
-            assign v[(O0 + G)*L +: L] = s1 ^ s2;
+            assign heap[(HS + O0 + G)*L +: L] = s1 ^ s2;
             if (c + 1 < NC) begin : g_w2
-              assign v[(O1 + G)*L +: L] = c1 ^ c2 ^ k;
+              assign heap[(HS + O1 + G)*L +: L] = c1 ^ c2 ^ k;
             end else begin : g_no_w2
               wire unused_w2 = |(c1 ^ c2 ^ k);  // weight 2^NC: always 0
             end
             if (RM >= 4 && c + 2 < NC) begin : g_w4
-              assign v[(O2 + G)*L +: L] = (c1 & c2) | (c1 & k) | (c2 & k);
+              assign heap[(HS + O2 + G)*L +: L] = (c1 & c2) | (c1 & k) | (c2 & k);
             end else begin : g_no_w4
               // 3 inputs never reach 4, or weight >= 2^NC
               wire unused_w4 = |((c1 & c2) | (c1 & k) | (c2 & k));
@@ -235,20 +267,21 @@ module sm_popcount #(
     end
   endgenerate
 
-  // ---- final two-row adder, one per lane --------------------------------------------
+  // ---- final two-row adder ------------------------------------------------------
   wire [NC*L-1:0] row_a, row_b;  // bit-plane order
   genvar f, l;
   generate
     for (f = 0; f < NC; f = f + 1) begin : g_fin
       localparam HF = SHAPE[(NS*NCP + f)*HB +: HB];
       localparam OF = OFFS[(NS*NCP + f)*HB +: HB];
+      localparam HFIN = hoff(NS);
       if (HF >= 1) begin : g_a
-        assign row_a[f*L +: L] = g_st[NS].v[OF*L +: L];
+        assign row_a[f*L +: L] = heap[(HFIN + OF)*L +: L];
       end else begin : g_a0
         assign row_a[f*L +: L] = {L{1'b0}};
       end
       if (HF >= 2) begin : g_b
-        assign row_b[f*L +: L] = g_st[NS].v[(OF + 1)*L +: L];
+        assign row_b[f*L +: L] = heap[(HFIN + OF + 1)*L +: L];
       end else begin : g_b0
         assign row_b[f*L +: L] = {L{1'b0}};
       end
@@ -262,15 +295,32 @@ module sm_popcount #(
       row_b_q <= row_b;
     end
   end
+  // The two rows are added in bit-plane order, a ripple of full adders on whole planes
+  // (modulo 2^OW: the count fits), and only the sum is put in lane order: per lane the
+  // same OW-bit addition as a lane-order "+", but Verilator evaluates it L lanes per
+  // word, and moves OW bits a lane instead of the 2*OW of both rows.
+  wire [NC*L-1:0] sum_p;  // bit-plane order
+  generate
+    for (f = 0; f < NC; f = f + 1) begin : g_add
+      wire [L-1:0] pa = row_a_q[f*L +: L];
+      wire [L-1:0] pb = row_b_q[f*L +: L];
+      wire [L-1:0] pc;  // carry into plane f
+      if (f == 0) begin : g_c0
+        assign pc = {L{1'b0}};
+      end else begin : g_cn
+        assign pc = g_add[f-1].co;
+      end
+      wire [L-1:0] co = (pa & pb) | (pa & pc) | (pb & pc);
+      assign sum_p[f*L +: L] = pa ^ pb ^ pc;
+    end
+  endgenerate
+  wire unused_co = |g_add[NC-1].co;  // carry out of the top plane: the count fits OW bits
   wire [L*NC-1:0] sum;  // lane l at [l*NC +: NC]
   generate
     for (l = 0; l < L; l = l + 1) begin : g_lane
-      wire [NC-1:0] ra, rb;
       for (f = 0; f < NC; f = f + 1) begin : g_bit
-        assign ra[f] = row_a_q[f*L + l];
-        assign rb[f] = row_b_q[f*L + l];
+        assign sum[l*NC + f] = sum_p[f*L + l];
       end
-      assign sum[l*NC +: NC] = ra + rb;  // modulo 2^OW: the count fits
     end
   endgenerate
 

@@ -5,7 +5,7 @@
 // (0, 1, 2 or 4) chosen from the left-image intensity difference to the centre, summed,
 // and normalised by the reciprocal of the weight sum. The weights, their sum and the
 // reciprocal depend only on the pixel, so they are computed once per beat and shared by
-// all DISP levels; per level there are only multiplexers (the products), two adder
+// all DISP levels; per level there are only shifts and masks (the products), two adder
 // trees and one multiplier.
 //
 // Pipeline, counted in ce from the one on which beat (x+R, y+R) enters (ce 0); the
@@ -175,11 +175,18 @@ module sm_sw_aggregate #(
 
   // ---------------------------------------------------------------- ce 2..5: levels
   // Weight sum and its reciprocal, once per pixel (ce 2).
-  wire [NQ*3-1:0] wts;
+  // The codes decoded once for all levels: a shift (weight 1 << (code - 1)) and a mask
+  // (code 0 is weight 0), so a level's product is a shift and an AND.
+  localparam PW = CW + 2;  // one weighted cost
+  wire [NQ*3-1:0]  wts;
+  wire [NQ*2-1:0]  wsh;
+  wire [NQ*PW-1:0] wmask;
   generate
     for (k = 0; k < NQ; k = k + 1) begin : g_wt
       wire [1:0] cd = code_q[k*2 +: 2];
-      assign wts[k*3 +: 3] = {cd == 2'd3, cd == 2'd2, cd == 2'd1};
+      assign wts[k*3 +: 3]     = {cd == 2'd3, cd == 2'd2, cd == 2'd1};
+      assign wsh[k*2 +: 2]     = cd - 2'd1;  // don't care for code 0 (masked)
+      assign wmask[k*PW +: PW] = {PW{cd != 2'd0}};
     end
   endgenerate
   wire [SUMW-1:0] wsum;
@@ -210,14 +217,15 @@ module sm_sw_aggregate #(
   // at position k*SW + c, as the codes).
   generate
     for (d = 0; d < DISP; d = d + 1) begin : g_lvl
-      wire [NQ*CW-1:0] wcost;
+      // split_var: one Verilator variable per position, not a packed vector per level
+      wire [NQ*CW-1:0] wcost  /*verilator split_var*/;
       for (k = 0; k < SW; k = k + 1) begin : g_row
         for (c = 0; c < SW; c = c + 1) begin : g_col
           assign wcost[(k*SW + c)*CW +: CW] = cwin[c*COLW + k*LVW + d*CW +: CW];
         end
       end
       sm_sw_level #(.CW(CW), .SW(SW), .RW(RW)) u_lvl (
-          .clk(clk), .ce(ce), .code(code_q), .cost(wcost), .recip(recip_q),
+          .clk(clk), .ce(ce), .wsh(wsh), .wmask(wmask), .cost(wcost), .recip(recip_q),
           .agg(m_agg[d*CW +: CW]));
     end
   endgenerate

@@ -5,7 +5,7 @@
 // weights (codes) and the reciprocal are per pixel and shared by every level.
 //
 // Latency 4 ce from code/cost to agg (registers araw_q, prod_q, sat_q, agg):
-//   ce a  A_raw = sum of w * C over the window (multiplexers and one adder tree)
+//   ce a  A_raw = sum of w * C over the window (shift and mask, one adder tree)
 //   ce b  A_raw * RECIP                  (recip arrives one ce after code/cost)
 //   ce c  round, shift by 12, saturate
 //   ce d  output register
@@ -16,7 +16,8 @@ module sm_sw_level #(
 ) (
     input  wire             clk,
     input  wire             ce,
-    input  wire [NQ*2-1:0]  code,   // weight code of position q at [2q +: 2]
+    input  wire [NQ*2-1:0]  wsh,    // position q: log2 of its weight, at [2q +: 2]
+    input  wire [NQ*PW-1:0] wmask,  // position q: all ones if its weight is not 0
     input  wire [NQ*CW-1:0] cost,   // shifted cost of position q at [q*CW +: CW]
     input  wire [RW-1:0]    recip,  // RECIP(weight sum) of the pixel of araw_q
     output reg  [CW-1:0]    agg
@@ -45,29 +46,19 @@ module sm_sw_level #(
     end
   endgenerate
 
-  // A weight 1 << (code-1) times a cost is a multiplexer of shifted copies.
-  function [PW-1:0] wmul;
-    input [1:0]    cd;
-    input [CW-1:0] c;
-    begin
-      case (cd)
-        2'd0:    wmul = {PW{1'b0}};
-        2'd1:    wmul = {2'b00, c};
-        2'd2:    wmul = {1'b0, c, 1'b0};
-        default: wmul = {c, 2'b00};
-      endcase
-    end
-  endfunction
-
   // Row sums, then their sum: two small trees per row beat one flat tree of SW*SW
-  // terms in Yosys' mapping (narrower adders, all on carry chains).
-  wire [SW*RSW-1:0] rsum;
+  // terms in Yosys' mapping (narrower adders, all on carry chains). split_var: Verilator
+  // keeps every term and row sum as a variable of its own instead of a read-modify-write
+  // of one packed vector per term (the 128 levels' terms are most of its work per clock).
+  wire [SW*RSW-1:0] rsum  /*verilator split_var*/;
   genvar k, c;
   generate
     for (k = 0; k < SW; k = k + 1) begin : g_row
-      wire [SW*PW-1:0] terms;
+      wire [SW*PW-1:0] terms  /*verilator split_var*/;
       for (c = 0; c < SW; c = c + 1) begin : g_term
-        assign terms[c*PW +: PW] = wmul(code[(k*SW + c)*2 +: 2], cost[(k*SW + c)*CW +: CW]);
+        // weight 1 << wsh, or 0: a shift and a mask (one LUT per bit, as a 4:1 mux)
+        assign terms[c*PW +: PW] = wmask[(k*SW + c)*PW +: PW] &
+                                   ({2'b00, cost[(k*SW + c)*CW +: CW]} << wsh[(k*SW + c)*2 +: 2]);
       end
       sm_sw_addtree #(.N(SW), .IW(PW), .OW(RSW)) u_row (
           .terms(terms), .sum(rsum[k*RSW +: RSW]));
