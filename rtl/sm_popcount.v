@@ -132,10 +132,11 @@ module sm_popcount #(
   localparam HTOT = hoff(NS + 1);
 
   // ---- leaves: 2-bit counts of three XOR'ed pairs ----------------------------------
-  // Group q takes input bits q, q + NG and q + 2*NG (bits past N count as 0). The leaves are not registered: at 6-input LUTs, leaves and
-  // compression stages are 1 + NS levels (5 for N = 225), and the two rows left after
-  // them are 2*OW bits a lane against 2*NG leaf bits (the paper configuration's 128
-  // lanes: 2,048 flip-flops instead of 19,200).
+  // Group q takes input bits q, q + NG and q + 2*NG (bits past N count as 0). The
+  // leaves are not registered: at 6-input LUTs, leaves and compression stages are 1 + NS
+  // levels (5 for N = 225), and the two rows left after them are 2*OW bits a lane
+  // against 2*NG leaf bits (the paper configuration's 128 lanes: 2,048 flip-flops
+  // instead of 19,200).
   // x_q: input bits q*NG .. q*NG + NG - 1 of a ^ b, zero past N. Formed group by group
   // rather than as one padded a ^ b that is then sliced: Verilator copies every
   // intermediate long vector, and the leaves are the widest stage.
@@ -237,7 +238,8 @@ module sm_popcount #(
           // The partial group of RM = 3..5 bits, if any (bits IN0 + 6*G onwards; the
           // missing inputs are 0); its outputs go to bits O0 + G, O1 + G, O2 + G.
           if (RM >= 3) begin : g_part
-            wire [6*L-1:0] in6 = {{((6 - RM) * L) {1'b0}}, heap[(HP + IN0 + 6 * G)*L +: RM*L]};
+            wire [6*L-1:0] in6 = {{((6 - RM) * L) {1'b0}},
+                                  heap[(HP + IN0 + 6 * G)*L +: RM*L]};
             wire [L-1:0] i0 = in6[0 +: L];
             wire [L-1:0] i1 = in6[L +: L];
             wire [L-1:0] i2 = in6[2*L +: L];
@@ -268,13 +270,13 @@ module sm_popcount #(
   endgenerate
 
   // ---- final two-row adder ------------------------------------------------------
+  localparam HFIN = hoff(NS);  // the last stage's heap: the two rows
   wire [NC*L-1:0] row_a, row_b;  // bit-plane order
   genvar f, l;
   generate
     for (f = 0; f < NC; f = f + 1) begin : g_fin
       localparam HF = SHAPE[(NS*NCP + f)*HB +: HB];
       localparam OF = OFFS[(NS*NCP + f)*HB +: HB];
-      localparam HFIN = hoff(NS);
       if (HF >= 1) begin : g_a
         assign row_a[f*L +: L] = heap[(HFIN + OF)*L +: L];
       end else begin : g_a0

@@ -56,9 +56,10 @@ module sm_sw_level #(
     for (k = 0; k < SW; k = k + 1) begin : g_row
       wire [SW*PW-1:0] terms  /*verilator split_var*/;
       for (c = 0; c < SW; c = c + 1) begin : g_term
+        localparam Q = k*SW + c;  // window position
         // weight 1 << wsh, or 0: a shift and a mask (one LUT per bit, as a 4:1 mux)
-        assign terms[c*PW +: PW] = wmask[(k*SW + c)*PW +: PW] &
-                                   ({2'b00, cost[(k*SW + c)*CW +: CW]} << wsh[(k*SW + c)*2 +: 2]);
+        assign terms[c*PW +: PW] = wmask[Q*PW +: PW] &
+                                   ({2'b00, cost[Q*CW +: CW]} << wsh[Q*2 +: 2]);
       end
       sm_sw_addtree #(.N(SW), .IW(PW), .OW(RSW)) u_row (
           .terms(terms), .sum(rsum[k*RSW +: RSW]));
