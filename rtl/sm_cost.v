@@ -69,7 +69,7 @@ module sm_cost #(
   wire unused_ok_top = ok_q[DISP-1];  // shifted out
 
   // Popcount of every level (one compressor tree per level), latency 2.
-  wire [DISP*HW-1:0] pc;  // level d at [d*HW +: HW]
+  wire [HW*DISP-1:0] pc;  // bit-plane order: bit f of level d at [f*DISP + d]
   sm_popcount #(.N(CB), .L(DISP)) u_pc (.clk(clk), .ce(ce), .a(cl_all), .b(cr_all), .cnt(pc));
 
   // Control and pass-through data along the popcount's two stages.
@@ -90,16 +90,23 @@ module sm_cost #(
     end
   end
 
-  // Output costs: CB where x - d < 0. A generate loop rather than a for loop in the
-  // always block: Verilator unrolls loops of up to 64 iterations only, and ran the
-  // DISP = 128 one at run time, bit-slice by bit-slice (the logic is the same).
-  wire [DISP*HW-1:0] cost;
-  genvar d;
+  // Output costs: CB where x - d < 0, applied plane by plane while the counts are still
+  // in bit-plane order (bit f: the count's where ok, CB's bit f elsewhere; the same
+  // 2:1 multiplexer per bit as a per-level select, as DISP-bit operations in Verilator),
+  // then put in level order.
+  wire [HW*DISP-1:0] cost_p;  // bit-plane order
+  wire [DISP*HW-1:0] cost;    // level d at [d*HW +: HW]
+  genvar f;
   generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_out
-      assign cost[d*HW +: HW] = ok_q3[d] ? pc[d*HW +: HW] : CB_V;
+    for (f = 0; f < HW; f = f + 1) begin : g_cb
+      if (CB_V[f]) begin : g_one
+        assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] | ~ok_q3;
+      end else begin : g_zero
+        assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] & ok_q3;
+      end
     end
   endgenerate
+  sm_plane2lane #(.P(HW), .L(DISP)) u_order (.planes(cost_p), .lanes(cost));
   always @(posedge clk) begin
     if (ce) begin
       ok_q2   <= ok;

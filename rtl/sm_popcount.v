@@ -10,6 +10,7 @@
 //    weights 1, 2, 4 go to this column and the next two), until no column holds more
 //    than two bits;
 //  - a final two-row adder, a ripple of full adders on whole bit planes.
+// The counts come out in bit-plane order too (sm_plane2lane puts them in lane order).
 // The heap's shape is computed by constant functions from N, so any N works.
 //
 // Bit-plane order: the inputs and every heap hold bit i of all L lanes together, at
@@ -30,7 +31,7 @@ module sm_popcount #(
     input  wire            ce,
     input  wire [N*L-1:0]  a,    // bit i of lane l at [i*L + l]
     input  wire [N*L-1:0]  b,
-    output wire [L*OW-1:0] cnt   // lane l at [l*OW +: OW]: popcount(a ^ b), 2 ce later
+    output wire [OW*L-1:0] cnt   // bit f of lane l at [f*L + l]: popcount(a ^ b), 2 ce later
 );
   localparam OW  = $clog2(N + 1);
   localparam NG  = (N + 2) / 3;  // leaf groups of three pairs
@@ -272,7 +273,7 @@ module sm_popcount #(
   // ---- final two-row adder ------------------------------------------------------
   localparam HFIN = hoff(NS);  // the last stage's heap: the two rows
   wire [NC*L-1:0] row_a, row_b;  // bit-plane order
-  genvar f, l;
+  genvar f;
   generate
     for (f = 0; f < NC; f = f + 1) begin : g_fin
       localparam HF = SHAPE[(NS*NCP + f)*HB +: HB];
@@ -298,9 +299,8 @@ module sm_popcount #(
     end
   end
   // The two rows are added in bit-plane order, a ripple of full adders on whole planes
-  // (modulo 2^OW: the count fits), and only the sum is put in lane order: per lane the
-  // same OW-bit addition as a lane-order "+", but Verilator evaluates it L lanes per
-  // word, and moves OW bits a lane instead of the 2*OW of both rows.
+  // (modulo 2^OW: the count fits): per lane the same OW-bit addition as a lane-order
+  // "+", but Verilator evaluates it L lanes per word.
   wire [NC*L-1:0] sum_p;  // bit-plane order
   generate
     for (f = 0; f < NC; f = f + 1) begin : g_add
@@ -317,18 +317,10 @@ module sm_popcount #(
     end
   endgenerate
   wire unused_co = |g_add[NC-1].co;  // carry out of the top plane: the count fits OW bits
-  wire [L*NC-1:0] sum;  // lane l at [l*NC +: NC]
-  generate
-    for (l = 0; l < L; l = l + 1) begin : g_lane
-      for (f = 0; f < NC; f = f + 1) begin : g_bit
-        assign sum[l*NC + f] = sum_p[f*L + l];
-      end
-    end
-  endgenerate
 
-  reg [L*OW-1:0] cnt_q;
+  reg [OW*L-1:0] cnt_q;
   always @(posedge clk) begin
-    if (ce) cnt_q <= sum;
+    if (ce) cnt_q <= sum_p;
   end
   assign cnt = cnt_q;
 endmodule

@@ -124,54 +124,63 @@ module sm_post_median #(
   endgenerate
 
   // ---- stage 3: rank every element, pick the middle one ------------------------------
-  // Bit-level adders (no '+') so the counts map to plain LUTs instead of carry chains.
-  function [RW:0] add_b(input [RW:0] x, input [RW:0] y);
-    integer k;
-    reg c;
-    begin
-      c = 1'b0;
-      for (k = 0; k <= RW; k = k + 1) begin
-        add_b[k] = x[k] ^ y[k] ^ c;
-        c = (x[k] & y[k]) | (x[k] & c) | (y[k] & c);
-      end
-    end
-  endfunction
-  // ones in v, as a balanced tree of those adders
-  localparam CW = RW + 1;
-  function [RW:0] ones(input [N-1:0] v);
-    integer k, h;
-    reg [N*CW-1:0] acc;
-    begin
-      for (k = 0; k < N; k = k + 1) acc[k*CW +: CW] = {{RW{1'b0}}, v[k]};
-      for (h = 1; h < N; h = h * 2)
-        for (k = 0; k + h < N; k = k + 2 * h)
-          acc[k*CW +: CW] = add_b(acc[k*CW +: CW], acc[(k+h)*CW +: CW]);
-      ones = acc[RW:0];
-    end
-  endfunction
-
-  wire [15:0]  ctr = win[RY*NC + RX];
-  wire [N-1:0] is_mid;
+  // lt[j*N + i]: element j is lower than element i in the order (key, index); ties go to
+  // the lower index, so every element has a distinct rank and exactly one holds rank MID.
+  wire [N*N-1:0] lt;
   generate
     for (i = 0; i < N; i = i + 1) begin : g_rank
-      // elements lower i in the order (key, index): ties go to the lower index, so
-      // every element has a distinct rank and exactly one holds rank MID
-      wire [N-1:0] lower;
       for (j = 0; j < N; j = j + 1) begin : g_cmp
         if (j < i) begin : g_lo
-          assign lower[j] = le_q[i*(i-1)/2 + j];
+          assign lt[j*N + i] = le_q[i*(i-1)/2 + j];
         end else if (j > i) begin : g_hi
-          assign lower[j] = ~le_q[j*(j-1)/2 + i];
+          assign lt[j*N + i] = ~le_q[j*(j-1)/2 + i];
         end else begin : g_self
-          assign lower[j] = 1'b0;
+          assign lt[j*N + i] = 1'b0;
         end
       end
-      wire [RW:0] cnt = ones(lower);
-      /* verilator lint_off WIDTH */  // MID is a 32-bit localparam below 2^RW
-      assign is_mid[i] = (cnt == MID);
-      /* verilator lint_on WIDTH */
     end
   endgenerate
+
+  // Rank of element i = ones among lt[j*N + i], j = 0..N-1: a balanced tree of ripple
+  // adders built from bit-level logic (no '+', so the counts map to plain LUTs instead
+  // of carry chains). The N counts are formed side by side in bit-plane order (plane f
+  // of all N counts in one N-bit vector): per element the same adders as a count of its
+  // own, but Verilator evaluates the N of them with one word operation per gate.
+  localparam CW = RW + 1;
+  function [CW*N-1:0] ranks(input [N*N-1:0] v);  // plane f of the counts at [f*N +: N]
+    integer k, h, f;
+    reg [N*CW*N-1:0] acc;  // number k, plane f at [(k*CW + f)*N +: N]
+    reg [N-1:0] x, y, c;
+    begin
+      for (k = 0; k < N; k = k + 1) begin
+        acc[k*CW*N +: N] = v[k*N +: N];
+        for (f = 1; f < CW; f = f + 1) acc[(k*CW + f)*N +: N] = {N{1'b0}};
+      end
+      for (h = 1; h < N; h = h * 2)
+        for (k = 0; k + h < N; k = k + 2 * h) begin
+          c = {N{1'b0}};
+          for (f = 0; f < CW; f = f + 1) begin
+            x = acc[(k*CW + f)*N +: N];
+            y = acc[((k + h)*CW + f)*N +: N];
+            acc[(k*CW + f)*N +: N] = x ^ y ^ c;
+            c = (x & y) | (x & c) | (y & c);
+          end
+        end
+      ranks = acc[0 +: CW*N];
+    end
+  endfunction
+  /* verilator lint_off WIDTH */  // MID is a 32-bit localparam below 2^RW
+  localparam [CW-1:0] MIDV = MID;
+  /* verilator lint_on WIDTH */
+  wire [CW*N-1:0] rank_p = ranks(lt);
+  reg  [N-1:0]    is_mid;  // rank == MID, plane by plane
+  integer f2;
+  always @* begin
+    is_mid = {N{1'b1}};
+    for (f2 = 0; f2 < CW; f2 = f2 + 1)
+      is_mid = is_mid & (MIDV[f2] ? rank_p[f2*N +: N] : ~rank_p[f2*N +: N]);
+  end
+  wire [15:0] ctr = win[RY*NC + RX];
 
   reg [KW-1:0] med;
   integer e;

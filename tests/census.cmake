@@ -29,3 +29,15 @@ target_compile_options(test_census_model PRIVATE ${SM_WARNINGS})
 target_compile_definitions(test_census_model PRIVATE CATCH_CONFIG_MAIN)
 add_test(NAME test_census_model COMMAND test_census_model)
 set_tests_properties(test_census_model PROPERTIES LABELS unit TIMEOUT 120)
+
+# The bit-plane to lane-order transpose on its own: padded planes and lanes, two plane
+# blocks, the paper configuration's 8 x 128, and the degenerate 1 x 1.
+foreach(cfg "6;13" "8;128" "10;5" "1;1")
+  list(GET cfg 0 p)
+  list(GET cfg 1 l)
+  sm_rtl_test(NAME tb_plane2lane_${p}x${l} TOP sm_plane2lane SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_plane2lane.cpp
+              PARAMS P=${p} L=${l})
+endforeach()
+# sm_cost with a level count that is not a multiple of 8 (padded lanes in the transpose)
+sm_rtl_test(NAME tb_cost_odd TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5)
