@@ -12,6 +12,7 @@
 #include SM_VTOP_H
 #include "beat_schedule.hpp"
 #include "census.hpp"
+#include "sm_port.hpp"
 #include "sm_tb.hpp"
 
 namespace {
@@ -38,22 +39,6 @@ void set_port(T& sig, const sm::CensusVec& v, int bits) {
       sig[i] = word;
     }
   }
-}
-
-// Field [lo, lo + n) of a Verilated output port, n <= 32.
-template <typename T>
-unsigned port_bits(const T& sig, int lo, int n) {
-  uint64_t v;
-  if constexpr (std::is_integral_v<T>) {
-    v = static_cast<uint64_t>(sig) >> lo;
-  } else {
-    const int i = lo / 32;
-    v = sig[i];
-    if (static_cast<size_t>(i + 1) < sizeof(sig) / sizeof(sig[0]) && lo % 32 + n > 32)
-      v |= static_cast<uint64_t>(sig[i + 1]) << 32;
-    v >>= lo % 32;
-  }
-  return static_cast<unsigned>(v & ((uint64_t{1} << n) - 1));
 }
 
 sm::CensusVec garbage(std::mt19937& rng) {
@@ -137,7 +122,7 @@ int main() {
       fmt::print("FIRST MISMATCH frame {} x {} y {}: left expected {} got {}\n", p.frame, p.x, p.y,
                  left[p.frame].at(p.x, p.y), tb->m_left);
     for (int d = 0; d < kDisp && ok; ++d) {
-      const unsigned got = port_bits(tb->m_cost, d * hwb, hwb);
+      const unsigned got = sm::test::port_bits(tb->m_cost, d * hwb, hwb);
       const unsigned exp = cost[p.frame].at(p.x, p.y, d);
       if (got != exp) {
         if (failed == 0)

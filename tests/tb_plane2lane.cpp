@@ -8,37 +8,16 @@
 #include <cstdint>
 #include <memory>
 #include <random>
-#include <type_traits>
 
 #include SM_VTOP_H
 #include <verilated.h>
+
+#include "sm_port.hpp"
 
 namespace {
 
 constexpr int kP = SM_P_P;
 constexpr int kL = SM_P_L;
-
-// Bit i of a Verilated port (integral or VlWide).
-template <typename T>
-bool get_bit(const T& sig, int i) {
-  if constexpr (std::is_integral_v<T>) {
-    return (static_cast<uint64_t>(sig) >> i) & 1;
-  } else {
-    return (sig[i / 32] >> (i % 32)) & 1;
-  }
-}
-
-template <typename T>
-void set_bit(T& sig, int i, bool v) {
-  if constexpr (std::is_integral_v<T>) {
-    using U = std::remove_reference_t<T>;
-    const U m = static_cast<U>(U{1} << i);
-    sig = v ? static_cast<U>(sig | m) : static_cast<U>(sig & ~m);
-  } else {
-    const uint32_t m = uint32_t{1} << (i % 32);
-    sig[i / 32] = v ? (sig[i / 32] | m) : (sig[i / 32] & ~m);
-  }
-}
 
 }  // namespace
 
@@ -50,12 +29,12 @@ int main() {
   for (int round = 0; round < 200; ++round) {
     // sparse, dense and balanced patterns: a wrong bit shows in all of them
     const unsigned density = round % 3 == 0 ? 8 : round % 3 == 1 ? 248 : 128;
-    for (int i = 0; i < kP * kL; ++i) set_bit(top->planes, i, (rng() & 255) < density);
+    for (int i = 0; i < kP * kL; ++i) sm::test::set_port_bit(top->planes, i, (rng() & 255) < density);
     top->eval();
     for (int l = 0; l < kL; ++l) {
       for (int p = 0; p < kP; ++p) {
-        const bool want = get_bit(top->planes, p * kL + l);
-        const bool got = get_bit(top->lanes, l * kP + p);
+        const bool want = sm::test::port_bits(top->planes, p * kL + l, 1);
+        const bool got = sm::test::port_bits(top->lanes, l * kP + p, 1);
         if (want == got) {
           ++passed;
         } else {
