@@ -7,13 +7,16 @@
 // still sees the old word during that ce.
 //
 // win[a*W +: W] is the column that entered a + 1 ce ago. Reads are combinational
-// (distributed RAM), so the window changes one clock after the ce that writes it.
+// (distributed RAM), so the window changes one clock after the ce that writes it. Each
+// read port has its own address register, a counter kept (wptr - 1 - a) mod N, so the
+// RAM address comes straight from flip-flops (an address computed from the write
+// pointer put an adder and a mux before every read, on the aggregator's longest path).
 module sm_colwin #(
     parameter W = 16,  // bits of one column
     parameter N = 3    // columns in the window (3..64)
 ) (
     input  wire           clk,
-    input  wire           rst_n,  // clears the write pointer only
+    input  wire           rst_n,  // resets the pointers only
     input  wire           ce,
     input  wire [W-1:0]   col,    // the entering column
     output wire [N*W-1:0] win
@@ -55,10 +58,13 @@ module sm_colwin #(
       end else begin : g_rd
         /* verilator lint_off WIDTH */  // small constants truncated to the index width
         localparam [PTW-1:0] BACK = N - 1 - a;  // = -(1 + a) mod N
-        wire [PTW:0]   sum  = {1'b0, wptr_q} + BACK;
-        wire [PTW-1:0] addr = (sum >= N) ? sum - N : sum[PTW-1:0];
         /* verilator lint_on WIDTH */
-        assign win[a*W +: W] = mem[addr];
+        reg [PTW-1:0] rptr_q;  // = (wptr_q + BACK) mod N
+        always @(posedge clk) begin
+          if (!rst_n) rptr_q <= BACK;
+          else if (ce) rptr_q <= (rptr_q == PLAST) ? {PTW{1'b0}} : rptr_q + 1'b1;
+        end
+        assign win[a*W +: W] = mem[rptr_q];
       end
     end
   endgenerate

@@ -10,7 +10,7 @@
 // column = lane); three swap stages (Hacker's Delight, section 7-3) transpose it into
 // the 8 lanes' values side by side. Planes and lanes are padded to multiples of 8.
 module sm_plane2lane #(
-    parameter P = 8,   // bits per lane (planes), 1..64
+    parameter P = 8,   // bits per lane (planes), 1..4096
     parameter L = 128  // lanes, 1..4096
 ) (
     input  wire [P*L-1:0] planes,  // bit p of lane l at [p*L + l]
@@ -20,8 +20,8 @@ module sm_plane2lane #(
   localparam NLG = (L + 7) / 8;  // groups of 8 lanes
 
   generate
-    if (P < 1 || P > 64) begin : g_bad_p
-      initial $error("sm_plane2lane: P (%0d) must be 1..64", P);
+    if (P < 1 || P > 4096) begin : g_bad_p
+      initial $error("sm_plane2lane: P (%0d) must be 1..4096", P);
     end
     if (L < 1 || L > 4096) begin : g_bad_l
       initial $error("sm_plane2lane: L (%0d) must be 1..4096", L);

@@ -1,6 +1,6 @@
 `default_nettype none
-// Balanced adder tree for the support-weight aggregation: the sum of N unsigned terms
-// in clog2(N) adder levels, so the wide per-level reductions keep a short logic depth
+// Balanced adder tree for the support-weight aggregation's weight sum: the sum of N
+// unsigned terms in clog2(N) adder levels, so the reduction keeps a short logic depth
 // (a chained sum would be N-1 adders deep). Purely combinational; the caller registers.
 module sm_sw_addtree #(
     parameter N  = 5,  // number of terms

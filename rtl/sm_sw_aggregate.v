@@ -5,8 +5,10 @@
 // (0, 1, 2 or 4) chosen from the left-image intensity difference to the centre, summed,
 // and normalised by the reciprocal of the weight sum. The weights, their sum and the
 // reciprocal depend only on the pixel, so they are computed once per beat and shared by
-// all DISP levels; per level there are only shifts and masks (the products), two adder
-// trees and one multiplier.
+// all DISP levels. The costs travel in bit-plane order (bit b of all levels together),
+// so the weighted sums of all levels are one bit heap (sm_bitheap) whose every stage
+// is a few operations on DISP-bit vectors; per level there remain one adder and one
+// multiplier (sm_sw_level).
 //
 // Pipeline, counted in ce from the one on which beat (x+R, y+R) enters (ce 0); the
 // output of pixel (x, y) is on m_side/m_agg after ce 5 (latency 6 beats after the
@@ -15,17 +17,17 @@
 //         sw_table latched when the centre is sof
 //   ce 1  column into the window (a circular buffer of SW columns, sm_colwin); weight
 //         codes of the window being formed registered
-//   ce 2  per level (sm_sw_level): A_raw = sum of the SW*SW weighted costs;
-//         weight sum and RECIP(weight sum) from the ROM, once per pixel
+//   ce 2  A_raw of every level: weighted cost bits (a choice among three planes), the
+//         bit heap, per level the sum of its two rows; weight sum and RECIP(weight sum)
+//         from the ROM, once per pixel
 //   ce 3  per level: A_raw * RECIP
 //   ce 4  per level: round, shift by 12, saturate to CW bits
 //   ce 5  per level: output register
 //
 // Resources: the window of SW x SW x DISP costs is the block's largest state. It lives
 // in LUT-RAM (sm_colwin), written once per beat and read at SW addresses, instead of
-// SW x SW x DISP x CW shifting flip-flops. The per-level sums are one adder tree each
-// (no row-sum registers): the narrow A_raw is the only per-level register before the
-// multiplier.
+// SW x SW x DISP x CW shifting flip-flops. A_raw is the only per-level register before
+// the multiplier.
 module sm_sw_aggregate #(
     parameter MAX_WIDTH  = 320,  // widest active line
     parameter DISP       = 128,  // disparity levels
@@ -86,18 +88,20 @@ module sm_sw_aggregate #(
       .s_x(s_x), .c_side(c_side), .c_x(unused_c_x), .row_ok(row_ok), .col_ok(col_ok)
   );
 
-  // Only the shifted cost is stored: CW + COST_SHIFT == HW, so it is the top CW bits
-  // of each raw cost and the low COST_SHIFT bits are dropped here.
-  wire [LVW-1:0] cost_in;
-  genvar d, k, c;
+  // The costs are kept in bit-plane order (plane b holds bit b of every level, at
+  // [b*DISP +: DISP]): the weighted sums are then one bit heap for all levels (below).
+  // The transpose is wiring (sm_plane2lane with planes and lanes swapped). Only the
+  // shifted cost is stored: CW + COST_SHIFT == HW, so it is the top CW planes of each
+  // raw cost and the low COST_SHIFT planes are dropped here.
+  wire [HW*DISP-1:0] cost_planes;  // plane b of the raw costs at [b*DISP +: DISP]
+  sm_plane2lane #(.P(DISP), .L(HW)) u_in_t (.planes(s_cost), .lanes(cost_planes));
+  wire [LVW-1:0] cost_in = cost_planes[COST_SHIFT*DISP +: LVW];
   generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_shift_in
-      assign cost_in[d*CW +: CW] = s_cost[d*HW + COST_SHIFT +: CW];
-      if (COST_SHIFT > 0) begin : g_drop
-        wire [COST_SHIFT-1:0] unused_low = s_cost[d*HW +: COST_SHIFT];
-      end
+    if (COST_SHIFT > 0) begin : g_drop
+      wire [COST_SHIFT*DISP-1:0] unused_low = cost_planes[0 +: COST_SHIFT*DISP];
     end
   endgenerate
+  genvar d, k, c, g;
 
   wire [(SW-1)*LBW-1:0] lb_dout;  // rows live-1 .. live-(SW-1) of the entering column
   sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(LBW), .ROWS(SW - 1)) u_lb (
@@ -175,18 +179,11 @@ module sm_sw_aggregate #(
 
   // ---------------------------------------------------------------- ce 2..5: levels
   // Weight sum and its reciprocal, once per pixel (ce 2).
-  // The codes decoded once for all levels: a shift (weight 1 << (code - 1)) and a mask
-  // (code 0 is weight 0), so a level's product is a shift and an AND.
-  localparam PW = CW + 2;  // one weighted cost
-  wire [NQ*3-1:0]  wts;
-  wire [NQ*2-1:0]  wsh;
-  wire [NQ*PW-1:0] wmask;
+  wire [NQ*3-1:0] wts;  // one-hot weight 4, 2, 1 (code 3, 2, 1) of position q at [3q +: 3]
   generate
     for (k = 0; k < NQ; k = k + 1) begin : g_wt
       wire [1:0] cd = code_q[k*2 +: 2];
-      assign wts[k*3 +: 3]     = {cd == 2'd3, cd == 2'd2, cd == 2'd1};
-      assign wsh[k*2 +: 2]     = cd - 2'd1;  // don't care for code 0 (masked)
-      assign wmask[k*PW +: PW] = {PW{cd != 2'd0}};
+      assign wts[k*3 +: 3] = {cd == 2'd3, cd == 2'd2, cd == 2'd1};
     end
   endgenerate
   wire [SUMW-1:0] wsum;
@@ -213,20 +210,74 @@ module sm_sw_aggregate #(
     if (ce) recip_q <= recip_rom[wsum];
   end
 
-  // Per level: the window's costs of level d in window-position order (row k, column c
-  // at position k*SW + c, as the codes).
+  // A_raw of every level as one bit heap (sm_bitheap), all levels side by side: the
+  // weighted cost of position q is its cost shifted by 0, 1 or 2 (weight 1, 2, 4) or 0,
+  // so bit g of it is cost plane g, g-1 or g-2 of that position, chosen by the code
+  // (one LUT per bit, as the product's shift-and-mask was). Column g of the heap holds
+  // bit g of the NQ weighted costs (g = 0 .. CW+1; A_raw < 2^AW, so the heap has AW
+  // columns). The heap leaves two rows; each level adds its two AW-bit numbers on a
+  // carry chain (sm_sw_level). Against one adder tree per level: about the same LUTs,
+  // one LUT level per counter stage instead of an adder per tree level.
+  localparam AW = $clog2(4 * NQ * ((1 << CW) - 1) + 1);  // A_raw width, as sm_sw_level
+  localparam TP = CW + 2;                     // bit planes of one weighted cost
+  function [32*AW-1:0] term_heights(input integer nq);
+    integer j;
+    begin
+      term_heights = {32 * AW{1'b0}};
+      for (j = 0; j < TP && j < AW; j = j + 1) term_heights[j*32 +: 32] = nq;
+    end
+  endfunction
+  localparam [32*AW-1:0] H0 = term_heights(NQ);
+
+  // Bit g of position q's weighted cost at [(g*NQ + q)*DISP +: DISP]: cost plane g, g-1
+  // or g-2 of the position (weight 1, 2, 4), or 0, chosen by its code.
+  wire [TP*NQ*DISP-1:0] terms;
   generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_lvl
-      // split_var: one Verilator variable per position, not a packed vector per level
-      wire [NQ*CW-1:0] wcost  /*verilator split_var*/;
-      for (k = 0; k < SW; k = k + 1) begin : g_row
-        for (c = 0; c < SW; c = c + 1) begin : g_col
-          assign wcost[(k*SW + c)*CW +: CW] = cwin[c*COLW + k*LVW + d*CW +: CW];
+    for (k = 0; k < SW; k = k + 1) begin : g_trow
+      for (c = 0; c < SW; c = c + 1) begin : g_tcol
+        localparam Q = k*SW + c;  // window position, as the codes
+        wire [1:0] cd = code_q[Q*2 +: 2];
+        wire [DISP-1:0] m1 = {DISP{cd == 2'd1}};
+        wire [DISP-1:0] m2 = {DISP{cd == 2'd2}};
+        wire [DISP-1:0] m4 = {DISP{cd == 2'd3}};
+        wire [LVW-1:0] cp = cwin[c*COLW + k*LVW +: LVW];  // its CW cost planes
+        for (g = 0; g < TP; g = g + 1) begin : g_bit
+          wire [DISP-1:0] b1, b2, b4;
+          if (g < CW) begin : g_s0
+            assign b1 = cp[g*DISP +: DISP] & m1;
+          end else begin : g_n0
+            assign b1 = {DISP{1'b0}};
+          end
+          if (g >= 1 && g <= CW) begin : g_s1
+            assign b2 = cp[(g-1)*DISP +: DISP] & m2;
+          end else begin : g_n1
+            assign b2 = {DISP{1'b0}};
+          end
+          if (g >= 2) begin : g_s2
+            assign b4 = cp[(g-2)*DISP +: DISP] & m4;
+          end else begin : g_n2
+            assign b4 = {DISP{1'b0}};
+          end
+          assign terms[(g*NQ + Q)*DISP +: DISP] = b1 | b2 | b4;
         end
       end
+    end
+  endgenerate
+
+  wire [AW*DISP-1:0] row_a, row_b;  // bit-plane order
+  sm_bitheap #(.NC(AW), .H0(H0), .L(DISP), .REG(0)) u_heap (
+      .clk(clk), .ce(ce), .bits(terms), .row_a(row_a), .row_b(row_b));
+  // split_var: each level reads its own variables, not a slice of one long vector
+  wire [DISP*AW-1:0] lane_a  /*verilator split_var*/;  // level order
+  wire [DISP*AW-1:0] lane_b  /*verilator split_var*/;
+  sm_plane2lane #(.P(AW), .L(DISP)) u_ta (.planes(row_a), .lanes(lane_a));
+  sm_plane2lane #(.P(AW), .L(DISP)) u_tb (.planes(row_b), .lanes(lane_b));
+
+  generate
+    for (d = 0; d < DISP; d = d + 1) begin : g_lvl
       sm_sw_level #(.CW(CW), .SW(SW), .RW(RW)) u_lvl (
-          .clk(clk), .ce(ce), .wsh(wsh), .wmask(wmask), .cost(wcost), .recip(recip_q),
-          .agg(m_agg[d*CW +: CW]));
+          .clk(clk), .ce(ce), .row_a(lane_a[d*AW +: AW]), .row_b(lane_b[d*AW +: AW]),
+          .recip(recip_q), .agg(m_agg[d*CW +: CW]));
     end
   endgenerate
 

@@ -10,13 +10,16 @@ set(SM_SIM_CXXFLAGS "" CACHE STRING "Extra compiler flags of the Verilated tops'
 separate_arguments(_sm_sim_cxxflags UNIX_COMMAND "${SM_SIM_CXXFLAGS}")
 
 # sm_vtop(<library> <params...>): sm_top verilated at a configuration, with tracing of
-# sm_top's ports and inter-stage wires (depth 2: a full-depth trace of the paper
-# configuration is ~0.5 MB per cycle).
+# sm_top's ports and inter-stage wires (depth 1: a full-depth trace of the paper
+# configuration is ~0.5 MB per cycle). Depth 2 would add every signal inside the
+# blocks, and Verilator must then keep each traced wire as a variable updated every
+# clock, even with no trace open: at the paper configuration that cost a fifth of the
+# simulation time (wide internal vectors copied or assembled bit by bit).
 function(sm_vtop lib)
   add_library(${lib} STATIC ${CMAKE_SOURCE_DIR}/sim/sm_vtop_anchor.cpp)
   # The run-once code (construction, initial blocks, trace declarations: about half of
   # the generated C++) is built at -O1, which saves compile time and no run time.
-  sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE TRACE_DEPTH 2 THREADS ${SM_SIM_THREADS}
+  sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE TRACE_DEPTH 1 THREADS ${SM_SIM_THREADS}
                OPT_SLOW -O1 OPT_FAST ${_sm_sim_cxxflags})
   add_dependencies(${lib} sm_regmap_gen_files)
   get_target_property(defs ${lib} COMPILE_DEFINITIONS)

@@ -31,13 +31,38 @@ add_test(NAME test_census_model COMMAND test_census_model)
 set_tests_properties(test_census_model PROPERTIES LABELS unit TIMEOUT 120)
 
 # The bit-plane to lane-order transpose on its own: padded planes and lanes, two plane
-# blocks, the paper configuration's 8 x 128, and the degenerate 1 x 1.
-foreach(cfg "6;13" "8;128" "10;5" "1;1")
+# blocks, the paper configuration's 8 x 128, the degenerate 1 x 1, and 128 x 8 (lanes to
+# planes: the aggregator's input, the paper configuration's costs).
+foreach(cfg "6;13" "8;128" "10;5" "1;1" "128;8")
   list(GET cfg 0 p)
   list(GET cfg 1 l)
   sm_rtl_test(NAME tb_plane2lane_${p}x${l} TOP sm_plane2lane SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_plane2lane.cpp
               PARAMS P=${p} L=${l})
 endforeach()
+# The compressor heap on its own (H0 as a hex literal, column 0 last): the aggregation's
+# 25 weighted costs, the paper popcount's leaves, no stage at all, and uneven columns.
+function(sm_bitheap_test name nc l)
+  set(hex "")
+  foreach(h ${ARGN})
+    math(EXPR v "${h}" OUTPUT_FORMAT HEXADECIMAL)
+    string(SUBSTRING "${v}" 2 -1 v)
+    string(LENGTH "${v}" n)
+    while(n LESS 8)
+      string(PREPEND v "0")
+      math(EXPR n "${n} + 1")
+    endwhile()
+    string(PREPEND hex "${v}")
+  endforeach()
+  math(EXPR bits "${nc} * 32")
+  sm_rtl_test(NAME tb_bitheap_${name} TOP sm_bitheap SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_bitheap.cpp
+              PARAMS NC=${nc} L=${l} "H0=${bits}'h${hex}" ARGS --heights ${ARGN})
+  target_link_libraries(tb_bitheap_${name} PRIVATE CLI11::CLI11)
+endfunction()
+sm_bitheap_test(agg 13 128 25 25 25 25 25 25 25 25 0 0 0 0 0)
+sm_bitheap_test(pop 8 5 75 75 0 0 0 0 0 0)
+sm_bitheap_test(none 2 3 1 1)
+sm_bitheap_test(uneven 6 1 7 0 4 2 1 0)
+
 # sm_cost with a level count that is not a multiple of 8 (padded lanes in the transpose)
 sm_rtl_test(NAME tb_cost_odd TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
             PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5)
