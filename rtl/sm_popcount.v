@@ -42,7 +42,7 @@ module sm_popcount #(
 
   // ---- leaves: 2-bit counts of three XOR'ed pairs ----------------------------------
   // Group q takes input bits q, q + NG and q + 2*NG (bits past N count as 0). The
-  // leaves are not registered: at 6-input LUTs, leaves and compression stages are 1 + NS
+  // leaves are not registered: at 6-input LUTs, leaves and sm_bitheap's NS stages are 1 + NS
   // levels (5 for N = 225), and the two rows left after them are 2*OW bits a lane
   // against 2*NG leaf bits (the paper configuration's 128 lanes: 2,048 flip-flops
   // instead of 19,200).
@@ -84,14 +84,11 @@ module sm_popcount #(
   localparam [32*OW-1:0] H0 = leaf_heights(NG);
   // The pipeline register (inside sm_bitheap): the two rows, OW bits a lane.
   wire [OW*L-1:0] row_a_q, row_b_q;  // bit-plane order
+  localparam LB = (OW > 1) ? 2 * NG : NG;  // heap bits a lane (N = 1: bit 1 is always 0)
+  sm_bitheap #(.NC(OW), .H0(H0), .L(L), .REG(1)) u_heap (
+      .clk(clk), .ce(ce), .bits(leaves[0 +: LB*L]), .row_a(row_a_q), .row_b(row_b_q));
   generate
-    if (OW > 1) begin : g_two
-      sm_bitheap #(.NC(OW), .H0(H0), .L(L), .REG(1)) u_heap (
-          .clk(clk), .ce(ce), .bits(leaves), .row_a(row_a_q), .row_b(row_b_q));
-    end else begin : g_one
-      // N = 1: bit 1 of the leaf is always 0
-      sm_bitheap #(.NC(OW), .H0(H0), .L(L), .REG(1)) u_heap (
-          .clk(clk), .ce(ce), .bits(leaves[0 +: NG*L]), .row_a(row_a_q), .row_b(row_b_q));
+    if (OW == 1) begin : g_one
       wire unused_leaf1 = |leaves[NG*L +: NG*L];
     end
   endgenerate
