@@ -1,12 +1,14 @@
 # Shared by the bench/*.sh scripts (sourced): locations of the builds and small helpers.
 # Override with environment variables: LEAD (build with the Verilated paper top,
 # default build-lead, else build), BENCH (build with the bench helpers, default
-# build-bench), SIM_MT (stereo_sim built with SM_SIM_THREADS=2), RUNS (repetitions).
+# build-bench), SIM_MT (stereo_sim built with SM_SIM_THREADS=2), SIM_PGO (profile-guided
+# stereo_sim, bench/pgo_build.sh), RUNS (repetitions).
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 pick() { for d in "$@"; do [ -e "$d" ] && { echo "$d"; return; }; done; echo "$1"; }
 LEAD=${LEAD:-$(pick "$ROOT/build-lead" "$ROOT/build")}
 BENCH=${BENCH:-$(pick "$ROOT/build-bench" "$ROOT/build")}
 SIM_MT=${SIM_MT:-$ROOT/build-bench-mt/sim/stereo_sim}
+SIM_PGO=${SIM_PGO:-$ROOT/build-bench-pgo/sim/stereo_sim}
 RUNS=${RUNS:-3}
 DATASETS=${DATASETS:-$ROOT/../shared/datasets}
 die() { echo "$(basename "$0"): error: $*" >&2; exit 1; }
@@ -29,8 +31,9 @@ machine() {
 build_info() {
   local c=$1/CMakeCache.txt
   [ -f "$c" ] || { echo "$1: no CMakeCache.txt"; return; }
-  local th fl
+  local th fl pgo
   th=$(sed -n 's/^SM_SIM_THREADS:[A-Z]*=//p' "$c")
   fl=$(sed -n 's/^SM_SIM_CXXFLAGS:[A-Z]*=//p' "$c")
-  echo "$1: $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$c"), SM_SIM_THREADS=${th:-1}, SM_SIM_CXXFLAGS='${fl}'"
+  pgo=$(sed -n 's/^SM_SIM_PGO:[A-Z]*=//p' "$c")
+  echo "$1: $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$c"), SM_SIM_THREADS=${th:-1}, SM_SIM_CXXFLAGS='${fl}', SM_SIM_PGO=${pgo:-OFF}"
 }

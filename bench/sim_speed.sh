@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # RTL simulation speed (docs/performance.md): Verilator at the paper configuration
-# (320x240, 128 levels) with one and, if built, two threads; then Verilator against
+# (320x240, 128 levels) with one and, if built, two threads and the profile-guided build
+# (bench/pgo_build.sh), interleaved; then Verilator against
 # Icarus Verilog on the same RTL at the small configuration (64x48, 16 levels), in the
 # same run. Medians over RUNS (default 3) runs. Usage: bench/sim_speed.sh [OUT_DIR]
-#   FRAMES=3 frames per Verilator paper run, IV_FRAMES=2 frames per Icarus run;
+#   FRAMES=3 frames per Verilator paper run, IV_FRAMES=2 frames per Icarus run, SMALL=0
+#   skips the small configuration (Icarus);
 #   LEAD= build of the one-thread stereo_sim (and stereo_sim_small, generated headers),
-#   SIM_MT= two-thread stereo_sim (default build-bench-mt/sim/stereo_sim), see common.sh.
+#   SIM_MT= two-thread stereo_sim (default build-bench-mt/sim/stereo_sim), SIM_PGO=
+#   profile-guided one-thread stereo_sim (default build-bench-pgo/sim/stereo_sim, built by
+#   bench/pgo_build.sh), see common.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 OUT=${1:-$ROOT/build-bench/sim_speed}
@@ -18,32 +22,58 @@ machine
 build_info "$LEAD"
 [ -x "$SIM_MT" ] && build_info "$(cd "$(dirname "$SIM_MT")/.." && pwd)"
 
+# vl_run <sim> <label> <k> <frames> [args...]: one run, prints "cycles/s frames/s"
+vl_run() {
+  local sim=$1 label=$2 k=$3 frames=$4; shift 4
+  local d="$OUT/$label.$k"
+  nice "$sim" --frames "$frames" --continuous --no-check -q --out "$d" "$@" >"$d.log" 2>&1 ||
+    die "$sim failed, see $d.log"
+  echo "$(jget "$d/report.json" sim_cycles_per_second) $(jget "$d/report.json" sim_frames_per_second)"
+}
 # vl_runs <sim> <label> <frames> [args...]: prints "label cycles/s frames/s" medians
 vl_runs() {
   local sim=$1 label=$2 frames=$3; shift 3
-  local cps="" fps=""
+  local cps="" fps="" r
   for k in $(seq "$RUNS"); do
-    local d="$OUT/$label.$k"
-    nice "$sim" --frames "$frames" --continuous --no-check -q --out "$d" "$@" >"$d.log" 2>&1 ||
-      die "$sim failed, see $d.log"
-    cps+=" $(jget "$d/report.json" sim_cycles_per_second)"
-    fps+=" $(jget "$d/report.json" sim_frames_per_second)"
+    r=$(vl_run "$sim" "$label" "$k" "$frames" "$@")
+    cps+=" ${r% *}" fps+=" ${r#* }"
   done
   echo "$label $(echo $cps | median) $(echo $fps | median)"
 }
 
-echo "## paper configuration 320x240, DISP 128, CENSUS 15, SW 5; $FRAMES frames per run, continuous stream"
-{
-  vl_runs "$SIM" verilator_1thread "$FRAMES"
-  if [ -x "$SIM_MT" ]; then vl_runs "$SIM_MT" verilator_2threads "$FRAMES"; fi
-} | tee "$OUT/paper.txt" | awk '{printf "%-20s %12.0f cycles/s %8.3f frames/s\n", $1, $2, $3}'
-if [ -x "$SIM_MT" ]; then
-  awk 'NR==1{v=$2} NR==2{printf "2 threads / 1 thread (cycles/s): %.2fx\n", $2/v}' "$OUT/paper.txt"
-else
-  echo "(no two-thread build at $SIM_MT: cmake -S . -B build-bench-mt -DSM_SIM_THREADS=2 && cmake --build build-bench-mt --target stereo_sim)"
+# The paper-configuration builds run interleaved (plain, two threads, PGO, plain, ...):
+# this machine's speed drifts within minutes, and interleaving spreads the drift evenly.
+labels=(verilator_1thread) sims=("$SIM")
+if [ -x "$SIM_MT" ]; then labels+=(verilator_2threads) sims+=("$SIM_MT"); fi
+if [ -x "$SIM_PGO" ]; then
+  labels+=(verilator_1thread_pgo) sims+=("$SIM_PGO")
+  build_info "$(cd "$(dirname "$SIM_PGO")/.." && pwd)"
 fi
+echo "## paper configuration 320x240, DISP 128, CENSUS 15, SW 5; $FRAMES frames per run, continuous stream"
+declare -A CPS FPS
+for k in $(seq "$RUNS"); do
+  for i in "${!labels[@]}"; do
+    r=$(vl_run "${sims[$i]}" "${labels[$i]}" "$k" "$FRAMES")
+    CPS[$i]+=" ${r% *}" FPS[$i]+=" ${r#* }"
+  done
+done
+{
+  for i in "${!labels[@]}"; do
+    echo "${labels[$i]} $(echo ${CPS[$i]} | median) $(echo ${FPS[$i]} | median) runs:$(printf '%.0f,' ${CPS[$i]} | sed 's/,$//')"
+  done
+} | tee "$OUT/paper.txt" | awk '{printf "%-22s %12.0f cycles/s %8.3f frames/s  (%s)\n", $1, $2, $3, $4}'
+ratio() { # ratio <label> <text>: label's cycles/s over the one-thread build's
+  awk -v l="$1" -v t="$2" '$1=="verilator_1thread"{v=$2} $1==l{w=$2} END{if (w) printf "%s (cycles/s): %.2fx\n", t, w/v}' "$OUT/paper.txt"
+}
+ratio verilator_2threads "2 threads / 1 thread"
+ratio verilator_1thread_pgo "1 thread PGO / 1 thread"
+[ -x "$SIM_MT" ] ||
+  echo "(no two-thread build at $SIM_MT: cmake -S . -B build-bench-mt -DSM_SIM_THREADS=2 && cmake --build build-bench-mt --target stereo_sim)"
+[ -x "$SIM_PGO" ] || echo "(no profile-guided build at $SIM_PGO: bench/pgo_build.sh)"
 
-# ---- small configuration: Verilator vs Icarus on the same RTL
+# ---- small configuration: Verilator vs Icarus on the same RTL (about 25 minutes: Icarus
+# runs 16 cycles/s; SMALL=0 stops after the paper configuration)
+[ "${SMALL:-1}" = 0 ] && { echo "(SMALL=0: small configuration and Icarus skipped)"; exit 0; }
 SMALL=$(pick "$LEAD/sim/stereo_sim_small" "$ROOT/build-bench-top/sim/stereo_sim_small")
 need "$SMALL" "cmake --build $LEAD --target stereo_sim_small"
 command -v iverilog >/dev/null || die "iverilog not installed (apt-get install iverilog)"

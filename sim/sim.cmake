@@ -8,6 +8,36 @@ set(SM_SIM_THREADS 1 CACHE STRING "Verilator threads of the stereo_sim model")
 # system tests), e.g. -march=native for a benchmark build (docs/performance.md).
 set(SM_SIM_CXXFLAGS "" CACHE STRING "Extra compiler flags of the Verilated tops' per-cycle code")
 separate_arguments(_sm_sim_cxxflags UNIX_COMMAND "${SM_SIM_CXXFLAGS}")
+# GCC profile-guided optimization of the same per-cycle code, in two builds of one build
+# folder (bench/pgo_build.sh does both and the training run): GENERATE instruments it
+# (the .gcda profiles land beside its object files when a binary linked with it exits),
+# USE recompiles it with those profiles. Verilator's manual recommends this for speed
+# ("Compiler Profile-Guided Optimization"); the RTL and every output bit stay the same.
+set(SM_SIM_PGO OFF CACHE STRING "Profile-guided build of the Verilated tops' per-cycle code: OFF, GENERATE or USE")
+set_property(CACHE SM_SIM_PGO PROPERTY STRINGS OFF GENERATE USE)
+set(_sm_sim_pgo_link "")
+if(SM_SIM_PGO STREQUAL "GENERATE" OR SM_SIM_PGO STREQUAL "USE")
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    message(FATAL_ERROR "SM_SIM_PGO=${SM_SIM_PGO} needs GCC (the compiler is ${CMAKE_CXX_COMPILER_ID})")
+  endif()
+  if(SM_SIM_PGO STREQUAL "GENERATE")
+    # several model threads update the same counters
+    if(SM_SIM_THREADS GREATER 1)
+      list(APPEND _sm_sim_cxxflags -fprofile-generate -fprofile-update=prefer-atomic)
+    else()
+      list(APPEND _sm_sim_cxxflags -fprofile-generate)
+    endif()
+    set(_sm_sim_pgo_link -fprofile-generate)
+  else()
+    # Files without a profile (never run in training) are compiled as without PGO; a
+    # profile from older generated code is a warning (the function is compiled without
+    # it), not a failed build.
+    list(APPEND _sm_sim_cxxflags -fprofile-use -fprofile-correction -Wno-missing-profile
+         -Wno-error=coverage-mismatch)
+  endif()
+elseif(NOT SM_SIM_PGO STREQUAL "OFF")
+  message(FATAL_ERROR "SM_SIM_PGO must be OFF, GENERATE or USE, not '${SM_SIM_PGO}'")
+endif()
 
 # sm_vtop(<library> <params...>): sm_top verilated at a configuration, with tracing of
 # sm_top's ports and inter-stage wires (depth 1: a full-depth trace of the paper
@@ -29,6 +59,9 @@ function(sm_vtop lib)
   target_compile_definitions(${lib} INTERFACE ${defs} VM_TRACE=1 VM_TRACE_VCD=1 VM_TRACE_FST=0)
   get_target_property(incs ${lib} INCLUDE_DIRECTORIES)
   target_include_directories(${lib} INTERFACE ${incs})
+  if(_sm_sim_pgo_link)
+    target_link_options(${lib} INTERFACE ${_sm_sim_pgo_link})
+  endif()
 endfunction()
 sm_vtop(vtop_paper ${SM_PAPER_PARAMS})
 sm_vtop(vtop_small ${SM_SMALL_PARAMS})
