@@ -11,11 +11,12 @@ B=${PGO_BUILD:-$ROOT/build-bench-pgo}
 JOBS=${JOBS:-2}
 step() { echo "== $(date +%H:%M:%S) $*"; }
 
+mkdir -p "$B"
 step "instrumented build (SM_SIM_PGO=GENERATE) in $B"
-cmake -S "$ROOT" -B "$B" -DCMAKE_BUILD_TYPE=Release -DSM_SIM_THREADS=1 -DSM_SIM_PGO=GENERATE >"$B.configure.log" 2>&1 ||
-  die "configure failed, see $B.configure.log"
-nice cmake --build "$B" --target stereo_sim sm_scene -j"$JOBS" >"$B.generate.log" 2>&1 ||
-  die "instrumented build failed, see $B.generate.log"
+cmake -S "$ROOT" -B "$B" -DCMAKE_BUILD_TYPE=Release -DSM_SIM_THREADS=1 -DSM_SIM_PGO=GENERATE >"$B/pgo-configure.log" 2>&1 ||
+  die "configure failed, see $B/pgo-configure.log"
+nice cmake --build "$B" --target stereo_sim sm_scene -j"$JOBS" >"$B/pgo-generate.log" 2>&1 ||
+  die "instrumented build failed, see $B/pgo-generate.log"
 
 step "training run: 1 frame of a synthetic scene (seed 7), camera timing"
 find "$B" -name '*.gcda' -delete
@@ -28,11 +29,11 @@ n=$(find "$B" -name '*.gcda' | wc -l)
 echo "profiles: $n .gcda files"
 
 step "optimized build (SM_SIM_PGO=USE)"
-cmake -S "$ROOT" -B "$B" -DSM_SIM_PGO=USE >>"$B.configure.log" 2>&1 || die "configure failed, see $B.configure.log"
-nice cmake --build "$B" --target stereo_sim -j"$JOBS" >"$B.use.log" 2>&1 ||
-  die "optimized build failed, see $B.use.log"
-if grep -q "coverage-mismatch\|profile count data" "$B.use.log"; then
-  echo "warning: profile mismatches in $B.use.log (stale profiles?)"
+cmake -S "$ROOT" -B "$B" -DSM_SIM_PGO=USE >>"$B/pgo-configure.log" 2>&1 || die "configure failed, see $B/pgo-configure.log"
+nice cmake --build "$B" --target stereo_sim -j"$JOBS" >"$B/pgo-use.log" 2>&1 ||
+  die "optimized build failed, see $B/pgo-use.log"
+if grep -q "coverage-mismatch\|profile count data" "$B/pgo-use.log"; then
+  echo "warning: profile mismatches in $B/pgo-use.log (stale profiles?)"
 fi
 
 step "check: 2 frames of the default scene, every output pixel against the model"

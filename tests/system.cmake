@@ -28,3 +28,14 @@ add_test(NAME system_paper_budget COMMAND tb_top_paper ${SM_SCENE_DIR} budget)
 set_tests_properties(system_small_stress system_small_vcd system_small_budget system_small_calib
                      PROPERTIES LABELS "system" TIMEOUT 600)
 set_tests_properties(system_paper_budget PROPERTIES LABELS "system;slow" TIMEOUT 1800)
+
+# stereo_sim's input modes (--left/--right, --sequence, --video) and their errors, on the
+# small configuration (each run checks the RTL against the model itself).
+add_executable(test_sim_inputs ${CMAKE_SOURCE_DIR}/tests/test_sim_inputs.cpp)
+target_link_libraries(test_sim_inputs PRIVATE sm_toolio Catch2::Catch2 nlohmann_json::nlohmann_json ${OpenCV_LIBS})
+target_compile_options(test_sim_inputs PRIVATE ${SM_WARNINGS})
+target_compile_definitions(test_sim_inputs PRIVATE SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/sim_inputs_tmp"
+                                                   SM_STEREO_SIM_SMALL="$<TARGET_FILE:stereo_sim_small>")
+add_dependencies(test_sim_inputs stereo_sim_small)
+add_test(NAME system_sim_inputs COMMAND test_sim_inputs)
+set_tests_properties(system_sim_inputs PROPERTIES LABELS "system" TIMEOUT 600)
