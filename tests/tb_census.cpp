@@ -5,12 +5,12 @@
 
 #include <cstdint>
 #include <random>
-#include <type_traits>
 #include <vector>
 
 #include SM_VTOP_H
 #include "beat_schedule.hpp"
 #include "census.hpp"
+#include "sm_port.hpp"
 #include "sm_tb.hpp"
 
 namespace {
@@ -23,19 +23,6 @@ constexpr int kCensus = SM_P_CENSUS;
 #ifndef SM_TB_H0
 #define SM_TB_H0 13
 #endif
-
-// A census vector out of a Verilated port (QData up to 64 bits, VlWide above).
-template <typename T>
-sm::CensusVec port_vec(const T& sig, int bits) {
-  sm::CensusVec v{0, 0, 0, 0};
-  if constexpr (std::is_integral_v<T>) {
-    v[0] = static_cast<uint64_t>(sig);
-  } else {
-    for (int i = 0; i < (bits + 31) / 32; ++i) v[i / 2] |= static_cast<uint64_t>(sig[i]) << (32 * (i % 2));
-  }
-  if (bits < 64) v[0] &= (uint64_t{1} << bits) - 1;
-  return v;
-}
 
 std::string hex(const sm::CensusVec& v) { return fmt::format("{:016x}{:016x}{:016x}{:016x}", v[3], v[2], v[1], v[0]); }
 
@@ -114,8 +101,8 @@ int main() {
       ++failed;
       break;
     }
-    const auto gl = port_vec(tb->m_cl, cb);
-    const auto gr = port_vec(tb->m_cr, cb);
+    const auto gl = sm::test::get_port_u64<4>(tb->m_cl, cb);
+    const auto gr = sm::test::get_port_u64<4>(tb->m_cr, cb);
     const auto& el = cl[p.frame].at(p.x, p.y);
     const auto& er = cr[p.frame].at(p.x, p.y);
     const int eleft = left[p.frame].at(p.x, p.y);

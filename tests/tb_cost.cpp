@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <random>
-#include <type_traits>
 #include <vector>
 
 #include SM_VTOP_H
@@ -26,20 +25,6 @@ constexpr int kDisp = SM_P_DISP;
 #ifndef SM_TB_H0
 #define SM_TB_H0 9
 #endif
-
-// Write a census vector to a Verilated input port.
-template <typename T>
-void set_port(T& sig, const sm::CensusVec& v, int bits) {
-  if constexpr (std::is_integral_v<T>) {
-    sig = static_cast<T>(bits < 64 ? v[0] & ((uint64_t{1} << bits) - 1) : v[0]);
-  } else {
-    for (int i = 0; i < (bits + 31) / 32; ++i) {
-      uint32_t word = static_cast<uint32_t>(v[i / 2] >> (32 * (i % 2)));
-      if (32 * (i + 1) > bits) word &= (uint32_t{1} << (bits - 32 * i)) - 1;
-      sig[i] = word;
-    }
-  }
-}
 
 sm::CensusVec garbage(std::mt19937& rng) {
   auto w = [&] { return (static_cast<uint64_t>(rng()) << 32) | rng(); };
@@ -96,13 +81,13 @@ int main() {
     if (ce && sched[n].frame >= 0) {
       const auto& b = sched[n];
       tb->s_side = b.side;
-      set_port(tb->s_cl, cl[b.frame].at(b.x, b.y), cb);
-      set_port(tb->s_cr, cr[b.frame].at(b.x, b.y), cb);
+      sm::test::set_port_u64(tb->s_cl, cl[b.frame].at(b.x, b.y), cb);
+      sm::test::set_port_u64(tb->s_cr, cr[b.frame].at(b.x, b.y), cb);
       tb->s_left = left[b.frame].at(b.x, b.y);
     } else {
       tb->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
-      set_port(tb->s_cl, garbage(rng), cb);
-      set_port(tb->s_cr, garbage(rng), cb);
+      sm::test::set_port_u64(tb->s_cl, garbage(rng), cb);
+      sm::test::set_port_u64(tb->s_cr, garbage(rng), cb);
       tb->s_left = static_cast<uint8_t>(rng());
     }
     tb.tick();

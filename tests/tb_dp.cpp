@@ -7,14 +7,13 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <iterator>
 #include <random>
-#include <type_traits>
 #include <vector>
 
 #include SM_VTOP_H
 #include "beat_schedule.hpp"
 #include "dp.hpp"
+#include "sm_port.hpp"
 #include "sm_tb.hpp"
 
 namespace {
@@ -25,21 +24,9 @@ constexpr int kCw = SM_P_CW;
 constexpr int kS = kDisp / 2;
 constexpr int kP = 2;
 
-// Drive a Verilated input port of any width from 32-bit words.
-template <typename T>
-void set_port(T& port, const std::vector<uint32_t>& w) {
-  if constexpr (std::is_integral_v<T>) {
-    uint64_t v = w[0];
-    if (w.size() > 1) v |= static_cast<uint64_t>(w[1]) << 32;
-    port = static_cast<T>(v);
-  } else {
-    for (size_t i = 0; i < std::size(port.m_storage); ++i) port.m_storage[i] = w[i];
-  }
-}
-
 // Pack DISP CW-bit costs, level d at bit d*CW.
 std::vector<uint32_t> pack(const uint8_t* c) {
-  std::vector<uint32_t> w((kDisp * kCw + 31) / 32 + 2, 0);
+  std::vector<uint32_t> w((kDisp * kCw + 31) / 32, 0);
   for (int d = 0; d < kDisp; ++d)
     for (int b = 0; b < kCw; ++b)
       if ((c[d] >> b) & 1) w[(d * kCw + b) / 32] |= 1u << ((d * kCw + b) % 32);
@@ -150,17 +137,17 @@ int main(int argc, char** argv) {
       if (!ce) {  // idle cycle: everything random
         tb->s_side = grng() & 31;
         tb->occ = grng() & 255;
-        set_port(tb->s_cost, random_cost());
+        sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
         tb.tick();
         continue;
       }
       tb->s_side = b.side;
       if (b.frame >= 0) {
-        set_port(tb->s_cost, pack(vol[b.frame].pix(b.x, b.y)));
+        sm::test::set_port_words(tb->s_cost, pack(vol[b.frame].pix(b.x, b.y)), kDisp * kCw);
         // the frame's penalty is only guaranteed where sm_dp latches it
         tb->occ = (b.y == 0 && b.x < kS) ? occ[b.frame] : grng() & 255;
       } else {
-        set_port(tb->s_cost, random_cost());
+        sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
         tb->occ = grng() & 255;
       }
       tb.tick();

@@ -14,11 +14,11 @@
 #include <random>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "aggregate.hpp"
 #include "beat_schedule.hpp"
+#include "sm_port.hpp"
 #include "sm_tb.hpp"
 
 namespace {
@@ -37,8 +37,8 @@ int clog2(int v) {
   return n;
 }
 
-// A bit vector of the given width as 32-bit words, written to / read from a Verilated
-// port of any width (scalar types up to 64 bits, VlWide above).
+// A bit vector of the given width as 32-bit words (bit b at word b / 32), as
+// sm::test::set_port_words / get_port_words take them.
 using Bits = std::vector<uint32_t>;
 Bits make_bits(int width) { return Bits(static_cast<size_t>((width + 31) / 32), 0u); }
 void put_field(Bits& b, int lsb, int n, uint32_t v) {
@@ -62,28 +62,6 @@ uint32_t get_field(const Bits& b, int lsb, int n) {
 void random_bits(Bits& b, int width, std::mt19937& rng) {
   for (auto& w : b) w = rng();
   if (width % 32) b.back() &= (1u << (width % 32)) - 1u;
-}
-template <typename T>
-void to_port(T& port, const Bits& b) {
-  if constexpr (std::is_integral_v<T>) {
-    uint64_t v = b[0];
-    if (b.size() > 1) v |= static_cast<uint64_t>(b[1]) << 32;
-    port = static_cast<T>(v);
-  } else {
-    for (size_t i = 0; i < b.size(); ++i) port[i] = b[i];
-  }
-}
-template <typename T>
-Bits from_port(const T& port, int width) {
-  Bits b = make_bits(width);
-  if constexpr (std::is_integral_v<T>) {
-    const uint64_t v = static_cast<uint64_t>(port);
-    b[0] = static_cast<uint32_t>(v);
-    if (b.size() > 1) b[1] = static_cast<uint32_t>(v >> 32);
-  } else {
-    for (size_t i = 0; i < b.size(); ++i) b[i] = port[i];
-  }
-  return b;
 }
 
 struct Frame {
@@ -187,7 +165,7 @@ int main(int argc, char** argv) {
 
   auto garbage = [&]() {
     random_bits(cost_in, cost_bits, grng);
-    to_port(tb->s_cost, cost_in);
+    sm::test::set_port_words(tb->s_cost, cost_in, cost_bits);
     tb->s_left = static_cast<uint8_t>(grng());
     tb->s_side = static_cast<uint8_t>(grng() & 31);
     tb->sw_table = (static_cast<uint64_t>(grng()) << 32) | grng();
@@ -219,11 +197,11 @@ int main(int argc, char** argv) {
       const Frame& f = frames[static_cast<size_t>(b.frame)];
       if (b.x == 0 && b.y == 0) table_now = pack_table(f.table);
       for (int d = 0; d < kDisp; ++d) put_field(cost_in, d * hwid, hwid, f.raw.at(b.x, b.y, d));
-      to_port(tb->s_cost, cost_in);
+      sm::test::set_port_words(tb->s_cost, cost_in, cost_bits);
       tb->s_left = f.left.at(b.x, b.y);
     } else {
       random_bits(cost_in, cost_bits, grng);
-      to_port(tb->s_cost, cost_in);
+      sm::test::set_port_words(tb->s_cost, cost_in, cost_bits);
       tb->s_left = static_cast<uint8_t>(grng());
     }
     tb->sw_table = table_now;
@@ -246,7 +224,7 @@ int main(int argc, char** argv) {
       ++failed;
       break;
     }
-    const Bits got = from_port(tb->m_agg, agg_bits);
+    const Bits got = sm::test::get_port_words(tb->m_agg, agg_bits);
     const Frame& f = frames[static_cast<size_t>(o.frame)];
     bool ok = true;
     for (int d = 0; d < kDisp && ok; ++d) {

@@ -2,9 +2,11 @@
 // ports up to 64 bits, VlWide (32-bit words) above.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <vector>
 
 namespace sm::test {
 
@@ -34,6 +36,59 @@ void set_port_bit(T& sig, int i, bool v) {
     const uint32_t m = uint32_t{1} << (i % 32);
     sig[i / 32] = v ? (sig[i / 32] | m) : (sig[i / 32] & ~m);
   }
+}
+
+// Word i of a `width`-bit value held in 32-bit words w (missing words are 0, bits at and
+// above `width` cleared: Verilator expects a port's unused top bits to be zero).
+inline uint32_t port_word(const std::vector<uint32_t>& w, int i, int width) {
+  uint32_t v = static_cast<size_t>(i) < w.size() ? w[static_cast<size_t>(i)] : 0u;
+  if (32 * (i + 1) > width) v &= (uint32_t{1} << (width % 32)) - 1;
+  return v;
+}
+
+// Drive a `width`-bit Verilated input port from 32-bit words (bit b at word b / 32).
+template <typename T>
+void set_port_words(T& port, const std::vector<uint32_t>& w, int width) {
+  if constexpr (std::is_integral_v<T>) {
+    uint64_t v = port_word(w, 0, width);
+    if (width > 32) v |= static_cast<uint64_t>(port_word(w, 1, width)) << 32;
+    port = static_cast<T>(v);
+  } else {
+    for (int i = 0; i < (width + 31) / 32; ++i) port[i] = port_word(w, i, width);
+  }
+}
+
+// The `width` bits of a Verilated port as 32-bit words.
+template <typename T>
+std::vector<uint32_t> get_port_words(const T& port, int width) {
+  std::vector<uint32_t> w(static_cast<size_t>((width + 31) / 32), 0u);
+  if constexpr (std::is_integral_v<T>) {
+    const uint64_t v = static_cast<uint64_t>(port);
+    w[0] = static_cast<uint32_t>(v);
+    if (w.size() > 1) w[1] = static_cast<uint32_t>(v >> 32);
+  } else {
+    for (size_t i = 0; i < w.size(); ++i) w[i] = port[i];
+  }
+  for (size_t i = 0; i < w.size(); ++i) w[i] = port_word(w, static_cast<int>(i), width);
+  return w;
+}
+
+// The same for values held in 64-bit words (e.g. the model's census vectors).
+template <typename T, size_t N>
+void set_port_u64(T& port, const std::array<uint64_t, N>& v, int width) {
+  std::vector<uint32_t> w(2 * N);
+  for (size_t i = 0; i < N; ++i) {
+    w[2 * i] = static_cast<uint32_t>(v[i]);
+    w[2 * i + 1] = static_cast<uint32_t>(v[i] >> 32);
+  }
+  set_port_words(port, w, width);
+}
+template <size_t N, typename T>
+std::array<uint64_t, N> get_port_u64(const T& port, int width) {
+  const std::vector<uint32_t> w = get_port_words(port, width);
+  std::array<uint64_t, N> v{};
+  for (size_t i = 0; i < w.size() && i / 2 < N; ++i) v[i / 2] |= static_cast<uint64_t>(w[i]) << (32 * (i % 2));
+  return v;
 }
 
 }  // namespace sm::test
