@@ -21,6 +21,7 @@ need "$SIM" "cmake --build $LEAD --target stereo_sim"
 machine
 build_info "$LEAD"
 [ -x "$SIM_MT" ] && build_info "$(cd "$(dirname "$SIM_MT")/.." && pwd)"
+[ -x "$SIM_PGO" ] && build_info "$(cd "$(dirname "$SIM_PGO")/.." && pwd)"
 
 # vl_run <sim> <label> <k> <frames> [args...]: one run, prints "cycles/s frames/s"
 vl_run() {
@@ -45,10 +46,7 @@ vl_runs() {
 # this machine's speed drifts within minutes, and interleaving spreads the drift evenly.
 labels=(verilator_1thread) sims=("$SIM")
 if [ -x "$SIM_MT" ]; then labels+=(verilator_2threads) sims+=("$SIM_MT"); fi
-if [ -x "$SIM_PGO" ]; then
-  labels+=(verilator_1thread_pgo) sims+=("$SIM_PGO")
-  build_info "$(cd "$(dirname "$SIM_PGO")/.." && pwd)"
-fi
+if [ -x "$SIM_PGO" ]; then labels+=(verilator_1thread_pgo) sims+=("$SIM_PGO"); fi
 echo "## paper configuration 320x240, DISP 128, CENSUS 15, SW 5; $FRAMES frames per run, continuous stream"
 declare -A CPS FPS
 for k in $(seq "$RUNS"); do

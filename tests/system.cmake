@@ -33,6 +33,7 @@ set_tests_properties(system_paper_budget PROPERTIES LABELS "system;slow" TIMEOUT
 # small configuration (each run checks the RTL against the model itself).
 add_executable(test_sim_inputs ${CMAKE_SOURCE_DIR}/tests/test_sim_inputs.cpp)
 target_link_libraries(test_sim_inputs PRIVATE sm_toolio Catch2::Catch2 nlohmann_json::nlohmann_json ${OpenCV_LIBS})
+target_include_directories(test_sim_inputs PRIVATE ${CMAKE_SOURCE_DIR}/tests/common)
 target_compile_options(test_sim_inputs PRIVATE ${SM_WARNINGS})
 target_compile_definitions(test_sim_inputs PRIVATE SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/sim_inputs_tmp"
                                                    SM_STEREO_SIM_SMALL="$<TARGET_FILE:stereo_sim_small>")

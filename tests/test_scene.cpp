@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
 #include "calib_file.hpp"
 #include "common/sm_io.hpp"
 #include "common/sm_scenegen.hpp"
+#include "sm_cmd.hpp"
 
 namespace fs = std::filesystem;
 using sm::tools::render_scene;
@@ -22,12 +22,7 @@ bool same(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
+using sm::test::slurp;
 
 SceneParams small(uint64_t seed = 3) {
   SceneParams p;

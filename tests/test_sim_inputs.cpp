@@ -4,10 +4,8 @@
 // wrong: which pair goes into which frame (the last frame's disparity must equal a run
 // of that pair alone), the video's left/right halves, and the errors on bad inputs.
 #define CATCH_CONFIG_MAIN
-#include <sys/wait.h>
 
 #include <catch2/catch.hpp>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -15,10 +13,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
-#include <sstream>
 #include <string>
 
 #include "common/sm_scenegen.hpp"
+#include "sm_cmd.hpp"
 
 namespace fs = std::filesystem;
 
@@ -26,12 +24,7 @@ namespace {
 
 const fs::path kTmp = fs::path(SM_TEST_TMP);
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
+using sm::test::slurp;
 
 struct Run {
   int rc = -1;
@@ -42,14 +35,13 @@ struct Run {
 
 // stereo_sim_small <args> --out <tmp>/<name>: exit code, stderr, report, last disparity
 Run sim(const std::string& name, const std::string& args) {
-  const fs::path out = kTmp / name, err = kTmp / (name + ".err");
+  const fs::path out = kTmp / name;
   fs::remove_all(out);
-  const std::string cmd = "\"" SM_STEREO_SIM_SMALL "\" " + args + " --continuous -q --out \"" + out.string() +
-                          "\" > /dev/null 2> \"" + err.string() + "\"";
-  const int st = std::system(cmd.c_str());
+  const sm::test::CmdResult c =
+      sm::test::run_cmd(SM_STEREO_SIM_SMALL, args + " --continuous -q --out \"" + out.string() + "\"", kTmp);
   Run r;
-  r.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.err = slurp(err);
+  r.rc = c.rc;
+  r.err = c.err;
   if (fs::exists(out / "report.json")) r.report = nlohmann::json::parse(slurp(out / "report.json"));
   if (fs::exists(out / "disparity.png"))
     r.disparity = cv::imread((out / "disparity.png").string(), cv::IMREAD_UNCHANGED);

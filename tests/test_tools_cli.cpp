@@ -1,47 +1,27 @@
 // Command-line tools end to end: bad inputs give a non-zero exit, exactly one error line
 // naming the problem and no output file; good inputs give the documented outputs.
-#include <sys/wait.h>
 
 #include <catch2/catch.hpp>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
 #include "common/sm_io.hpp"
 #include "common/sm_scenegen.hpp"
 #include "pipeline.hpp"
+#include "sm_cmd.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int rc = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
+using Run = sm::test::CmdResult;
+using sm::test::slurp;
 
 fs::path tmp_root() { return fs::path(SM_TEST_TMP) / "cli"; }
 
-Run run(const std::string& exe, const std::string& args) {
-  const fs::path o = tmp_root() / "stdout.txt", e = tmp_root() / "stderr.txt";
-  const std::string cmd = "\"" + exe + "\" " + args + " > \"" + o.string() + "\" 2> \"" + e.string() + "\"";
-  const int st = std::system(cmd.c_str());
-  Run r;
-  r.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.out = slurp(o);
-  r.err = slurp(e);
-  return r;
-}
+Run run(const std::string& exe, const std::string& args) { return sm::test::run_cmd(exe, args, tmp_root()); }
 
 // Non-zero exit, exactly one line on stderr mentioning `what`.
 void expect_error(const Run& r, const std::string& what) {

@@ -7,6 +7,7 @@ if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate)
   foreach(t test_scene test_tools_io test_tools_cli)
     add_executable(${t} ${CMAKE_CURRENT_LIST_DIR}/${t}.cpp $<TARGET_OBJECTS:sm_tools_catch_main>)
     target_link_libraries(${t} PRIVATE sm_toolio Catch2::Catch2 nlohmann_json::nlohmann_json)
+    target_include_directories(${t} PRIVATE ${CMAKE_CURRENT_LIST_DIR}/common)
     target_compile_options(${t} PRIVATE ${SM_WARNINGS})
     target_compile_definitions(${t} PRIVATE SM_TEST_TMP="${SM_TOOLS_TEST_TMP}/${t}"
       SM_SCENE_EXE="$<TARGET_FILE:sm_scene>" SM_STEREO_MODEL_EXE="$<TARGET_FILE:stereo_model>"
