@@ -20,7 +20,7 @@ module sm_cost #(
     input  wire [CB-1:0]      s_cr,    // right census vector
     input  wire [7:0]         s_left,  // left centre pixel, passed through
     output reg  [4:0]         m_side,
-    output reg  [DISP*HW-1:0] m_cost,  // level d at [d*HW +: HW]
+    output reg  [HW*DISP-1:0] m_cost,  // bit-plane order: bit f of level d at [f*DISP + d]
     output reg  [7:0]         m_left
 );
   localparam XW = $clog2(MAX_WIDTH + 1);
@@ -90,12 +90,12 @@ module sm_cost #(
     end
   end
 
-  // Output costs: CB where x - d < 0, applied plane by plane while the counts are still
-  // in bit-plane order (bit f: the count's where ok, CB's bit f elsewhere; the same
-  // 2:1 multiplexer per bit as a per-level select, as DISP-bit operations in Verilator),
-  // then put in level order.
+  // Output costs: CB where x - d < 0, applied plane by plane (bit f: the count's where
+  // ok, CB's bit f elsewhere; the same 2:1 multiplexer per bit as a per-level select,
+  // as DISP-bit operations in Verilator). They leave in bit-plane order, the order
+  // sm_sw_aggregate sums them in: a transpose to level order and back would be wiring
+  // in hardware but two thousand bit moves a clock in Verilator.
   wire [HW*DISP-1:0] cost_p;  // bit-plane order
-  wire [DISP*HW-1:0] cost;    // level d at [d*HW +: HW]
   genvar f;
   generate
     for (f = 0; f < HW; f = f + 1) begin : g_cb
@@ -106,7 +106,6 @@ module sm_cost #(
       end
     end
   endgenerate
-  sm_plane2lane #(.P(HW), .L(DISP)) u_order (.planes(cost_p), .lanes(cost));
   always @(posedge clk) begin
     if (ce) begin
       ok_q2   <= ok;
@@ -114,7 +113,7 @@ module sm_cost #(
       left_q2 <= s_left;
       left_q3 <= left_q2;
       m_left  <= left_q3;
-      m_cost  <= cost;
+      m_cost  <= cost_p;
     end
   end
 endmodule

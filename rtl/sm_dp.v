@@ -20,7 +20,11 @@
 module sm_dp #(
     parameter MAX_WIDTH = 320,  // widest active line
     parameter DISP      = 128,  // disparity levels 0..DISP-1 (even, 4..254)
-    parameter CW        = 6     // aggregated cost width
+    parameter CW        = 6,    // aggregated cost width
+    // Cost skews of at least RING_MIN beats live in LUT-RAM ring buffers, shorter ones
+    // in shift registers (sm_dp_pe). The default puts every chain longer than a 64-bit
+    // word in a ring (paper configuration: skews of 11..64 beats).
+    parameter RING_MIN  = 64 / CW + 1
 ) (
     input  wire               clk,
     input  wire               rst_n,
@@ -38,6 +42,7 @@ module sm_dp #(
   localparam S = DISP / 2;
   localparam P = 2;  // beats of the read-out beyond 2 lines + skew
   localparam ACC_W = $clog2(MAX_WIDTH * ((1 << CW) - 1) + 2 * MAX_WIDTH * 255 + 1) + 1;
+  localparam KW = $clog2(S);  // ring pointers: the longest skew is S beats
 
   generate
     if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
@@ -48,6 +53,9 @@ module sm_dp #(
     end
     if (S + P + 1 > MAX_WIDTH) begin : g_bad_width
       initial $error("sm_dp: MAX_WIDTH (%0d) must be at least DISP/2 + 3", MAX_WIDTH);
+    end
+    if (RING_MIN < 2) begin : g_bad_ring
+      initial $error("sm_dp: RING_MIN (%0d) must be at least 2", RING_MIN);
     end
   endgenerate
 
@@ -124,6 +132,36 @@ module sm_dp #(
     end
   end
 
+  // ---- skew rings: one write pointer, one read pointer per skew length k ----------
+  // rp of length k is kept equal to wp - k (mod 2^KW) by counting alongside wp, so every
+  // ring address comes straight from flip-flops (no subtractor in front of the RAM).
+  // Both PEs of a length share its pointer. Every ring of depth 2^RW <= 2^KW uses the
+  // pointers' low RW bits.
+  reg  [KW-1:0]       wp_q;
+  wire [(S+1)*KW-1:0] rps;  // read pointer of skew length k at [k*KW +: KW]
+  always @(posedge clk) begin
+    if (!rst_n) wp_q <= {KW{1'b0}};
+    else if (ce) wp_q <= wp_q + 1'b1;
+  end
+  genvar k;
+  generate
+    for (k = 0; k <= S; k = k + 1) begin : g_rp
+      if (k >= RING_MIN) begin : g_ring
+        /* verilator lint_off WIDTH */  // -k modulo 2^KW
+        localparam [KW-1:0] RP0 = (1 << KW) - k;
+        /* verilator lint_on WIDTH */
+        reg [KW-1:0] rp_q;
+        always @(posedge clk) begin
+          if (!rst_n) rp_q <= RP0;
+          else if (ce) rp_q <= rp_q + 1'b1;
+        end
+        assign rps[k*KW +: KW] = rp_q;
+      end else begin : g_shift
+        assign rps[k*KW +: KW] = {KW{1'b0}};  // shift-register skew: unused
+      end
+    end
+  endgenerate
+
   // ---- the array ---------------------------------------------------------------
   wire [(DISP+2)*ACC_W-1:0] nbx;  // nb of level d at (d+1)*ACC_W, zero pads at both ends
   wire [2*DISP-1:0]         dec;
@@ -139,13 +177,17 @@ module sm_dp #(
           .HAS_LO(d > 0 ? 1 : 0),
           .HAS_HI(d < DISP - 1 ? 1 : 0),
           .IS_D0 (d == 0 ? 1 : 0),
-          .DELAY (S - (d + 1) / 2)
+          .DELAY (S - (d + 1) / 2),
+          .RING  (S - (d + 1) / 2 >= RING_MIN ? 1 : 0),
+          .KW    (KW)
       ) u_pe (
           .clk  (clk),
           .ce   (ce),
           .init (line_end),
           .occ  (occ_q),
           .cost (s_cost[d*CW +: CW]),
+          .wp   (wp_q),
+          .ra   (rps[(S-(d+1)/2)*KW +: KW]),
           .nb_lo(nbx[d*ACC_W +: ACC_W]),
           .nb_hi(nbx[(d+2)*ACC_W +: ACC_W]),
           .nb   (nbx[(d+1)*ACC_W +: ACC_W]),

@@ -2,9 +2,9 @@
 // Bit-plane order to lane order: P planes of L lanes (plane p, lane l at [p*L + l]) to
 // L lanes of P bits (lane l at [l*P +: P]). Pure wiring, every output bit is one input
 // bit; written as 8 x 8 bit transposes so that Verilator moves 8 lanes with a few word
-// operations instead of one bit at a time (sm_cost: 1,024 bits a clock at the paper
-// configuration; bit by bit, Verilator built them as one long serial chain of shifts
-// and ORs).
+// operations instead of one bit at a time (sm_sw_aggregate's two heap rows: 3,328 bits
+// a clock at the paper configuration; bit by bit, Verilator built them as one long
+// serial chain of shifts and ORs).
 //
 // The planes of 8 lanes form an 8 x 8 bit matrix in one 64-bit word (row = plane,
 // column = lane); three swap stages (Hacker's Delight, section 7-3) transpose it into

@@ -8,7 +8,7 @@
 //  - then the 6:3 counter stages of sm_bitheap on the bit heap of the leaves' counts,
 //    until no column holds more than two bits;
 //  - a final two-row adder, a ripple of full adders on whole bit planes.
-// The counts come out in bit-plane order too (sm_plane2lane puts them in lane order).
+// The counts come out in bit-plane order too (sm_cost passes them on in that order).
 // The heap's shape is computed by constant functions from N, so any N works.
 //
 // Bit-plane order: the inputs and every heap hold bit i of all L lanes together, at

@@ -41,7 +41,7 @@ module sm_sw_aggregate #(
     input  wire [XW-1:0]        width,     // active width
     input  wire [63:0]          sw_table,  // code of |dI| >> 3 = k at [2k +: 2]
     input  wire [4:0]           s_side,
-    input  wire [DISP*HW-1:0]   s_cost,    // raw Hamming cost of level d at [d*HW +: HW]
+    input  wire [HW*DISP-1:0]   s_cost,    // raw Hamming costs, bit b of level d at [b*DISP + d]
     input  wire [7:0]           s_left,    // left rectified pixel of the same beat
     output reg  [4:0]           m_side,
     output wire [DISP*CW-1:0]   m_agg      // aggregated cost of level d at [d*CW +: CW]
@@ -88,17 +88,14 @@ module sm_sw_aggregate #(
       .s_x(s_x), .c_side(c_side), .c_x(unused_c_x), .row_ok(row_ok), .col_ok(col_ok)
   );
 
-  // The costs are kept in bit-plane order (plane b holds bit b of every level, at
-  // [b*DISP +: DISP]): the weighted sums are then one bit heap for all levels (below).
-  // The transpose is wiring (sm_plane2lane with planes and lanes swapped). Only the
-  // shifted cost is stored: CW + COST_SHIFT == HW, so it is the top CW planes of each
-  // raw cost and the low COST_SHIFT planes are dropped here.
-  wire [HW*DISP-1:0] cost_planes;  // plane b of the raw costs at [b*DISP +: DISP]
-  sm_plane2lane #(.P(DISP), .L(HW)) u_in_t (.planes(s_cost), .lanes(cost_planes));
-  wire [LVW-1:0] cost_in = cost_planes[COST_SHIFT*DISP +: LVW];
+  // The costs arrive and are kept in bit-plane order (plane b holds bit b of every
+  // level, at [b*DISP +: DISP]): the weighted sums are then one bit heap for all levels
+  // (below). Only the shifted cost is stored: CW + COST_SHIFT == HW, so it is the top
+  // CW planes of each raw cost and the low COST_SHIFT planes are dropped here.
+  wire [LVW-1:0] cost_in = s_cost[COST_SHIFT*DISP +: LVW];
   generate
     if (COST_SHIFT > 0) begin : g_drop
-      wire [COST_SHIFT*DISP-1:0] unused_low = cost_planes[0 +: COST_SHIFT*DISP];
+      wire [COST_SHIFT*DISP-1:0] unused_low = s_cost[0 +: COST_SHIFT*DISP];
     end
   endgenerate
   genvar d, k, c, g;

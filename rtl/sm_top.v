@@ -184,7 +184,7 @@ module sm_top #(
   );
 
   wire [4:0]         ct_side;
-  wire [DISP*HW-1:0] ct_cost;
+  wire [HW*DISP-1:0] ct_cost;  // bit-plane order: bit f of level d at [f*DISP + d]
   wire [7:0]         ct_left;
   sm_cost #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS)) u_cost (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),

@@ -110,6 +110,9 @@ module sm_win_ctrl #(
     end
   endgenerate
 
+  // The tags move only on a row start (row_tag is tag_q itself on other beats); an
+  // update on every ce would be the same flip-flops, but Verilator would copy all NT
+  // tags every clock (the rectifiers keep over 40).
   integer n;
   always @(posedge clk) begin
     if (!rst_n) begin
@@ -117,7 +120,10 @@ module sm_win_ctrl #(
       for (n = 0; n < NT; n = n + 1) tag_q[n] <= 4'd0;
     end else if (ce) begin
       col_q <= col;
-      for (n = 0; n < NT; n = n + 1) tag_q[n] <= row_tag[n];
+      if (in_sol) begin
+        tag_q[0] <= in_tag;
+        for (n = 1; n < NT; n = n + 1) tag_q[n] <= tag_q[n-1];
+      end
     end
   end
 endmodule

@@ -15,6 +15,13 @@ set_tests_properties(tb_dp_wmin PROPERTIES LABELS rtl TIMEOUT 600)
 # Neither MAX_WIDTH nor DISP a power of two (CW = 3 is CENSUS 5 >> 2).
 sm_rtl_test(NAME tb_dp_odd TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=50 DISP=10 CW=3 ARGS --width 23 --rows 8 --frames 3)
+# Every skew of 2 beats or more in a LUT-RAM ring (sm_dp RING_MIN = 2; by default
+# only the paper configuration's long skews are rings): ring depths 2, 4 and 8, below
+# the pointer width's 8 and equal to the skew (2, 4) or deeper (3, 5).
+sm_rtl_test(NAME tb_dp_ring TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=50 DISP=10 CW=3 RING_MIN=2 ARGS --width 29 --rows 8 --frames 3)
+add_test(NAME tb_dp_ring16 COMMAND tb_dp_ring --width 50 --rows 5 --frames 2 --seed 11)
+set_tests_properties(tb_dp_ring16 PROPERTIES LABELS rtl TIMEOUT 600)
 # Paper configuration.
 sm_rtl_test(NAME tb_dp_paper TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CW=6 ARGS --width 320 --rows 8 --frames 3

@@ -107,7 +107,7 @@ int main() {
       fmt::print("FIRST MISMATCH frame {} x {} y {}: left expected {} got {}\n", p.frame, p.x, p.y,
                  left[p.frame].at(p.x, p.y), tb->m_left);
     for (int d = 0; d < kDisp && ok; ++d) {
-      const unsigned got = sm::test::port_bits(tb->m_cost, d * hwb, hwb);
+      const unsigned got = sm::test::plane_bits(tb->m_cost, d, hwb, kDisp);
       const unsigned exp = cost[p.frame].at(p.x, p.y, d);
       if (got != exp) {
         if (failed == 0)

@@ -196,7 +196,9 @@ int main(int argc, char** argv) {
     if (b.frame >= 0) {
       const Frame& f = frames[static_cast<size_t>(b.frame)];
       if (b.x == 0 && b.y == 0) table_now = pack_table(f.table);
-      for (int d = 0; d < kDisp; ++d) put_field(cost_in, d * hwid, hwid, f.raw.at(b.x, b.y, d));
+      // bit-plane order: bit i of level d at i*DISP + d
+      for (int d = 0; d < kDisp; ++d)
+        for (int i = 0; i < hwid; ++i) put_field(cost_in, i * kDisp + d, 1, (f.raw.at(b.x, b.y, d) >> i) & 1u);
       sm::test::set_port_words(tb->s_cost, cost_in, cost_bits);
       tb->s_left = f.left.at(b.x, b.y);
     } else {

@@ -26,6 +26,15 @@ unsigned port_bits(const T& sig, int lo, int n) {
   return static_cast<unsigned>(v & ((uint64_t{1} << n) - 1));
 }
 
+// Lane `lane` of a port in bit-plane order (bit f of lane l at [f*lanes + l]), n <= 32
+// bits: sm_cost's and sm_sw_aggregate's per-level costs.
+template <typename T>
+unsigned plane_bits(const T& sig, int lane, int n, int lanes) {
+  unsigned v = 0;
+  for (int f = 0; f < n; ++f) v |= port_bits(sig, f * lanes + lane, 1) << f;
+  return v;
+}
+
 // Set or clear bit i of a Verilated port.
 template <typename T>
 void set_port_bit(T& sig, int i, bool v) {
