@@ -1,10 +1,12 @@
 // Shared tool helpers (tools/common/sm_io.*): bad-1.0 metric on hand-computed cases,
-// disparity renderings, image loading errors and atomic writes.
+// disparity renderings, disparity files, image loading errors and atomic writes.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "common/sm_io.hpp"
 
@@ -148,4 +150,87 @@ TEST_CASE("dataset listing and scene errors", "[unit][tools]") {
   CHECK_THROWS_WITH(load_scene(scenes[1]), Catch::Contains("differ in size"));
   std::ofstream((d / "a" / "scale.txt").string()) << "four\n";
   CHECK_THROWS_WITH(load_scene(scenes[0]), Catch::Contains("scale.txt"));
+}
+
+TEST_CASE("disparity files: 16-bit PNG and PFM round trips", "[unit][tools]") {
+  const fs::path d = scratch("io_disparity");
+  // 5 x 3, every row different (a flipped PFM would not read back), invalid pixels and
+  // a half-pixel value; disparity 0 is valid here.
+  const cv::Mat f = (cv::Mat_<float>(3, 5) << 0, 1, 2.5f, -1, 127,  //
+                     10, 11, 12, 13, -1,                            //
+                     100, 0.0625f, 3, 4, 5);
+  SECTION("16-bit PNG: d * 16, 0 = invalid") {
+    const std::string p = (d / "disp.png").string();
+    write_disparity_file(p, f);
+    const cv::Mat raw = cv::imread(p, cv::IMREAD_UNCHANGED);
+    REQUIRE(raw.type() == CV_16UC1);
+    CHECK(raw.at<uint16_t>(0, 2) == 40);
+    CHECK(raw.at<uint16_t>(0, 3) == 0);
+    CHECK(raw.at<uint16_t>(0, 4) == 127 * 16);
+    CHECK(raw.at<uint16_t>(2, 0) == 1600);
+    CHECK(raw.at<uint16_t>(2, 1) == 1);
+    const cv::Mat back = read_disparity_file(p);
+    REQUIRE(back.type() == CV_32FC1);
+    REQUIRE(back.size() == f.size());
+    for (int y = 0; y < f.rows; ++y)
+      for (int x = 0; x < f.cols; ++x) {
+        INFO("x " << x << " y " << y);
+        const float w = f.at<float>(y, x);
+        // A valid disparity of exactly 0 is written as 0 and reads back as invalid (the
+        // convention cannot tell them apart); every other value is exact.
+        if (w <= 0)
+          CHECK(back.at<float>(y, x) < 0);
+        else
+          CHECK(back.at<float>(y, x) == w);
+      }
+    // Another scale (e.g. KITTI's 256) divides by it.
+    CHECK(read_disparity_file(p, 256).at<float>(2, 0) == 6.25f);
+  }
+  SECTION("PFM: float, +infinity = invalid, rows stored bottom to top") {
+    const std::string p = (d / "disp.pfm").string();
+    write_disparity_file(p, f);
+    {
+      // The file itself: "Pf", width height, negative scale (little endian), then the
+      // bottom row first.
+      std::ifstream in(p, std::ios::binary);
+      std::string magic;
+      int w = 0, h = 0;
+      double scale = 0;
+      in >> magic >> w >> h >> scale;
+      in.get();  // the single whitespace before the data
+      CHECK(magic == "Pf");
+      CHECK(w == 5);
+      CHECK(h == 3);
+      CHECK(scale < 0);
+      std::vector<float> data(15);
+      in.read(reinterpret_cast<char*>(data.data()), 15 * sizeof(float));
+      REQUIRE(in);
+      CHECK(data[0] == 100.0f);  // first stored row = image row 2
+      CHECK(data[1] == 0.0625f);
+      CHECK(std::isinf(data[2 * 5 + 3]));  // image row 0, column 3: invalid
+      CHECK(data[2 * 5 + 3] > 0);
+      CHECK(data[2 * 5 + 4] == 127.0f);
+    }
+    const cv::Mat back = read_disparity_file(p);
+    REQUIRE(back.type() == CV_32FC1);
+    REQUIRE(back.size() == f.size());
+    for (int y = 0; y < f.rows; ++y)
+      for (int x = 0; x < f.cols; ++x) {
+        INFO("x " << x << " y " << y);
+        const float w = f.at<float>(y, x);
+        if (w < 0)
+          CHECK(back.at<float>(y, x) < 0);
+        else
+          CHECK(back.at<float>(y, x) == w);
+      }
+  }
+  SECTION("errors name the file") {
+    CHECK_THROWS_WITH(write_disparity_file((d / "disp.tif").string(), f), Catch::Contains("disp.tif"));
+    CHECK_THROWS_WITH(read_disparity_file((d / "none.pfm").string()), Catch::Contains("none.pfm"));
+    CHECK_THROWS_WITH(read_disparity_file((d / "disp.jpg").string()), Catch::Contains("disp.jpg"));
+    cv::imwrite((d / "colour.png").string(), cv::Mat(3, 3, CV_8UC3, cv::Scalar(1, 2, 3)));
+    CHECK_THROWS_WITH(read_disparity_file((d / "colour.png").string()), Catch::Contains("colour.png"));
+    // Unwritable target: nothing left behind.
+    CHECK_THROWS_AS(write_disparity_file((d / "no_dir" / "x.pfm").string(), f), ToolError);
+  }
 }

@@ -5,9 +5,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -173,6 +175,62 @@ cv::Mat disp_to_colour(const cv::Mat& disp_f, int levels) {
   cv::applyColorMap(disp_to_grey(disp_f, levels), c, cv::COLORMAP_TURBO);
   c.setTo(cv::Scalar::all(0), disp_f < 0);
   return c;
+}
+
+namespace {
+std::string lower_ext(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+}  // namespace
+
+void write_disparity_file(const std::string& path, const cv::Mat& disp_f) {
+  CV_Assert(disp_f.type() == CV_32FC1);
+  const std::string ext = lower_ext(path);
+  if (ext == ".png") {
+    // KITTI-style: round(d * 16), 0 = invalid; saturate_cast clips at 65535.
+    cv::Mat png(disp_f.size(), CV_16UC1);
+    for (int y = 0; y < disp_f.rows; ++y)
+      for (int x = 0; x < disp_f.cols; ++x) {
+        const float d = disp_f.at<float>(y, x);
+        png.at<uint16_t>(y, x) = d < 0 ? 0 : cv::saturate_cast<uint16_t>(std::lround(d * 16.0));
+      }
+    write_image_atomic(path, png);
+  } else if (ext == ".pfm") {
+    // Middlebury-style: float disparity, +infinity = invalid. OpenCV's PFM codec writes
+    // the rows bottom to top as the format wants (and reads them back the same way).
+    cv::Mat pfm = disp_f.clone();
+    pfm.setTo(std::numeric_limits<float>::infinity(), disp_f < 0);
+    write_image_atomic(path, pfm);
+  } else {
+    throw ToolError(fmt::format("{}: unknown disparity format '{}' (use .png or .pfm)", path, ext));
+  }
+}
+
+cv::Mat read_disparity_file(const std::string& path, double png_scale) {
+  const std::string ext = lower_ext(path);
+  if (ext != ".png" && ext != ".pfm")
+    throw ToolError(fmt::format("{}: unknown disparity format '{}' (use .png or .pfm)", path, ext));
+  if (!(png_scale > 0)) throw ToolError(fmt::format("{}: PNG disparity scale must be > 0", path));
+  const cv::Mat m = read_image(path, cv::IMREAD_UNCHANGED);
+  if (m.channels() != 1)
+    throw ToolError(fmt::format("{}: expected a one-channel disparity image, found {} channels", path, m.channels()));
+  cv::Mat f;
+  if (m.depth() == CV_32F) {
+    f = m.clone();
+    for (int y = 0; y < f.rows; ++y)
+      for (int x = 0; x < f.cols; ++x) {
+        float& d = f.at<float>(y, x);
+        if (!std::isfinite(d) || d < 0) d = -1.0f;
+      }
+  } else if (m.depth() == CV_16U || m.depth() == CV_8U) {
+    m.convertTo(f, CV_32F, 1.0 / png_scale);
+    f.setTo(-1.0f, m == 0);
+  } else {
+    throw ToolError(fmt::format("{}: expected a 16-bit PNG or a float PFM disparity", path));
+  }
+  return f;
 }
 
 bool is_scene_dir(const std::string& dir) {

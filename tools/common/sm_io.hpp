@@ -44,6 +44,18 @@ cv::Mat disp_to_grey(const cv::Mat& disp_f, int levels);
 // Colour rendering (turbo colour map over 0..levels-1), invalid = black.
 cv::Mat disp_to_colour(const cv::Mat& disp_f, int levels);
 
+// Lossless disparity files, the format chosen by the extension of `path`:
+// - .png: 16-bit grey, value = round(disparity * 16), 0 = invalid (the KITTI convention;
+//   disparities above 4095.9 or exactly 0 cannot be told from invalid / are clipped);
+// - .pfm: one-channel 32-bit float (the Middlebury convention), +infinity = invalid.
+// disp_f is CV_32F with negative = invalid (as from disp_to_float). Written atomically
+// (write_image_atomic); any other extension is a ToolError naming the file.
+void write_disparity_file(const std::string& path, const cv::Mat& disp_f);
+// Reads such a file back as CV_32F, negative (-1) = invalid: a 16-bit (or 8-bit) PNG is
+// divided by png_scale with 0 = invalid; a PFM's non-finite values are invalid. Throws
+// ToolError naming the file for a missing/unreadable file or an unsupported format.
+cv::Mat read_disparity_file(const std::string& path, double png_scale = 16);
+
 // One scene of a stereo dataset: folder with left.png right.png gt.png scale.txt and an
 // optional nonocc.png (../shared/datasets/README.md; sm_scene writes the same layout).
 struct Scene {
