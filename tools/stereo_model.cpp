@@ -16,6 +16,7 @@
 
 #include "calib_file.hpp"
 #include "common/sm_io.hpp"
+#include "common/sm_regs_json.hpp"
 #include "pipeline.hpp"
 
 namespace {
@@ -39,66 +40,6 @@ std::vector<uint8_t> parse_sw_table(const std::string& s) {
   }
   if (v.empty() || v.size() > 32) throw ToolError("--sw-table: expected 1..32 comma-separated codes");
   return v;
-}
-
-// Applies a --regs JSON file (keys = Regs / HwConfig field names) on top of the defaults.
-void apply_regs_json(const std::string& path, sm::HwConfig& hw, sm::Regs& r) {
-  std::ifstream f(path);
-  if (!f) throw ToolError(fmt::format("{}: no such file", path));
-  json j;
-  try {
-    f >> j;
-  } catch (const json::exception&) {
-    throw ToolError(fmt::format("{}: malformed JSON", path));
-  }
-  if (!j.is_object()) throw ToolError(fmt::format("{}: not a JSON object", path));
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const std::string& k = it.key();
-    const json& v = it.value();
-    auto num = [&](long lo, long hi) {
-      if (!v.is_number_integer() || v.get<long>() < lo || v.get<long>() > hi)
-        throw ToolError(fmt::format("{}: '{}' must be an integer {}..{}", path, k, lo, hi));
-      return v.get<long>();
-    };
-    using Set = std::function<void(long)>;
-    const std::map<std::string, std::tuple<long, long, Set>> ints = {
-        {"max_width", {16, 4095, [&](long x) { hw.max_width = static_cast<int>(x); }}},
-        {"max_height", {16, 4095, [&](long x) { hw.max_height = static_cast<int>(x); }}},
-        {"disp", {4, 254, [&](long x) { hw.disp = static_cast<int>(x); }}},
-        {"census", {3, 15, [&](long x) { hw.census = static_cast<int>(x); }}},
-        {"sw", {3, 7, [&](long x) { hw.sw = static_cast<int>(x); }}},
-        {"rect_radius", {1, 31, [&](long x) { hw.rect_radius = static_cast<int>(x); }}},
-        {"cost_shift", {0, 4, [&](long x) { hw.cost_shift = static_cast<int>(x); }}},
-        {"max_objects", {1, 64, [&](long x) { hw.max_objects = static_cast<int>(x); }}},
-        {"label_slots", {1, 1024, [&](long x) { hw.label_slots = static_cast<int>(x); }}},
-        {"gain_l", {0, 1023, [&](long x) { r.gain_l = static_cast<uint16_t>(x); }}},
-        {"gain_r", {0, 1023, [&](long x) { r.gain_r = static_cast<uint16_t>(x); }}},
-        {"offset_l", {-256, 255, [&](long x) { r.offset_l = static_cast<int16_t>(x); }}},
-        {"offset_r", {-256, 255, [&](long x) { r.offset_r = static_cast<int16_t>(x); }}},
-        {"rect_enable", {0, 1, [&](long x) { r.rect_enable = x != 0; }}},
-        {"occ", {0, 255, [&](long x) { r.occ = static_cast<uint8_t>(x); }}},
-        {"filter_enable", {0, 7, [&](long x) { r.filter_enable = static_cast<uint8_t>(x); }}},
-        {"obj_near", {0, 255, [&](long x) { r.obj_near = static_cast<uint8_t>(x); }}},
-        {"obj_tol", {0, 255, [&](long x) { r.obj_tol = static_cast<uint8_t>(x); }}},
-        {"obj_min_pixels", {0, 65535, [&](long x) { r.obj_min_pixels = static_cast<uint16_t>(x); }}},
-        {"width", {16, 4095, [](long) {}}},  // the active size is the image size
-        {"height", {16, 4095, [](long) {}}}};
-    if (auto f = ints.find(k); f != ints.end()) {
-      const auto& [lo, hi, set] = f->second;
-      set(num(lo, hi));
-    } else if (k == "sw_table") {
-      if (!v.is_array() || v.empty() || v.size() > 32)
-        throw ToolError(fmt::format("{}: 'sw_table' must be an array of 1..32 codes", path));
-      r.sw_table.fill(0);
-      for (size_t i = 0; i < v.size(); ++i) {
-        if (!v[i].is_number_integer() || v[i].get<int>() < 0 || v[i].get<int>() > 3)
-          throw ToolError(fmt::format("{}: 'sw_table'[{}] must be 0..3", path, i));
-        r.sw_table[i] = v[i].get<uint8_t>();
-      }
-    } else {
-      throw ToolError(fmt::format("{}: unknown key '{}'", path, k));
-    }
-  }
 }
 
 int run(int argc, char** argv) {
@@ -162,7 +103,10 @@ int run(int argc, char** argv) {
   hw = sm::HwConfig{};
   hw.max_width = L.w;
   hw.max_height = L.h;
-  if (!regs_json.empty()) apply_regs_json(regs_json, hw, r);
+  if (!regs_json.empty()) {
+    const sm::tools::RegsFile rf = sm::tools::apply_regs_json(regs_json, hw, r);
+    if (calib.empty()) calib = rf.calib;  // the file's "calib" key, unless --calib is given
+  }
   if (o_mw->count()) hw.max_width = cli_hw.max_width;
   if (o_mh->count()) hw.max_height = cli_hw.max_height;
   if (hw_opts[0]->count()) hw.disp = cli_hw.disp;
