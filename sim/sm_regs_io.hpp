@@ -3,6 +3,8 @@
 #pragma once
 
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -23,46 +25,71 @@ inline void apply_calib(const CalibFile& c, Regs& regs) {
   regs.rect_enable = true;
 }
 
-template <class Top>
-void write_grid(AxilMaster<Top>& axil, const HwConfig& hw, int cam, int bank, const RectGrid& g) {
+// One run-time register word as the host writes it.
+struct RegWord {
+  uint32_t addr;
+  uint32_t value;
+  const char* name;  // register name (rtl/regmap.json)
+};
+
+// Every run-time register of r as register words, in address order (CONTROL and the
+// grids aside).
+inline std::vector<RegWord> register_words(const Regs& r) {
+  using namespace regmap;
+  uint64_t table = 0;
+  for (int k = 0; k < 32; ++k) table |= static_cast<uint64_t>(r.sw_table[k] & 3u) << (2 * k);
+  return {{kWIDTH, static_cast<uint32_t>(r.width), "WIDTH"},
+          {kHEIGHT, static_cast<uint32_t>(r.height), "HEIGHT"},
+          {kGAIN_L, r.gain_l, "GAIN_L"},
+          {kGAIN_R, r.gain_r, "GAIN_R"},
+          {kOFFSET_L, static_cast<uint32_t>(static_cast<int32_t>(r.offset_l)), "OFFSET_L"},
+          {kOFFSET_R, static_cast<uint32_t>(static_cast<int32_t>(r.offset_r)), "OFFSET_R"},
+          {kRECT_ENABLE, r.rect_enable ? 1u : 0u, "RECT_ENABLE"},
+          {kOCC, r.occ, "OCC"},
+          {kSW_TABLE0, static_cast<uint32_t>(table), "SW_TABLE0"},
+          {kSW_TABLE1, static_cast<uint32_t>(table >> 32), "SW_TABLE1"},
+          {kFILTER_ENABLE, r.filter_enable, "FILTER_ENABLE"},
+          {kOBJ_NEAR, r.obj_near, "OBJ_NEAR"},
+          {kOBJ_TOL, r.obj_tol, "OBJ_TOL"},
+          {kOBJ_MIN_PIXELS, r.obj_min_pixels, "OBJ_MIN_PIXELS"}};
+}
+
+inline bool same_grid(const RectGrid& a, const RectGrid& b) {
+  return a.gw == b.gw && a.gh == b.gh && a.sx == b.sx && a.sy == b.sy;
+}
+
+// The grid window writes of one camera's grid into `bank`: {address, word}.
+inline std::vector<std::pair<uint32_t, uint32_t>> grid_words(const HwConfig& hw, int cam, int bank, const RectGrid& g) {
+  std::vector<std::pair<uint32_t, uint32_t>> w;
   for (int gy = 0; gy < g.gh; ++gy)
     for (int gx = 0; gx < g.gw; ++gx) {
       // The point index is the rectifier's grid address {gy, gx} (model/calib_file.hpp).
       const uint32_t point = grid_waddr(hw, 0, gx, gy);
-      const uint32_t addr = regmap::grid_addr(cam, bank, static_cast<int>(point));
-      if (axil.write(addr, grid_wdata(g, gx, gy)) != 0)
-        throw std::runtime_error(fmt::format("grid write to 0x{:x} refused", addr));
+      w.emplace_back(regmap::grid_addr(cam, bank, static_cast<int>(point)), grid_wdata(g, gx, gy));
     }
+  return w;
+}
+
+template <class Top>
+void write_grid(AxilMaster<Top>& axil, const HwConfig& hw, int cam, int bank, const RectGrid& g) {
+  for (const auto& [addr, word] : grid_words(hw, cam, bank, g))
+    if (axil.write(addr, word) != 0) throw std::runtime_error(fmt::format("grid write to 0x{:x} refused", addr));
+}
+
+inline uint32_t control_word(int bank) {
+  return (1u << regmap::kCONTROL_ENABLE_LSB) | (static_cast<uint32_t>(bank) << regmap::kCONTROL_GRID_BANK_LSB);
 }
 
 // Writes every run-time register; the grids go into `bank`, which CONTROL then selects.
 // All of it takes effect at the next frame start.
 template <class Top>
 void write_registers(AxilMaster<Top>& axil, const Regs& r, const HwConfig& hw, int bank = 0) {
-  auto wr = [&](uint32_t addr, uint32_t v, const char* name) {
-    if (axil.write(addr, v) != 0) throw std::runtime_error(fmt::format("register {} write refused", name));
-  };
-  using namespace regmap;
-  wr(kWIDTH, static_cast<uint32_t>(r.width), "WIDTH");
-  wr(kHEIGHT, static_cast<uint32_t>(r.height), "HEIGHT");
-  wr(kGAIN_L, r.gain_l, "GAIN_L");
-  wr(kGAIN_R, r.gain_r, "GAIN_R");
-  wr(kOFFSET_L, static_cast<uint32_t>(static_cast<int32_t>(r.offset_l)), "OFFSET_L");
-  wr(kOFFSET_R, static_cast<uint32_t>(static_cast<int32_t>(r.offset_r)), "OFFSET_R");
-  wr(kRECT_ENABLE, r.rect_enable ? 1u : 0u, "RECT_ENABLE");
-  wr(kOCC, r.occ, "OCC");
-  uint64_t table = 0;
-  for (int k = 0; k < 32; ++k) table |= static_cast<uint64_t>(r.sw_table[k] & 3u) << (2 * k);
-  wr(kSW_TABLE0, static_cast<uint32_t>(table), "SW_TABLE0");
-  wr(kSW_TABLE1, static_cast<uint32_t>(table >> 32), "SW_TABLE1");
-  wr(kFILTER_ENABLE, r.filter_enable, "FILTER_ENABLE");
-  wr(kOBJ_NEAR, r.obj_near, "OBJ_NEAR");
-  wr(kOBJ_TOL, r.obj_tol, "OBJ_TOL");
-  wr(kOBJ_MIN_PIXELS, r.obj_min_pixels, "OBJ_MIN_PIXELS");
+  for (const RegWord& w : register_words(r))
+    if (axil.write(w.addr, w.value) != 0) throw std::runtime_error(fmt::format("register {} write refused", w.name));
   const RectGrid idl = RectGrid::identity(r.width, r.height);
   write_grid(axil, hw, 0, bank, r.grid_l.gw ? r.grid_l : idl);
   write_grid(axil, hw, 1, bank, r.grid_r.gw ? r.grid_r : idl);
-  wr(kCONTROL, (1u << kCONTROL_ENABLE_LSB) | (static_cast<uint32_t>(bank) << kCONTROL_GRID_BANK_LSB), "CONTROL");
+  if (axil.write(regmap::kCONTROL, control_word(bank)) != 0) throw std::runtime_error("register CONTROL write refused");
 }
 
 }  // namespace sm

@@ -16,6 +16,8 @@
 #include <fmt/format.h>
 
 #include "sm_axil.hpp"
+#include "sm_host.hpp"
+#include "sm_regmap.hpp"
 #include "sm_tb.hpp"
 #include "sm_types.hpp"
 
@@ -53,8 +55,10 @@ struct SimResult {
   std::vector<ObjWords> object_packets;
   std::vector<FrameStats> stats;
   uint64_t cycles = 0;
-  uint64_t input_stall_cycles = 0;  // camera pixel waiting with tready low
-  std::string framing_error;        // empty when every frame was well-formed
+  uint64_t input_stall_cycles = 0;       // camera pixel waiting with tready low
+  std::string framing_error;             // empty when every frame was well-formed
+  uint64_t host_writes = 0;              // AXI4-Lite writes of the register schedule
+  std::vector<std::string> host_errors;  // refused writes, changes that came too late
 };
 
 struct VcdWindow {
@@ -68,7 +72,7 @@ struct VcdWindow {
 template <class Top>
 class SimEngine {
  public:
-  explicit SimEngine(Testbench<Top>& tb) : tb_(tb), axil_(tb.top(), [this] { step(); }) {}
+  explicit SimEngine(Testbench<Top>& tb) : tb_(tb), axil_(tb.top(), [this] { step(); }), agent_(tb.top()) {}
 
   AxilMaster<Top>& axil() { return axil_; }
 
@@ -87,9 +91,15 @@ class SimEngine {
   // Progress callback: called with (frames done, frames total) after each output frame.
   std::function<void(size_t, size_t)> on_frame;
 
+  // `host`: a register schedule (plan_register_schedule) the host runs over AXI4-Lite
+  // while the camera streams.
   SimResult run(const std::vector<std::pair<Image8, Image8>>& frames, int width, int height, const CameraTiming& timing,
-                const VcdWindow& vcd = {}, uint64_t max_cycles = 0) {
+                const VcdWindow& vcd = {}, uint64_t max_cycles = 0, const std::vector<HostOp>* host = nullptr) {
     SimResult res;
+    // Frames started before this run (STATUS.FRAME_COUNT counts since reset, mod 2^16).
+    const uint32_t count_base = host && !host->empty() ? axil_.read(regmap::kSTATUS) & 0xffffu : 0;
+    size_t hi = 0;  // next host operation
+    auto started = [&](uint32_t status) { return static_cast<uint64_t>(((status & 0xffffu) - count_base) & 0xffffu); };
     res.stats.resize(frames.size());
     std::mt19937 rng(timing.seed);
     auto& t = tb_.top();
@@ -153,7 +163,9 @@ class SimEngine {
           !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
       t.m_axis_obj_tready =
           !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
+      host_start(host, hi, oframe);
       t.eval();
+      agent_.sample();
       const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
       if (t.s_axis_tvalid && !t.s_axis_tready) ++res.input_stall_cycles;
       const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
@@ -164,6 +176,7 @@ class SimEngine {
       const bool objl = t.m_axis_obj_tlast;
       const uint64_t now = tb_.cycles();
       tb_.tick();
+      host_done(host, hi, started, res);
       if (in_hs) {
         if (x == 0 && y == 0) res.stats[f].sof_in_cycle = now;
         res.stats[f].last_in_cycle = now;
@@ -204,20 +217,56 @@ class SimEngine {
         }
       }
     }
-    // Let the last object packet out.
+    // Let the last object packet out, and finish an AXI4-Lite access in flight (the
+    // host's operations for frames beyond the stream are dropped).
     t.s_axis_tvalid = 0;
-    for (int n = 0; n < 4 * 64 * 8 + 64 && res.object_packets.size() < frames.size(); ++n) {
+    for (int n = 0; (n < 4 * 64 * 8 + 64 && res.object_packets.size() < frames.size()) || agent_.busy(); ++n) {
       t.m_axis_obj_tready = 1;
       t.eval();
+      agent_.sample();
       const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
       const uint32_t objd = t.m_axis_obj_tdata;
       const bool objl = t.m_axis_obj_tlast;
       tb_.tick();
+      if (agent_.busy()) host_done(host, hi, started, res);
       take_obj(obj_hs, objd, objl);
     }
     if (vcd_on) tb_.close_trace();
     res.cycles = tb_.cycles() - start;
     return res;
+  }
+
+  // Register schedule: starts the next operation when the agent is free (kWaitOutput
+  // completes here, without a bus access).
+  void host_start(const std::vector<HostOp>* host, size_t& hi, size_t frames_out) {
+    if (!host || agent_.busy()) return;
+    while (hi < host->size() && (*host)[hi].kind == HostOp::kWaitOutput && frames_out >= (*host)[hi].n) ++hi;
+    if (hi >= host->size()) return;
+    const HostOp& op = (*host)[hi];
+    if (op.kind == HostOp::kWrite)
+      agent_.write(op.addr, op.data);
+    else if (op.kind != HostOp::kWaitOutput)
+      agent_.read(regmap::kSTATUS);
+  }
+  // ... and completes it after the clock edge that ended its bus access.
+  template <class Started>
+  void host_done(const std::vector<HostOp>* host, size_t& hi, const Started& started, SimResult& res) {
+    if (!host || !agent_.update()) return;
+    const HostOp& op = (*host)[hi];
+    if (op.kind == HostOp::kWrite) {
+      ++res.host_writes;
+      if (agent_.resp() != 0)
+        res.host_errors.push_back(
+            fmt::format("frame {}: write of 0x{:08x} to 0x{:04x} refused", op.frame, op.data, op.addr));
+      ++hi;
+    } else if (op.kind == HostOp::kWaitStarted) {
+      if (started(agent_.rdata()) >= op.n) ++hi;
+    } else if (op.kind == HostOp::kCheckNotStarted) {
+      if (started(agent_.rdata()) > op.n)
+        res.host_errors.push_back(
+            fmt::format("frame {}: its register writes ended after the frame had started (too late)", op.frame));
+      ++hi;
+    }
   }
 
   // Advances one clock with the streams idle (used by register accesses).
@@ -232,6 +281,7 @@ class SimEngine {
  private:
   Testbench<Top>& tb_;
   AxilMaster<Top> axil_;
+  AxilAgent<Top> agent_;
 };
 
 }  // namespace sm
