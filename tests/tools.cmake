@@ -1,6 +1,6 @@
 # Tests of the tools around the model (label unit): scene generator, shared helpers and
 # the command-line tools (bad inputs, outputs). They do not use ../shared.
-if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate)
+if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate AND TARGET sm_calibrate)
   set(SM_TOOLS_TEST_TMP ${CMAKE_CURRENT_BINARY_DIR}/tools_tmp)
   add_library(sm_tools_catch_main OBJECT ${CMAKE_CURRENT_LIST_DIR}/test_tools_main.cpp)
   target_link_libraries(sm_tools_catch_main PRIVATE Catch2::Catch2)
@@ -11,11 +11,11 @@ if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate)
     target_compile_options(${t} PRIVATE ${SM_WARNINGS})
     target_compile_definitions(${t} PRIVATE SM_TEST_TMP="${SM_TOOLS_TEST_TMP}/${t}"
       SM_SCENE_EXE="$<TARGET_FILE:sm_scene>" SM_STEREO_MODEL_EXE="$<TARGET_FILE:stereo_model>"
-      SM_EVALUATE_EXE="$<TARGET_FILE:sm_evaluate>")
+      SM_EVALUATE_EXE="$<TARGET_FILE:sm_evaluate>" SM_CALIBRATE_EXE="$<TARGET_FILE:sm_calibrate>")
     add_test(NAME ${t} COMMAND ${t})
     set_tests_properties(${t} PROPERTIES LABELS "unit")
   endforeach()
   # The CLI tests run the tools themselves.
-  add_dependencies(test_tools_cli sm_scene stereo_model sm_evaluate)
+  add_dependencies(test_tools_cli sm_scene stereo_model sm_evaluate sm_calibrate)
   add_dependencies(test_scene sm_scene)
 endif()

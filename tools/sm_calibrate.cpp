@@ -8,7 +8,8 @@
 // compute it: both images are rectified by the model's rectify() (bit-exact with the
 // RTL), the chessboard is found again, and the mean |vertical disparity| of the matched
 // corners is reported. Fails when the rig needs a larger line-buffer radius than the
-// configured RECT_RADIUS.
+// configured RECT_RADIUS. Outputs are all-or-nothing (sm::tools::OutputSet): a failed run
+// leaves no JSON, YAML or rectified image behind.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -27,6 +28,8 @@
 #include <vector>
 
 #include "calib_file.hpp"
+#include "common/sm_io.hpp"
+#include "common/sm_outputs.hpp"
 #include "pre.hpp"
 
 namespace fs = std::filesystem;
@@ -150,7 +153,8 @@ int run(int argc, char** argv) {
   CLI::App app{"Stereo chessboard calibration -> sm_rectify grid registers"};
   std::string input, out_json = "calib.json", out_yaml = "calib.yaml", board_s = "9x6";
   double square = 1.0, alpha = 0.0;
-  int width = 320, height = 240, rect_radius = 18;
+  const sm::HwConfig hw_default;  // the IP's default build: option defaults come from it
+  int width = hw_default.max_width, height = hw_default.max_height, rect_radius = hw_default.rect_radius;
   app.add_option("input", input, "folder of left*/right* images or an image list file")->required();
   app.add_option("--board", board_s, "inner corners per row x per column")->capture_default_str();
   app.add_option("--square", square, "square size (unit of T)")->capture_default_str();
@@ -164,7 +168,8 @@ int run(int argc, char** argv) {
                  "fail when the mean |vertical disparity| of the rectified corners exceeds this "
                  "(px; 0: no check)");
   std::string save_dir;
-  app.add_option("--save-rectified", save_dir, "folder to write the model-rectified pairs to (side by side, PNG)");
+  app.add_option("--save-rectified", save_dir,
+                 "folder to write the model-rectified pairs to (side by side, PNG; created if missing)");
   app.add_option("--yaml", out_yaml, "camera parameters (cv::FileStorage YAML)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
@@ -236,15 +241,19 @@ int run(int argc, char** argv) {
   const int need_r = sm::rect_radius_needed(cal.right, width, height);
   cal.rect_radius_needed = std::max(need_l, need_r);
 
-  {
-    cv::FileStorage y(out_yaml, cv::FileStorage::WRITE);
-    if (!y.isOpened()) throw std::runtime_error(fmt::format("{}: cannot open for writing", out_yaml));
+  // Every output goes to a temporary first; nothing is renamed into place unless the
+  // whole run succeeds.
+  sm::tools::OutputSet outs;
+  outs.write(out_yaml, [&](const std::string& tmp) {
+    cv::FileStorage y(tmp, cv::FileStorage::WRITE);
+    if (!y.isOpened()) throw std::runtime_error(fmt::format("{}: cannot open for writing", tmp));
     y << "image_width" << width << "image_height" << height << "source_width" << src_size.width << "source_height"
       << src_size.height << "board" << board << "square" << square << "pairs_used" << static_cast<int>(obj.size())
       << "rms_left" << rms_l << "rms_right" << rms_r << "rms_stereo" << rms << "K1" << k1 << "D1" << d1 << "K2" << k2
       << "D2" << d2 << "R" << rot << "T" << tr << "E" << e << "F" << f << "R1" << r1 << "R2" << r2 << "P1" << p1 << "P2"
       << p2 << "Q" << q << "rect_radius_needed" << cal.rect_radius_needed;
-  }
+  });
+  outs.write(out_json, [&](const std::string& tmp) { sm::save_calib(tmp, cal); });
   fmt::print("pairs used {} of {}; RMS reprojection error: left {:.4f}, right {:.4f}, stereo {:.4f} px\n", obj.size(),
              pairs.size(), rms_l, rms_r, rms);
   fmt::print("line-buffer radius needed: left {}, right {} (configured RECT_RADIUS {})\n", need_l, need_r, rect_radius);
@@ -264,7 +273,8 @@ int run(int argc, char** argv) {
       cv::Mat both;
       cv::hconcat(rl, rr, both);
       const std::string path = (fs::path(save_dir) / fmt::format("rectified_{:02d}.png", i)).string();
-      if (!cv::imwrite(path, both)) throw std::runtime_error(fmt::format("{}: cannot write", path));
+      outs.write(
+          path, [&](const std::string& tmp) { sm::tools::write_image_atomic(tmp, both); }, true);
     }
     std::vector<cv::Point2f> cl, cr;
     if (!find_corners_small(rl, board, cl) || !find_corners_small(rr, board, cr)) continue;
@@ -294,21 +304,18 @@ int run(int argc, char** argv) {
   }
 
   const double mean_dy = n_dy ? sum_dy / static_cast<double>(n_dy) : 0.0;
-  if (check_vdisp > 0 && (n_dy == 0 || mean_dy > check_vdisp)) {
-    fmt::print(stderr, "error: mean |vertical disparity| {:.3f} px over {} corners exceeds --check-vdisp {}\n", mean_dy,
-               n_dy, check_vdisp);
-    return 1;
-  }
-  if (cal.rect_radius_needed > rect_radius) {
-    fmt::print(stderr,
-               "error: the rig needs RECT_RADIUS >= {} but the IP is configured with {}; {} not "
-               "written (rebuild the IP with a larger RECT_RADIUS and pass --rect-radius, or try a "
-               "larger --alpha)\n",
-               cal.rect_radius_needed, rect_radius, out_json);
-    return 1;
-  }
-  sm::save_calib(out_json, cal);
-  fmt::print("wrote {} and {}\n", out_json, out_yaml);
+  if (check_vdisp > 0 && (n_dy == 0 || mean_dy > check_vdisp))
+    throw std::runtime_error(
+        fmt::format("mean |vertical disparity| {:.3f} px over {} corners exceeds --check-vdisp {}; nothing written",
+                    mean_dy, n_dy, check_vdisp));
+  if (cal.rect_radius_needed > rect_radius)
+    throw std::runtime_error(
+        fmt::format("the rig needs RECT_RADIUS >= {} but the IP is configured with {}; nothing written (rebuild the "
+                    "IP with a larger RECT_RADIUS and pass --rect-radius, or try a larger --alpha)",
+                    cal.rect_radius_needed, rect_radius));
+  outs.commit();
+  fmt::print("wrote {} and {}{}\n", out_json, out_yaml,
+             save_dir.empty() ? "" : fmt::format(", rectified pairs in {}", save_dir));
   return 0;
 }
 

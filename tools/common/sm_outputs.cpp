@@ -1,0 +1,84 @@
+#include "sm_outputs.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "sm_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace sm::tools {
+
+OutputSet::~OutputSet() {
+  if (!committed_) discard();
+}
+
+std::string OutputSet::stage(const std::string& path, bool create_parent) {
+  const fs::path p(path);
+  const fs::path dir = p.parent_path();
+  std::error_code ec;
+  if (create_parent && !dir.empty() && !fs::is_directory(dir, ec)) {
+    // Remember every level this call creates, outermost first, to undo them.
+    std::vector<fs::path> missing;
+    for (fs::path d = dir; !d.empty() && !fs::exists(d, ec); d = d.parent_path()) missing.push_back(d);
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir)) {
+      for (const auto& d : missing) fs::remove(d, ec);
+      throw ToolError(fmt::format("{}: cannot create directory", dir.string()));
+    }
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) created_dirs_.push_back(it->string());
+  }
+  const std::string temp =
+      (dir / fmt::format(".{}.tmp{}-{}{}", p.stem().string(), getpid(), entries_.size(), p.extension().string()))
+          .string();
+  entries_.push_back({path, temp});
+  return temp;
+}
+
+void OutputSet::write(const std::string& path, const std::function<void(const std::string&)>& writer,
+                      bool create_parent) {
+  const std::string temp = stage(path, create_parent);
+  try {
+    writer(temp);
+  } catch (const std::exception& e) {
+    std::string msg = e.what();
+    for (size_t at = msg.find(temp); at != std::string::npos; at = msg.find(temp, at + path.size()))
+      msg.replace(at, temp.size(), path);
+    if (msg.find(path) == std::string::npos) msg = fmt::format("{}: {}", path, msg);
+    const size_t nl = msg.find('\n');  // one line
+    throw ToolError(msg.substr(0, nl));
+  }
+}
+
+void OutputSet::commit() {
+  std::error_code ec;
+  for (const auto& e : entries_)
+    if (!fs::is_regular_file(e.temp, ec)) {
+      discard();
+      throw ToolError(fmt::format("{}: cannot write", e.target));
+    }
+  for (size_t i = 0; i < entries_.size(); ++i) {
+    fs::rename(entries_[i].temp, entries_[i].target, ec);
+    if (ec) {
+      const std::string target = entries_[i].target;
+      for (size_t k = 0; k < i; ++k) fs::remove(entries_[k].target, ec);
+      discard();
+      throw ToolError(fmt::format("{}: cannot write", target));
+    }
+  }
+  committed_ = true;
+}
+
+void OutputSet::discard() noexcept {
+  std::error_code ec;
+  for (const auto& e : entries_) fs::remove(e.temp, ec);
+  // Innermost first; a folder that is not empty (someone else's file) stays.
+  for (auto it = created_dirs_.rbegin(); it != created_dirs_.rend(); ++it) fs::remove(*it, ec);
+  entries_.clear();
+  created_dirs_.clear();
+}
+
+}  // namespace sm::tools

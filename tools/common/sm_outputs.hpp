@@ -1,0 +1,47 @@
+// All-or-nothing output files for the command-line tools: every output is first written
+// under a temporary name next to its target, and only when all of them are written are
+// they renamed into place. A tool that fails half way (exception, error exit) leaves no
+// partial output: the temporaries are removed, and so are the folders the set created.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace sm::tools {
+
+class OutputSet {
+ public:
+  OutputSet() = default;
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+  ~OutputSet();  // not committed: removes the temporaries and the folders it created
+
+  // Registers `path` as an output and returns the temporary path to write it to (same
+  // folder, same extension, so writers that choose the format by extension still work).
+  // With `create_parent`, missing parent folders are created (and removed again unless
+  // the set is committed). Throws ToolError when the folder cannot be created.
+  std::string stage(const std::string& path, bool create_parent = false);
+
+  // stage(path) and `writer(temporary)`; an exception from the writer is rethrown as a
+  // ToolError whose message names `path` instead of the temporary.
+  void write(const std::string& path, const std::function<void(const std::string&)>& writer,
+             bool create_parent = false);
+
+  // Renames every temporary to its target. Throws ToolError (naming the file) when a
+  // temporary is missing or a rename fails; the outputs already renamed are removed.
+  void commit();
+
+  // Removes the temporaries and created folders now (also done by the destructor).
+  void discard() noexcept;
+
+ private:
+  struct Entry {
+    std::string target, temp;
+  };
+  std::vector<Entry> entries_;
+  std::vector<std::string> created_dirs_;  // outermost first
+  bool committed_ = false;
+};
+
+}  // namespace sm::tools
