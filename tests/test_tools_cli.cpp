@@ -234,6 +234,222 @@ TEST_CASE("sm_scene rejects bad parameters cleanly", "[unit][tools][cli]") {
 
 namespace {
 
+// "--name TYPE=value" defaults from a CLI11 --help text (option name -> value).
+std::map<std::string, std::string> help_defaults(const std::string& help) {
+  std::map<std::string, std::string> d;
+  const std::regex re(R"((--[a-z][a-z-]*)[^\n]*?\S=(\S+))");
+  std::stringstream ss(help);
+  std::string line;
+  while (std::getline(ss, line)) {
+    std::smatch m;
+    if (std::regex_search(line, m, re)) d[m[1]] = m[2];
+  }
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("--help shows the model's own defaults", "[unit][tools][cli]") {
+  fs::create_directories(tmp_root());
+  const sm::HwConfig hw;
+  const sm::Regs r = sm::Regs::defaults(hw);
+  std::string sw_table;
+  for (int i = 0; i < 8; ++i) sw_table += (i ? "," : "") + std::to_string(r.sw_table[i]);
+  for (int i = 8; i < 32; ++i) REQUIRE(r.sw_table[i] == 0);  // the help shows the non-zero head
+  {
+    const Run h = run(SM_STEREO_MODEL_EXE, "--help");
+    REQUIRE(h.rc == 0);
+    const auto d = help_defaults(h.out);
+    const std::map<std::string, long> want = {{"--disp", hw.disp},
+                                              {"--census", hw.census},
+                                              {"--sw", hw.sw},
+                                              {"--rect-radius", hw.rect_radius},
+                                              {"--cost-shift", hw.cost_shift},
+                                              {"--max-objects", hw.max_objects},
+                                              {"--label-slots", hw.label_slots},
+                                              {"--gain-l", r.gain_l},
+                                              {"--gain-r", r.gain_r},
+                                              {"--offset-l", r.offset_l},
+                                              {"--offset-r", r.offset_r},
+                                              {"--occ", r.occ},
+                                              {"--filter-enable", r.filter_enable},
+                                              {"--obj-near", r.obj_near},
+                                              {"--obj-tol", r.obj_tol},
+                                              {"--obj-min-pixels", r.obj_min_pixels}};
+    for (const auto& [name, v] : want) {
+      INFO(name << "\n" << h.out);
+      REQUIRE(d.count(name));
+      CHECK(d.at(name) == std::to_string(v));
+    }
+    INFO(h.out);
+    REQUIRE(d.count("--sw-table"));
+    CHECK(d.at("--sw-table") == sw_table);
+    CHECK(r.rect_enable);  // --no-rect is a flag: off by default, as rect_enable = 1
+  }
+  {
+    const Run h = run(SM_EVALUATE_EXE, "--help");
+    REQUIRE(h.rc == 0);
+    const auto d = help_defaults(h.out);
+    INFO(h.out);
+    REQUIRE(d.count("--levels"));
+    CHECK(d.at("--levels") == std::to_string(hw.disp));
+    REQUIRE(d.count("--occ"));
+    CHECK(d.at("--occ") == std::to_string(r.occ));
+  }
+  {
+    const Run h = run(SM_CALIBRATE_EXE, "--help");
+    REQUIRE(h.rc == 0);
+    const auto d = help_defaults(h.out);
+    INFO(h.out);
+    REQUIRE(d.count("--rect-radius"));
+    CHECK(d.at("--rect-radius") == std::to_string(hw.rect_radius));
+    REQUIRE(d.count("--width"));
+    CHECK(d.at("--width") == std::to_string(hw.max_width));
+    REQUIRE(d.count("--height"));
+    CHECK(d.at("--height") == std::to_string(hw.max_height));
+  }
+}
+
+TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][tools][cli]") {
+  Fixture fx;
+  const fs::path out = fx.dir / "out_lossless";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  sm::HwConfig hw;
+  hw.max_width = 64;
+  hw.max_height = 48;
+  hw.disp = 16;
+  const auto res =
+      sm::run_pipeline(sm::tools::load_grey(fx.L()), sm::tools::load_grey(fx.R()), hw, sm::Regs::defaults(hw), false);
+  const cv::Mat ref = sm::tools::disp_to_float(res.post);
+  REQUIRE(cv::countNonZero(ref >= 0) > 0);
+  const std::string lr = fx.L() + " " + fx.R() + " --disp 16";
+  SECTION("PFM: float disparity, +inf = invalid") {
+    const Run r = run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.pfm").string());
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    expect_only(out, {"d.pfm"});  // no viewing PNGs unless asked for
+    const cv::Mat raw = cv::imread((out / "d.pfm").string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(raw.type() == CV_32FC1);
+    REQUIRE(raw.size() == ref.size());
+    for (int y = 0; y < ref.rows; ++y)
+      for (int x = 0; x < ref.cols; ++x) {
+        const float e = ref.at<float>(y, x), g = raw.at<float>(y, x);
+        if (e < 0)
+          CHECK(std::isinf(g));
+        else
+          CHECK(g == e);
+      }
+  }
+  SECTION("16-bit PNG: disparity x 16, 0 = invalid; viewing PNGs alongside") {
+    const Run r =
+        run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d16.png").string() + " -o " + (out / "g.png").string());
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    expect_only(out, {"d16.png", "g.png", "g_colour.png"});
+    const cv::Mat raw = cv::imread((out / "d16.png").string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(raw.type() == CV_16UC1);
+    cv::Mat want(ref.size(), CV_16UC1);
+    for (int y = 0; y < ref.rows; ++y)
+      for (int x = 0; x < ref.cols; ++x) {
+        const float e = ref.at<float>(y, x);
+        want.at<uint16_t>(y, x) = e < 0 ? 0 : static_cast<uint16_t>(e * 16);
+      }
+    CHECK(cv::norm(raw, want, cv::NORM_INF) == 0);
+    CHECK(cv::norm(cv::imread((out / "g.png").string(), cv::IMREAD_UNCHANGED), sm::tools::disp_to_grey(ref, 16),
+                   cv::NORM_INF) == 0);
+  }
+  SECTION("bad requests leave no output at all") {
+    expect_error(run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.txt").string()), ".pfm or .png");
+    expect_error(run(SM_STEREO_MODEL_EXE, lr), "no output");
+    // the last output cannot be written: the ones before it must not stay behind either
+    expect_error(
+        run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.pfm").string() + " -o " + (out / "g.png").string() +
+                                     " --objects-json " + (out / "none" / "o.json").string()),
+        "o.json");
+    expect_only(out, {});
+  }
+}
+
+TEST_CASE("sm_evaluate --results scores another program's disparity files", "[unit][tools][cli]") {
+  Fixture fx;
+  const fs::path out = fx.dir / "eval_results";
+  fs::remove_all(out);
+  const fs::path res = out / "res";
+  fs::create_directories(res);
+  const sm::tools::Scene sc = sm::tools::load_scene(fx.scene.string());
+  const long expect = cv::countNonZero(sc.nonocc & (sc.gt > 0));
+  REQUIRE(expect > 0);
+  auto score = [&](const std::string& extra) {
+    const fs::path j = out / "r.json";
+    fs::remove(j);
+    const Run r = run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --levels 16 -q --methods results --results " +
+                                           res.string() + extra + " --json " + j.string());
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const auto js = nlohmann::json::parse(slurp(j));
+    REQUIRE(js["scenes"].size() == 1);
+    const auto& m = js["scenes"][0]["methods"]["results"];
+    CHECK(m["evaluated"] == expect);
+    CHECK(m["ms"].is_null());  // not run here: no time
+    return m;
+  };
+  SECTION("PFM equal to the ground truth: 0 %, shifted by 2: 100 %") {
+    sm::tools::write_disparity_file((res / "small.pfm").string(), sc.gt);
+    CHECK(score("")["bad1_pct"].get<double>() == 0.0);
+    sm::tools::write_disparity_file((res / "small.pfm").string(), sc.gt + 2.0);
+    CHECK(score("")["bad1_pct"].get<double>() == 100.0);
+    // invalid pixels (+inf) count as bad, as for the model
+    cv::Mat g = sc.gt.clone();
+    g.colRange(0, 8).setTo(-1.0f);
+    sm::tools::write_disparity_file((res / "small.pfm").string(), g);
+    const long inv = cv::countNonZero(sc.nonocc.colRange(0, 8) & (sc.gt.colRange(0, 8) > 0));
+    REQUIRE(inv > 0);
+    const auto m = score("");
+    CHECK(m["invalid"] == inv);
+    CHECK(m["bad"] == inv);
+  }
+  SECTION("16-bit PNG with a scale") {
+    cv::Mat png;
+    sc.gt.convertTo(png, CV_16U, 256.0);  // KITTI scale; gt is on a 1/256 grid
+    REQUIRE(cv::imwrite((res / "small.png").string(), png));
+    CHECK(score(" --results-scale 256")["bad1_pct"].get<double>() == 0.0);
+    CHECK(score("")["bad1_pct"].get<double>() == 100.0);  // read at the default x16: 16 times too large
+    cv::Mat shifted;
+    cv::Mat(sc.gt + 2.0).convertTo(shifted, CV_16U, 16.0);
+    REQUIRE(cv::imwrite((res / "small.png").string(), shifted));
+    CHECK(score("")["bad1_pct"].get<double>() == 100.0);
+  }
+  SECTION("the same footing as the model") {
+    // the model's own disparity as a result file scores exactly as the model does
+    const Run m =
+        run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --disp 16 --disp-file " + (res / "small.pfm").string());
+    REQUIRE(m.rc == 0);
+    const Run r = run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --levels 16 -q --methods model --results " +
+                                           res.string() + " --json " + (out / "both.json").string());
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const auto js = nlohmann::json::parse(slurp(out / "both.json"));
+    const auto& ms = js["scenes"][0]["methods"];
+    CHECK(ms["results"]["bad"] == ms["model"]["bad"]);
+    CHECK(ms["results"]["invalid"] == ms["model"]["invalid"]);
+    CHECK(ms["results"]["evaluated"] == ms["model"]["evaluated"]);
+  }
+  SECTION("missing, ambiguous or mis-sized result files") {
+    const std::string ds = (fx.dir / "dataset").string() + " --levels 16 -q --methods results";
+    expect_error(run(SM_EVALUATE_EXE, ds + " --results " + res.string()), "no small.pfm or small.png");
+    expect_error(run(SM_EVALUATE_EXE, ds + " --results " + (out / "nowhere").string()), "nowhere: not a directory");
+    expect_error(run(SM_EVALUATE_EXE, ds), "no --results folder");
+    sm::tools::write_disparity_file((res / "small.pfm").string(), sc.gt(cv::Rect(0, 0, 60, 48)).clone());
+    expect_error(run(SM_EVALUATE_EXE, ds + " --results " + res.string()), "differs");
+    sm::tools::write_disparity_file((res / "small.png").string(), sc.gt);
+    expect_error(run(SM_EVALUATE_EXE, ds + " --results " + res.string()), "both");
+    expect_error(run(SM_EVALUATE_EXE, ds + " --results " + res.string() + " --results-scale 0"), "results-scale");
+  }
+}
+
+namespace {
+
 // A synthetic stereo rig looking at a 9x6 chessboard (inner corners) from several poses:
 // pinhole cameras (f 600 px, 640x480, no distortion), right camera 2 squares to the right
 // and rolled by 1.5 degrees, board about 20 squares away. Writes leftNN.png / rightNN.png.

@@ -37,12 +37,12 @@ int main(int argc, char** argv) {
   CLI::App app{"Measure bad-1.0 of the DP output before/after candidate streak filters"};
   std::string datasets;
   int synthetic = 0;
-  int disp = 128;
+  int disp = sm::HwConfig{}.disp;
   std::string json_out;
   std::string dump_dir;
   app.add_option("--datasets", datasets, "folder of scene folders (e.g. ../shared/datasets)");
   app.add_option("--synthetic", synthetic, "number of synthetic 320x240 scenes")->check(CLI::Range(0, 100));
-  app.add_option("--disp", disp, "disparity levels (DISP)")->check(CLI::Range(4, 254));
+  app.add_option("--disp", disp, "disparity levels (DISP)")->check(CLI::Range(4, 254))->capture_default_str();
   app.add_option("--json", json_out, "write the table as JSON");
   app.add_option("--dump", dump_dir, "write <scene>_dp.png and <scene>_err.png (bad pixels) here");
   CLI11_PARSE(app, argc, argv);

@@ -1,10 +1,13 @@
 // stereo_model: runs the bit-exact reference model (model/pipeline.hpp) on one stereo
-// pair and writes the disparity as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a
-// colour-mapped PNG. Every HwConfig / Regs field can be set by option or by a --regs
-// JSON file (keys = field names); options given on the command line win.
+// pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16) and/or
+// for viewing as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a colour-mapped PNG.
+// Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
+// names); options given on the command line win. Outputs are all-or-nothing.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +19,7 @@
 
 #include "calib_file.hpp"
 #include "common/sm_io.hpp"
+#include "common/sm_outputs.hpp"
 #include "common/sm_regs_json.hpp"
 #include "pipeline.hpp"
 
@@ -43,19 +47,28 @@ std::vector<uint8_t> parse_sw_table(const std::string& s) {
 }
 
 int run(int argc, char** argv) {
-  std::string left, right, out, colour, regs_json, calib, stage = "post", objects_json;
+  std::string left, right, out, colour, disp_file, regs_json, calib, stage = "post", objects_json;
   sm::HwConfig hw;
   sm::Regs r = sm::Regs::defaults(hw);
-  int gain_l = 256, gain_r = 256, offset_l = 0, offset_r = 0, occ = 24, filter_enable = 7;
-  int obj_near = 32, obj_tol = 2, obj_min_pixels = 64;
-  bool no_rect = false, verbose = false;
+  // Option defaults shown by --help are the model's own (HwConfig / Regs::defaults).
+  int gain_l = r.gain_l, gain_r = r.gain_r, offset_l = r.offset_l, offset_r = r.offset_r, occ = r.occ;
+  int filter_enable = r.filter_enable, obj_near = r.obj_near, obj_tol = r.obj_tol, obj_min_pixels = r.obj_min_pixels;
+  bool no_rect = !r.rect_enable, verbose = false;
   std::string sw_table;
+  {
+    size_t n = r.sw_table.size();
+    while (n > 1 && r.sw_table[n - 1] == 0) --n;
+    for (size_t i = 0; i < n; ++i) sw_table += fmt::format("{}{}", i ? "," : "", r.sw_table[i]);
+  }
 
   CLI::App app{"Bit-exact reference model of the census stereo IP on one image pair"};
   app.add_option("left", left, "left image (PNG/JPEG; reference view)")->required();
   app.add_option("right", right, "right image")->required();
-  app.add_option("-o,--out", out, "disparity PNG (grey, 0..255 over 0..DISP-1, invalid = 0)")->required();
-  app.add_option("--colour", colour, "colour-mapped disparity PNG (default: <out>_colour.png)");
+  app.add_option("-o,--out", out, "disparity PNG for viewing (grey, 0..255 over 0..DISP-1, invalid = 0)");
+  app.add_option("--colour", colour, "colour-mapped disparity PNG (default with -o: <out>_colour.png)");
+  app.add_option("--disp-file", disp_file,
+                 "lossless disparity: .pfm = float PFM (+inf = invalid, Middlebury), .png = 16-bit PNG of "
+                 "disparity x 16 (0 = invalid, KITTI)");
   app.add_option("--stage", stage, "disparity written: dp (trellis output) or post (filtered)")
       ->check(CLI::IsMember({"dp", "post"}))
       ->capture_default_str();
@@ -79,7 +92,7 @@ int run(int argc, char** argv) {
   auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
   auto* o_occ = app.add_option("--occ", occ, "DP occlusion penalty 0..255")->capture_default_str();
   auto* o_swt =
-      app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated (default 3,3,2,2,1,1,1,1)");
+      app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated")->capture_default_str();
   auto* o_fe =
       app.add_option("--filter-enable", filter_enable, "post filters, bit n = filter n+1")->capture_default_str();
   auto* o_on = app.add_option("--obj-near", obj_near, "objects: near threshold")->capture_default_str();
@@ -92,6 +105,14 @@ int run(int argc, char** argv) {
     return app.exit(e);
   }
 
+  if (out.empty() && colour.empty() && disp_file.empty())
+    throw ToolError("no output: give -o, --colour and/or --disp-file");
+  if (!disp_file.empty()) {
+    std::string ext = std::filesystem::path(disp_file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext != ".pfm" && ext != ".png")
+      throw ToolError(fmt::format("{}: --disp-file must end in .pfm or .png", disp_file));
+  }
   sm::tools::quiet_opencv();
   const sm::Image8 L = sm::tools::load_grey(left);
   const sm::Image8 R = sm::tools::load_grey(right);
@@ -171,12 +192,19 @@ int run(int argc, char** argv) {
   }
   const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
   const cv::Mat df = sm::tools::disp_to_float(d);
-  if (colour.empty()) {
+  if (colour.empty() && !out.empty()) {
     const std::filesystem::path p(out);
     colour = (p.parent_path() / (p.stem().string() + "_colour.png")).string();
   }
-  sm::tools::write_image_atomic(out, sm::tools::disp_to_grey(df, hw.disp));
-  sm::tools::write_image_atomic(colour, sm::tools::disp_to_colour(df, hw.disp));
+  // All outputs under temporary names first, renamed together once every one is written.
+  sm::tools::OutputSet outs;
+  if (!out.empty())
+    outs.write(out,
+               [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_grey(df, hw.disp)); });
+  if (!colour.empty())
+    outs.write(colour,
+               [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_colour(df, hw.disp)); });
+  if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
@@ -188,8 +216,9 @@ int run(int argc, char** argv) {
                               {"count", o.count},
                               {"mean_disp", o.mean_disp},
                               {"max_disp", o.max_disp}});
-    sm::tools::write_text_atomic(objects_json, j.dump(2) + "\n");
+    outs.write(objects_json, [&](const std::string& t) { sm::tools::write_text_atomic(t, j.dump(2) + "\n"); });
   }
+  outs.commit();
   if (verbose) {
     double total = 0;
     fmt::print("stereo_model: {}x{} DISP {} CENSUS {} SW {}\n", L.w, L.h, hw.disp, hw.census, hw.sw);
@@ -200,8 +229,10 @@ int run(int argc, char** argv) {
     fmt::print("  {:<12} {:9.1f} ms\n", "total", total);
     long valid = 0;
     for (auto p : d.px) valid += sm::disp_valid(p);
-    fmt::print("  {} valid pixels of {}, {} objects -> {}, {}\n", valid, d.px.size(), res.objects.objects.size(), out,
-               colour);
+    std::string files;
+    for (const auto* f : {&out, &colour, &disp_file, &objects_json})
+      if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
+    fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
   }
   return 0;
 }
