@@ -59,7 +59,8 @@ sm::Image8 to_size(const cv::Mat& grey, int w, int h, bool* resized) {
 
 // A register file on top of `r` (frame `what`): the compile-time keys must be this
 // simulator's, the active size may only be set where `size_ok`, a calibration is applied.
-void apply_regs_file(const std::string& path, const sm::HwConfig& hw, sm::Regs& r, bool size_ok) {
+// Returns whether the file had a calibration.
+bool apply_regs_file(const std::string& path, const sm::HwConfig& hw, sm::Regs& r, bool size_ok) {
   sm::HwConfig h = hw;
   const int w0 = r.width, h0 = r.height;
   const sm::tools::RegsFile rf = sm::tools::apply_regs_json(path, h, r);
@@ -84,6 +85,7 @@ void apply_regs_file(const std::string& path, const sm::HwConfig& hw, sm::Regs& 
       fail(fmt::format("{}: 'calib' {}: {}", path, rf.calib, e.what()));
     }
   }
+  return !rf.calib.empty();
 }
 
 // The register values of a frame, by the register file's key names.
@@ -237,21 +239,23 @@ int main(int argc, char** argv) {
     sm::Regs base = sm::Regs::defaults(hw);
     base.width = width;
     base.height = height;
+    base.grid_l = sm::RectGrid::identity(width, height);
+    base.grid_r = base.grid_l;
     if (!regs_file.empty()) {
-      apply_regs_file(regs_file, hw, base, true);
+      const int w0 = base.width, h0 = base.height;
+      const bool file_calib = apply_regs_file(regs_file, hw, base, true);
       // --width / --height win over the file's active size.
       if (o_width->count()) base.width = width;
       if (o_height->count()) base.height = height;
       width = base.width;
       height = base.height;
-    }
-    const bool calib_from_file = base.grid_l.gw != 0;
-    if (!calib_from_file || base.grid_l.gw != sm::RectGrid::points_w(width) ||
-        base.grid_l.gh != sm::RectGrid::points_h(height)) {
-      if (calib_from_file)
+      if (file_calib &&
+          (base.grid_l.gw != sm::RectGrid::points_w(width) || base.grid_l.gh != sm::RectGrid::points_h(height)))
         fail(fmt::format("{}: its calibration is for another size than the active {}x{}", regs_file, width, height));
-      base.grid_l = sm::RectGrid::identity(width, height);
-      base.grid_r = base.grid_l;
+      if (!file_calib && (width != w0 || height != h0)) {
+        base.grid_l = sm::RectGrid::identity(width, height);
+        base.grid_r = base.grid_l;
+      }
     }
     if (!calib.empty()) apply_calib(sm::load_calib(calib), base);
     if (occ >= 0) base.occ = static_cast<uint8_t>(occ);
