@@ -295,6 +295,8 @@ TEST_CASE("--help shows the model's own defaults", "[unit][tools][cli]") {
     CHECK(d.at("--levels") == std::to_string(hw.disp));
     REQUIRE(d.count("--occ"));
     CHECK(d.at("--occ") == std::to_string(r.occ));
+    REQUIRE(d.count("--synthetic-size"));
+    CHECK(d.at("--synthetic-size") == std::to_string(hw.max_width) + "x" + std::to_string(hw.max_height));
   }
   {
     const Run h = run(SM_CALIBRATE_EXE, "--help");

@@ -115,7 +115,7 @@ std::vector<std::string> split(const std::string& s) {
 
 int run(int argc, char** argv) {
   std::string dataset, scenes_opt, json_path, disp_dir, methods_opt = "model,bm,sgbm,binsgbm";
-  std::string synth_size = "320x240", results_dir;
+  std::string synth_size = fmt::format("{}x{}", sm::HwConfig{}.max_width, sm::HwConfig{}.max_height), results_dir;
   double results_scale = 16;
   int levels = sm::HwConfig{}.disp, synthetic = 0, occ = sm::Regs{}.occ;
   bool quiet = false;
