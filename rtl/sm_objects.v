@@ -21,9 +21,12 @@ module sm_objects #(
 ) (
     input  wire          clk,
     input  wire          rst_n,
+    input  wire          out_rst_n,   // the packet stream's reset (the sink's: aresetn);
+                                      // a soft reset lets a packet in progress finish
     input  wire          ce,
     input  wire [XW-1:0] width,       // active width
-    input  wire [YW-1:0] height,      // active height: the frame ends at (W-1, H-1)
+    input  wire [YW-1:0] height,      // its frame's height (latched at sof): the frame
+                                      // ends at (W-1, H-1)
     input  wire [7:0]    near_thr,    // near: valid and d >= near_thr
     input  wire [7:0]    tol,         // neighbours merge when |d1 - d2| <= tol
     input  wire [15:0]   min_pixels,  // smaller components are not listed
@@ -95,7 +98,10 @@ module sm_objects #(
 
   reg  [YW-1:0] y_q;  // row of the last entering real beat
   wire [YW-1:0] c_y = c_side[1] ? {YW{1'b0}} : (c_side[2] ? y_q + 1'b1 : y_q);
-  wire          c_eof = c_side[0] && (c_x == width - 1'b1) && (c_y == height - 1'b1);
+  // The frame's last row, latched at its sof; the sof beat itself is never the last
+  // (H >= 16), so the compare needs no bypass of the latch.
+  reg  [YW-1:0] hm1_q;
+  wire          c_eof = c_side[0] && !c_side[1] && (c_x == width - 1'b1) && (c_y == hm1_q);
 
   // Row buffer: {near, d, label} of the row above, one word per column (block RAM).
   reg [RBW-1:0] rb [0:MAX_WIDTH-1];
@@ -302,6 +308,7 @@ module sm_objects #(
       thr_q   <= 8'd0;
       tol_q   <= 8'd0;
       minpix_q <= 16'd0;
+      hm1_q   <= {YW{1'b0}};
       sc_bank <= 1'b0;
       sc_n    <= {NW{1'b0}};
       sc_tf   <= 1'b0;
@@ -316,6 +323,7 @@ module sm_objects #(
           thr_q    <= near_thr;
           tol_q    <= tol;
           minpix_q <= min_pixels;
+          hm1_q    <= height - 1'b1;
         end
         if (real_q) begin
           bank_q <= bank;
@@ -464,8 +472,8 @@ module sm_objects #(
   end
   assign m_axis_obj_tvalid = pk_busy_q;
   assign m_axis_obj_tdata  = pk_hdr ? {8'hA5, 13'd0, pk_flags, {(8-OW){1'b0}}, pk_n} : pk_word;
-  assign m_axis_obj_tlast  = pk_hdr ? (pk_n == {OW{1'b0}})
-                                    : (pk_w == 3'd4 && pk_obj == pk_n - 1'b1);
+  assign m_axis_obj_tlast  = pk_busy_q && (pk_hdr ? (pk_n == {OW{1'b0}})
+                                                 : (pk_w == 3'd4 && pk_obj == pk_n - 1'b1));
   wire unused_pk = &{pkt_n_w, pk_e[143:128]};
 
   always @(posedge clk) begin
@@ -473,7 +481,7 @@ module sm_objects #(
   end
 
   always @(posedge clk) begin
-    if (!rst_n) begin
+    if (!out_rst_n) begin
       pk_busy_q <= 1'b0;
       pk_n      <= {OW{1'b0}};
       pk_flags  <= 3'd0;

@@ -121,7 +121,12 @@ module sm_top #(
   );
 
   // The pipeline restarts on aresetn and on the CONTROL soft-reset pulse; registers keep
-  // their values over a soft reset.
+  // their values over a soft reset. The pipeline's reset is registered (fan-out); the
+  // output streams' own state is reset by aresetn itself, so TVALID is low from the
+  // first edge that samples aresetn low and in the clock after the last one
+  // (docs/streams.md, "Reset"). A soft reset does not reset the output side: the sink is
+  // not reset with it, so the beat on the wire stays until taken and the frame in
+  // progress is completed by sm_outfmt.
   reg rst_n_q;
   always @(posedge aclk) rst_n_q <= aresetn && !soft_reset;
   wire rst_n = rst_n_q;
@@ -146,6 +151,30 @@ module sm_top #(
   // at a different width has been flushed.
   wire [XW-1:0] width = cfg_width;
 
+  // Per-frame parameters: every stage after the brightness control reads the shadow
+  // values of its own frame from a four-frame history indexed by frame tag (a frame can
+  // be more than one frame deep in the pipeline). The four tags must outlast the
+  // pipeline: FLUSH_ROWS rows of 16 beats bound its latency, four frames last at least
+  // 4 x 16 rows.
+  generate
+    if (FLUSH_ROWS >= 64) begin : g_bad_flush
+      initial $error("sm_top: pipeline of %0d narrow rows outlasts the 4-frame parameter history", FLUSH_ROWS);
+    end
+  endgenerate
+  localparam P_RECT = 0;               // rectification enable, grid bank
+  localparam P_SWT  = P_RECT + 2;      // support-weight table
+  localparam P_OCC  = P_SWT + 64;      // occlusion penalty
+  localparam P_FILT = P_OCC + 8;       // filter enables
+  localparam P_OBJ  = P_FILT + 3;      // object near, tol, min pixels, then the height
+  localparam P_H    = P_OBJ + 32;
+  localparam PW     = P_H + YW;
+  wire [PW-1:0]   fr_par = {cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
+                            cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
+  wire [4*PW-1:0] fr_hist;
+  sm_frame_hist #(.PW(PW)) u_fhist (
+      .clk(aclk), .ce(ce), .s_side(beat_side), .s_par(fr_par), .hist(fr_hist)
+  );
+
   // ---------------------------------------------------------------- pre-processing
   wire [4:0] br_side;
   wire [7:0] br_left, br_right;
@@ -159,15 +188,19 @@ module sm_top #(
   wire [4:0] rl_side, rr_side;
   wire [7:0] rl_pix, rr_pix;
   wire [GAW-2:0] grid_addr_cam = grid_waddr[GAW-2:0];  // {bank, gy, gx}
+  wire [1:0] par_rect;  // {grid bank, enable}
+  sm_frame_sel #(.PW(PW), .LSB(P_RECT), .W(2), .NEXT(1)) u_fsel_rect (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(rl_side), .hist(fr_hist), .par(par_rect)
+  );
   sm_rectify #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .RECT_RADIUS(RECT_RADIUS)) u_rect_l (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_rect_enable),
-      .grid_bank(cfg_grid_bank), .grid_we(grid_we && !grid_waddr[GAW-1]),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_rect[0]),
+      .grid_bank(par_rect[1]), .grid_we(grid_we && !grid_waddr[GAW-1]),
       .grid_waddr(grid_addr_cam), .grid_wdata(grid_wdata),
       .s_side(br_side), .s_pix(br_left), .m_side(rl_side), .m_pix(rl_pix)
   );
   sm_rectify #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .RECT_RADIUS(RECT_RADIUS)) u_rect_r (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_rect_enable),
-      .grid_bank(cfg_grid_bank), .grid_we(grid_we && grid_waddr[GAW-1]),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_rect[0]),
+      .grid_bank(par_rect[1]), .grid_we(grid_we && grid_waddr[GAW-1]),
       .grid_waddr(grid_addr_cam), .grid_wdata(grid_wdata),
       .s_side(br_side), .s_pix(br_right), .m_side(rr_side), .m_pix(rr_pix)
   );
@@ -194,34 +227,52 @@ module sm_top #(
 
   wire [4:0]         ag_side;
   wire [DISP*CW-1:0] ag_cost;
+  wire [63:0]        par_swt;
+  sm_frame_sel #(.PW(PW), .LSB(P_SWT), .W(64), .NEXT(1)) u_fsel_agg (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ag_side), .hist(fr_hist), .par(par_swt)
+  );
   sm_sw_aggregate #(
       .MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .SW(SW), .COST_SHIFT(COST_SHIFT)
   ) u_agg (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .sw_table(cfg_sw_table),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .sw_table(par_swt),
       .s_side(ct_side), .s_cost(ct_cost), .s_left(ct_left),
       .m_side(ag_side), .m_agg(ag_cost)
   );
 
   wire [4:0]  dp_side;
   wire [15:0] dp_disp;
+  wire [7:0]  par_occ;
+  sm_frame_sel #(.PW(PW), .LSB(P_OCC), .W(8), .NEXT(1)) u_fsel_dp (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(dp_side), .hist(fr_hist), .par(par_occ)
+  );
   sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW)) u_dp (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .occ(cfg_occ),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .occ(par_occ),
       .s_side(ag_side), .s_cost(ag_cost), .m_side(dp_side), .m_disp(dp_disp)
   );
 
   // ---------------------------------------------------------------- post-processing
   wire [4:0]  f1_side, f2_side, f3_side;
   wire [15:0] f1_disp, f2_disp, f3_disp;
+  wire [2:0]  par_filt;
+  wire [14:0] filt_ev = {f3_side, f2_side, f1_side};
+  genvar fi;
+  generate
+    for (fi = 0; fi < 3; fi = fi + 1) begin : g_fsel_post
+      sm_frame_sel #(.PW(PW), .LSB(P_FILT + fi), .W(1), .NEXT(1)) u_fsel (
+          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[5*fi +: 5]), .hist(fr_hist), .par(par_filt[fi])
+      );
+    end
+  endgenerate
   sm_post_vmed #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post1 (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[0]),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[0]),
       .s_side(dp_side), .s_disp(dp_disp), .m_side(f1_side), .m_disp(f1_disp)
   );
   sm_post_med3 #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post2 (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[1]),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[1]),
       .s_side(f1_side), .s_disp(f1_disp), .m_side(f2_side), .m_disp(f2_disp)
   );
   sm_post_med53 #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post3 (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(cfg_filter_enable[2]),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[2]),
       .s_side(f2_side), .s_disp(f2_disp), .m_side(f3_side), .m_disp(f3_disp)
   );
 
@@ -235,12 +286,20 @@ module sm_top #(
   wire [7:0]  rd_mean, rd_max;
   wire [OIW-1:0] obj_word_idx = obj_rd_idx - 4;
   reg         list_valid_q;
+  // Object thresholds and the frame height, for sm_objects and the output formatter: both
+  // latch them at their start of frame, which follows post filter 3's input (f2_side) by
+  // its delay of 2W + 3 beats.
+  wire [32+YW-1:0] par_obj;  // {height, min pixels, tol, near}
+  sm_frame_sel #(.PW(PW), .LSB(P_OBJ), .W(32 + YW), .NEXT(0)) u_fsel_obj (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(f2_side), .hist(fr_hist), .par(par_obj)
+  );
+  wire [YW-1:0] frame_height = par_obj[32 +: YW];
   sm_objects #(
       .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS),
       .LABEL_SLOTS(LABEL_SLOTS)
   ) u_objects (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .height(cfg_height),
-      .near_thr(cfg_obj_near), .tol(cfg_obj_tol), .min_pixels(cfg_obj_min_pixels),
+      .clk(aclk), .rst_n(rst_n), .out_rst_n(aresetn), .ce(ce), .width(width), .height(frame_height),
+      .near_thr(par_obj[7:0]), .tol(par_obj[15:8]), .min_pixels(par_obj[31:16]),
       .s_side(f3_side), .s_disp(f3_disp),
       .list_ready(list_ready), .obj_count(obj_count), .too_many(too_many), .table_full(table_full),
       .pkt_lost(pkt_lost), .rd_index(obj_word_idx[IW+1:2]),
@@ -265,11 +324,46 @@ module sm_top #(
   end
 
   // ---------------------------------------------------------------- output
-  sm_outfmt #(.MAX_WIDTH(MAX_WIDTH)) u_out (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
+  sm_outfmt #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT)) u_out (
+      .clk(aclk), .rst_n(aresetn), .restart(!rst_n), .ce(ce), .width(width), .height(frame_height),
       .in_side(f3_side), .in_disp(f3_disp), .room(out_room), .err_overflow(out_overflow),
       .m_axis_tdata(m_axis_tdata), .m_axis_tuser(m_axis_tuser), .m_axis_tlast(m_axis_tlast),
       .m_axis_tvalid(m_axis_tvalid), .m_axis_tready(m_axis_tready)
   );
+
+`ifndef SYNTHESIS
+  // AXI4-Stream rules on both outputs (simulation only, live in every Verilated test):
+  // TVALID low in the clock after an edge that sampled aresetn low (the whole reset and
+  // the clock it ends in); once TVALID is high it stays high with the same payload until
+  // TREADY, unless aresetn intervenes (a soft reset does not release a beat); TLAST and
+  // TUSER only with TVALID.
+  reg        chk_live_q;  // a reset has been seen (power-up state is arbitrary)
+  reg        chk_rst_q;
+  reg        chk_wait_q, chk_owait_q;
+  reg [17:0] chk_beat_q;
+  reg [32:0] chk_obeat_q;
+  wire [17:0] chk_beat  = {m_axis_tuser, m_axis_tlast, m_axis_tdata};
+  wire [32:0] chk_obeat = {m_axis_obj_tlast, m_axis_obj_tdata};
+  initial chk_live_q = 1'b0;
+  always @(posedge aclk) begin
+    if (chk_live_q) begin
+      if (chk_rst_q && (m_axis_tvalid || m_axis_obj_tvalid))
+        $error("sm_top: TVALID high in the clock after a reset edge");
+      if (chk_wait_q && (!m_axis_tvalid || chk_beat != chk_beat_q))
+        $error("sm_top: m_axis beat withdrawn or changed before tready");
+      if (chk_owait_q && (!m_axis_obj_tvalid || chk_obeat != chk_obeat_q))
+        $error("sm_top: m_axis_obj beat withdrawn or changed before tready");
+      if (!m_axis_tvalid && (m_axis_tuser || m_axis_tlast)) $error("sm_top: m_axis tuser/tlast without tvalid");
+      if (!m_axis_obj_tvalid && m_axis_obj_tlast) $error("sm_top: m_axis_obj tlast without tvalid");
+    end
+    if (!aresetn) chk_live_q <= 1'b1;
+    // aresetn low at this edge resets the sink too: the beat is released
+    chk_rst_q   <= !aresetn;
+    chk_wait_q  <= aresetn && m_axis_tvalid && !m_axis_tready;
+    chk_owait_q <= aresetn && m_axis_obj_tvalid && !m_axis_obj_tready;
+    chk_beat_q  <= chk_beat;
+    chk_obeat_q <= chk_obeat;
+  end
+`endif
 endmodule
 `default_nettype wire

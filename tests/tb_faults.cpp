@@ -19,11 +19,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,12 +44,18 @@ namespace {
 using Top = SM_VTOP;
 
 int failures = 0, passes = 0;
+// Prints the first 20 failures, and the first one of every other kind (the message with
+// its numbers taken out), so a flood of one rule does not hide another.
 bool check(bool ok, const std::string& what) {
+  static std::set<std::string> kinds;
   if (ok) {
     ++passes;
   } else {
     ++failures;
-    if (failures <= 20) fmt::print("FAIL: {}\n", what);
+    std::string kind;
+    for (char c : what)
+      if (!std::isdigit(static_cast<unsigned char>(c))) kind += c;
+    if (kinds.insert(kind).second || failures <= 20) fmt::print("FAIL: {}\n", what);
   }
   return ok;
 }
@@ -200,6 +208,7 @@ class FaultTb {
   int clean_out() const { return clean_out_; }
   int faulty_out() const { return faulty_out_; }
   int recovered() const { return recovered_; }
+  int soft_frames() const { return soft_frames_; }
   size_t queued() const { return cam_.size(); }
   void set_ready(Ready r) { ready_ = r; }
   void set_gap_percent(int p) { gap_percent_ = p; }
@@ -245,6 +254,7 @@ class FaultTb {
         break;
     }
     if (force_ready_) ready = true;
+    if (hold_low_) ready = false;
     t.m_axis_tready = ready;
     t.m_axis_obj_tready = force_ready_ || rng_() % 100 >= 20;
     t.eval();
@@ -255,9 +265,11 @@ class FaultTb {
     const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
     const uint32_t objd = t.m_axis_obj_tdata;
     const bool objl = t.m_axis_obj_tlast;
+    check_protocol(t, ready);
     // A pixel accepted while the core is in reset (aresetn low now or in the previous
     // clock: the core's reset is registered) is lost.
     const bool lost = in_reset_ || reset_prev_;
+    const bool lost_now = in_reset_;
     reset_prev_ = in_reset_;
     tb_.tick();
 
@@ -266,12 +278,18 @@ class FaultTb {
       cam_.pop_front();
       if (!lost) model_.push(p);
     }
-    if (out_hs) out_beat(od, ou, ol);
-    if (obj_hs) {
+    // The sinks are reset by the same aresetn: nothing is taken while it is low.
+    if (out_hs && !lost_now) out_beat(od, ou, ol);
+    if (t.m_axis_obj_tvalid && pkt_.empty() && !hdr_seen_ && !lost_now) {
+      hdr_seen_ = true;
+      hdr_cycle_ = tb_.cycles();
+    }
+    if (obj_hs && !lost_now) {
       pkt_.push_back(objd);
       if (objl) {
         check_packet();
         pkt_.clear();
+        hdr_seen_ = false;
       }
     }
     // Progress: with input offered and the output ready, some stream must move.
@@ -328,6 +346,12 @@ class FaultTb {
   void areset(int len) {
     in_reset_ = true;
     axil_.idle();
+    // The sinks leave reset with the core: whatever the core offers after the reset
+    // must be the start of a new frame / packet.
+    out_reset();
+    pre_.clear();
+    pre_pkts_.clear();
+    model_.reset(true);
     for (int i = 0; i < len; ++i) cycle();
     in_reset_ = false;
     cycle();
@@ -339,10 +363,26 @@ class FaultTb {
     clamped_ = false;
     out_reset();
   }
-  // After a soft reset the core is back to its post-reset state except the registers.
+  // After a soft reset the core is back to its post-reset state except the registers and
+  // the outputs, whose sinks are not reset: the frame the sink is receiving (it took the
+  // frame's tuser beat, or is offered it) is completed -- the pixels the core had, then
+  // invalid 0 words -- and an object packet in progress is sent whole; every other frame
+  // accepted before it is abandoned (docs/streams.md, "Soft reset"). Callers keep the
+  // output still around the reset (tready low, or a drained core), so the sink's state
+  // now is its state when the pulse reaches the core.
   void after_soft_reset() {
+    const auto& t = tb_.top();
+    pre_.clear();
+    if ((in_frame_ || (t.m_axis_tvalid && t.m_axis_tuser)) && !model_.frames.empty())
+      pre_.push_back(model_.frames.front());
+    pre_pkts_.clear();
+    for (auto& f : model_.frames)
+      if (f.closed && f.id >= next_pkt_) pre_pkts_.push_back(sm::object_packet(f.result(hw_).objects, false));
+    for (int id = next_pkt_; id < out_id_; ++id) pre_pkts_.push_back(done_pkts_[id % kKeep]);
+    soft_cycle_ = tb_.cycles();
     model_.reset(false);
-    out_reset();
+    next_pkt_ = 0;
+    out_id_ = 0;
     // The pulse reaches the core two clocks after the write response; a pixel offered
     // before that would be lost in the reset of the input FIFO.
     paused_ = true;
@@ -350,6 +390,18 @@ class FaultTb {
     paused_ = false;
   }
   void pause(bool p) { paused_ = p; }
+  void hold_low(bool h) { hold_low_ = h; }
+  // Runs until the disparity output (or the object stream) offers a beat; false if the
+  // camera queue ran dry first.
+  bool run_until_valid(bool obj) {
+    for (int i = 0; i < 400000; ++i) {
+      cycle();
+      auto& t = tb_.top();
+      if (obj ? t.m_axis_obj_tvalid : t.m_axis_tvalid) return true;
+      if (cam_.empty() && i > 20000) return false;
+    }
+    return false;
+  }
   bool& clamped() { return clamped_; }
 
   // Compares ERR_FLAGS / ERR_CNT_* with the model (call after drain()).
@@ -393,9 +445,37 @@ class FaultTb {
   const std::array<uint64_t, kNumFlags>& fault_total() const { return fault_total_; }
 
  private:
+  // AXI4-Stream rules seen from the sinks (independent of the RTL's own assertions):
+  // TVALID low in the clock after an edge that sampled aresetn low; once TVALID is high
+  // it stays high with the same payload until the handshake unless aresetn intervenes;
+  // tuser / tlast only with TVALID.
+  void check_protocol(const Top& t, bool ready) {
+    const bool ov = t.m_axis_tvalid, objv = t.m_axis_obj_tvalid;
+    const uint32_t beat = (static_cast<uint32_t>(t.m_axis_tdata) & 0xffffu) | (t.m_axis_tuser ? 1u << 16 : 0u) |
+                          (t.m_axis_tlast ? 1u << 17 : 0u);
+    const uint64_t obeat = t.m_axis_obj_tdata | (t.m_axis_obj_tlast ? 1ull << 32 : 0ull);
+    auto fail = [&](const std::string& what) { check(false, fmt::format("cycle {}: {}", tb_.cycles(), what)); };
+    if (reset_prev_ && (ov || objv))
+      fail(fmt::format("TVALID high in the clock after a reset edge (m_axis {}, m_axis_obj {})", ov, objv));
+    if (wait_out_ && (!ov || beat != wait_beat_))
+      fail(fmt::format("m_axis beat 0x{:05x} withdrawn or changed before tready (now valid {} 0x{:05x})", wait_beat_,
+                       ov, beat));
+    if (wait_obj_ && (!objv || obeat != wait_obeat_))
+      fail(fmt::format("m_axis_obj beat 0x{:09x} withdrawn or changed before tready", wait_obeat_));
+    if (!ov && (t.m_axis_tuser || t.m_axis_tlast)) fail("m_axis tuser/tlast without tvalid");
+    if (!objv && t.m_axis_obj_tlast) fail("m_axis_obj tlast without tvalid");
+    // aresetn low at this edge releases the beat (the sink is reset too).
+    wait_out_ = !in_reset_ && ov && !ready;
+    wait_beat_ = beat;
+    wait_obj_ = !in_reset_ && objv && !t.m_axis_obj_tready;
+    wait_obeat_ = obeat;
+  }
+
   void out_reset() {
     ox_ = oy_ = 0;
     in_frame_ = false;
+    hdr_seen_ = false;
+    wait_out_ = wait_obj_ = false;
     pkt_.clear();
     next_pkt_ = 0;
     out_id_ = 0;
@@ -407,17 +487,18 @@ class FaultTb {
       if (!check(user, fmt::format("output frame {}: first beat without tuser", frames_out_))) {
         return;
       }
-      if (model_.frames.empty()) {
+      if (model_.frames.empty() && pre_.empty()) {
         check(false, fmt::format("output frame {} started but no input frame is pending", frames_out_));
         return;
       }
       in_frame_ = true;
       ox_ = oy_ = 0;
-      cur_ = sm::DispImage(model_.frames.front().w, model_.frames.front().h);
+      const ExpFrame& e = pre_.empty() ? model_.frames.front() : pre_.front();
+      cur_ = sm::DispImage(e.w, e.h);
     } else {
       check(!user, fmt::format("output frame {}: tuser at x {} y {}", frames_out_, ox_, oy_));
     }
-    ExpFrame& f = model_.frames.front();
+    ExpFrame& f = pre_.empty() ? model_.frames.front() : pre_.front();
     check(last == (ox_ == f.w - 1),
           fmt::format("output frame {}: tlast {} at x {} y {} (width {})", frames_out_, last, ox_, oy_, f.w));
     cur_.at(ox_, oy_) = d;
@@ -426,6 +507,35 @@ class FaultTb {
     if (++oy_ < f.h) return;
     in_frame_ = false;
     oy_ = 0;
+    const int w = f.w, h = f.h;
+    if (!pre_.empty() && pre_frame_done()) return;
+    if (model_.frames.empty() || model_.frames.front().w != w || model_.frames.front().h != h) {
+      check(false, fmt::format("output frame {} ({}x{}) is none of the pending frames", frames_out_, w, h));
+      return;
+    }
+    out_frame_done(model_.frames.front());
+  }
+
+  // The sink's frame at a soft reset: equal to its model up to some pixel k, invalid 0
+  // words from k on (k = W x H when the core had the whole frame).
+  bool pre_frame_done() {
+    ExpFrame& f = pre_.front();
+    const auto& m = f.result(hw_);
+    const int n = f.w * f.h;
+    int k = 0;
+    while (k < n && m.post.at(k % f.w, k / f.w) == cur_.at(k % f.w, k / f.w)) ++k;
+    int bad = 0;
+    for (int i = k; i < n; ++i) bad += cur_.at(i % f.w, i / f.w) != 0;
+    check(bad == 0, fmt::format("output frame {} at a soft reset: model up to pixel {}, then {} of {} pixels not 0",
+                                frames_out_, k, bad, n - k));
+    if (verbose_) fmt::print("  out frame at a soft reset: {} of {} pixels from the model\n", k, n);
+    ++frames_out_;
+    ++soft_frames_;
+    pre_.clear();
+    return true;
+  }
+
+  void out_frame_done(ExpFrame& f) {
     if (!check(f.closed, fmt::format("output frame {} complete before its input", frames_out_))) {
       model_.frames.pop_front();
       return;
@@ -455,6 +565,20 @@ class FaultTb {
   }
 
   void check_packet() {
+    // A packet offered before the soft reset reached the core (its pulse is two clocks
+    // after the write response, and a list being published may still load) belongs to a
+    // frame from before it.
+    if (soft_cycle_ && hdr_cycle_ <= soft_cycle_ + 4) {
+      bool found = false;
+      while (!pre_pkts_.empty() && !found) {
+        found = pre_pkts_.front() == pkt_;
+        pre_pkts_.pop_front();
+      }
+      check(found,
+            fmt::format("object packet ({} words) in progress at a soft reset matches a frame before it", pkt_.size()));
+      return;
+    }
+    pre_pkts_.clear();
     // Packet n belongs to frame n since reset; it may leave before the frame's last pixel.
     const int id = next_pkt_++;
     for (auto& f : model_.frames)
@@ -479,7 +603,16 @@ class FaultTb {
   sm::AxilMaster<Top> axil_;
   SeqModel model_;
   std::deque<Pixel> cam_;
-  bool paused_ = false, force_ready_ = false, in_reset_ = false, reset_prev_ = false;
+  bool paused_ = false, force_ready_ = false, in_reset_ = false, reset_prev_ = false, hold_low_ = false;
+  // sink-side protocol state
+  bool wait_out_ = false, wait_obj_ = false;
+  uint32_t wait_beat_ = 0;
+  uint64_t wait_obeat_ = 0;
+  bool hdr_seen_ = false;
+  uint64_t hdr_cycle_ = 0, soft_cycle_ = 0;
+  // frames and packets from before the last soft reset that may still come out
+  std::deque<ExpFrame> pre_;
+  std::deque<std::vector<uint32_t>> pre_pkts_;
   Ready ready_ = Ready::kAlways;
   int burst_left_ = 0;
   bool burst_ready_ = true;
@@ -493,7 +626,7 @@ class FaultTb {
   std::array<std::vector<uint32_t>, kKeep> done_pkts_;  // packets of output frames
   int next_pkt_ = 0, out_id_ = 0;
   std::vector<uint32_t> pkt_;
-  int beats_ = 0, frames_out_ = 0, clean_out_ = 0, faulty_out_ = 0, recovered_ = 0;
+  int beats_ = 0, frames_out_ = 0, clean_out_ = 0, faulty_out_ = 0, recovered_ = 0, soft_frames_ = 0;
   bool prev_faulty_ = false;
 
  public:
@@ -514,6 +647,28 @@ std::vector<Pixel> frame_pixels(const sm::Image8& l, const sm::Image8& r, int w,
       px.push_back(p);
     }
   return px;
+}
+
+// The scalar run-time registers (no grids, no CONTROL): what a host changes per frame.
+void write_scalars(sm::AxilMaster<Top>& axil, const sm::Regs& r) {
+  using namespace sm::regmap;
+  uint64_t table = 0;
+  for (int k = 0; k < 32; ++k) table |= static_cast<uint64_t>(r.sw_table[k] & 3u) << (2 * k);
+  const std::pair<uint32_t, uint32_t> wr[] = {{kWIDTH, static_cast<uint32_t>(r.width)},
+                                              {kHEIGHT, static_cast<uint32_t>(r.height)},
+                                              {kGAIN_L, r.gain_l},
+                                              {kGAIN_R, r.gain_r},
+                                              {kOFFSET_L, static_cast<uint32_t>(static_cast<int32_t>(r.offset_l))},
+                                              {kOFFSET_R, static_cast<uint32_t>(static_cast<int32_t>(r.offset_r))},
+                                              {kRECT_ENABLE, r.rect_enable ? 1u : 0u},
+                                              {kOCC, r.occ},
+                                              {kSW_TABLE0, static_cast<uint32_t>(table)},
+                                              {kSW_TABLE1, static_cast<uint32_t>(table >> 32)},
+                                              {kFILTER_ENABLE, r.filter_enable},
+                                              {kOBJ_NEAR, r.obj_near},
+                                              {kOBJ_TOL, r.obj_tol},
+                                              {kOBJ_MIN_PIXELS, r.obj_min_pixels}};
+  for (const auto& [a, v] : wr) check(axil.write(a, v) == 0, fmt::format("write 0x{:x}", a));
 }
 
 uint32_t clamp_u(uint32_t v, uint32_t lo, uint32_t hi) { return std::min(std::max(v, lo), hi); }
@@ -571,13 +726,27 @@ int main(int argc, char** argv) {
     auto idx = [&](int x, int y) { return static_cast<size_t>(y) * W() + x; };
 
     std::array<int, 24> injected{};
-    const char* const kind_name[] = {
-        "well-formed",          "short line",          "long line",         "too few lines",
-        "too many lines",       "missing sof",         "doubled sof",       "sof mid-line",
-        "long tvalid gap",      "back-pressure burst", "aresetn mid-frame", "soft reset mid-frame",
-        "frame while disabled", "size change",         "register faults",   "rectification grid faults",
-        "truncated stream"};
-    const int n_kinds = 17;
+    const char* const kind_name[] = {"well-formed",
+                                     "short line",
+                                     "long line",
+                                     "too few lines",
+                                     "too many lines",
+                                     "missing sof",
+                                     "doubled sof",
+                                     "sof mid-line",
+                                     "long tvalid gap",
+                                     "back-pressure burst",
+                                     "aresetn mid-frame",
+                                     "soft reset mid-frame",
+                                     "frame while disabled",
+                                     "size change",
+                                     "register faults",
+                                     "rectification grid faults",
+                                     "truncated stream",
+                                     "aresetn while valid",
+                                     "soft reset, tready low",
+                                     "registers every frame"};
+    const int n_kinds = 20;
 
     for (int f = 0; f < n_frames; ++f) {
       // Per-frame stream character.
@@ -586,7 +755,7 @@ int main(int argc, char** argv) {
       tb.set_ready(rp < 3 ? Ready::kAlways : rp < 6 ? Ready::kRandom : rp < 7 ? Ready::kBursty : Ready::kSlow);
 
       int kind = (rng() % 100 < 35) ? 0 : 1 + static_cast<int>(rng() % (n_kinds - 1));
-      if (kind == 11 && !soft_reset) kind = 10;
+      if ((kind == 11 || kind == 18) && !soft_reset) kind = kind == 11 ? 10 : 17;
       ++injected[kind];
       if (tb.verbose_) fmt::print("step {}: {} at cycle {}\n", f, kind_name[kind], tb.cycles());
       std::vector<Pixel> px = good();
@@ -809,6 +978,75 @@ int main(int argc, char** argv) {
           program(regs_for(w, h));
           break;
         }
+        case 17: {  // aresetn of 1..4 clocks while an output offers a beat, tready high or low
+          tb.queue(px);
+          tb.queue(good());
+          const bool obj = rng() % 3 == 0, low = rng() & 1;
+          tb.hold_low(low);
+          if (tb.run_until_valid(obj))
+            for (int i = 0, n = static_cast<int>(rng() % 3); i < n; ++i) tb.cycle();
+          tb.areset(1 + static_cast<int>(rng() % 4));
+          tb.hold_low(false);
+          program(regs_for(w, h));
+          px.clear();  // the rest of the camera queue continues mid-frame
+          break;
+        }
+        case 18: {  // soft reset while the output waits for tready
+          tb.queue(px);
+          tb.queue(good());
+          tb.hold_low(true);
+          tb.run_until_valid(false);
+          for (int i = 0, n = static_cast<int>(rng() % 40); i < n; ++i) tb.cycle();
+          tb.pause(true);
+          axil.write(kCONTROL, tb.control_word() | (1u << kCONTROL_SOFT_RESET_LSB));
+          tb.after_soft_reset();
+          for (int i = 0, n = static_cast<int>(rng() % 60); i < n; ++i) tb.cycle();
+          tb.hold_low(false);
+          px.clear();  // the rest of the camera queue: no tuser -> MISSING_SOF
+          break;
+        }
+        case 19: {  // new registers for every frame, written while the previous frame streams
+          tb.run_camera();
+          tb.drain();
+          // Identity grids of the largest size: the identity of every smaller size is a
+          // part of them (the grid row stride does not depend on the active size).
+          const sm::RectGrid idmax = sm::RectGrid::identity(hw.max_width, hw.max_height);
+          sm::write_grid(axil, hw, 0, 0, idmax);
+          sm::write_grid(axil, hw, 1, 0, idmax);
+          auto started = [&] { return axil.read(kSTATUS) & 0xffffu; };
+          const int n = 3 + static_cast<int>(rng() % 4);
+          for (int i = 0; i < n; ++i) {
+            sm::Regs r = tb.model().host;
+            if (rng() % 4 == 0) r.width = sizes[rng() % sizes.size()].first;  // a flush, then the new width
+            if (rng() % 4 != 0) r.height = 16 + static_cast<int>(rng() % (hw.max_height - 15));
+            r.gain_l = static_cast<uint16_t>(160 + rng() % 200);
+            r.offset_l = static_cast<int16_t>(static_cast<int>(rng() % 61) - 30);
+            r.offset_r = static_cast<int16_t>(static_cast<int>(rng() % 61) - 30);
+            for (auto& c : r.sw_table) c = static_cast<uint8_t>(rng() & 3);
+            r.occ = static_cast<uint8_t>(rng() % 40);
+            r.filter_enable = static_cast<uint8_t>(rng() % 8);
+            r.rect_enable = rng() & 1;
+            r.obj_near = static_cast<uint8_t>(rng() % hw.disp);
+            r.obj_tol = static_cast<uint8_t>(rng() % 4);
+            r.obj_min_pixels = static_cast<uint16_t>(rng() % 80);
+            // The frame queued before this one has started (its shadow copy is taken),
+            // so these values are the next frame start's, while that frame is still in
+            // the pipeline.
+            const uint32_t n0 = started();
+            write_scalars(axil, r);
+            tb.model().host = r;
+            tb.queue(frame_pixels(sl, sr, r.width, r.height, static_cast<int>(rng() % (hw.max_width - r.width + 1)),
+                                  static_cast<int>(rng() % (hw.max_height - r.height + 1))));
+            for (int k = 0; k < 100000 && started() == n0; ++k) {
+            }
+            check(started() != n0, "registers every frame: the frame started");
+          }
+          tb.run_camera();
+          tb.drain();
+          program(regs_for(W(), H()));
+          px = good();
+          break;
+        }
         case 16: {  // the camera stops mid-frame for good (cable pulled), then restarts
           const size_t cut = 1 + rng() % (px.size() - 1);
           px.resize(cut);
@@ -843,8 +1081,8 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 7; ++k) fmt::print(" {}={}", kFaultName[k], tb.fault_total()[k]);
     fmt::print(
         "\n{} frames out: {} from faulty input, {} well-formed ({} right after a fault), all compared "
-        "bit-exactly; {} cycles\n",
-        tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.recovered(), tb.cycles());
+        "bit-exactly, {} completed at a soft reset; {} cycles\n",
+        tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.recovered(), tb.soft_frames(), tb.cycles());
     check(tb.recovered() >= n_frames / 10,
           fmt::format("{} recovery frames (at least {})", tb.recovered(), n_frames / 10));
     for (int k = 0; k < 6; ++k) check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", kFaultName[k]));

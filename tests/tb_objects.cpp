@@ -117,6 +117,7 @@ int main(int argc, char** argv) {
 
   Testbench<SM_VTOP> tb;
   tb->rst_n = 0;
+  tb->out_rst_n = 0;
   tb->ce = 1;
   tb->width = w;
   tb->height = h;
@@ -124,6 +125,7 @@ int main(int argc, char** argv) {
   tb->m_axis_obj_tready = 0;
   for (int i = 0; i < 3; ++i) tb.tick();
   tb->rst_n = 1;
+  tb->out_rst_n = 1;
 
   CeGen ce(99, 30);
   long passed = 0, failed = 0;
