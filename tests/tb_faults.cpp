@@ -651,24 +651,8 @@ std::vector<Pixel> frame_pixels(const sm::Image8& l, const sm::Image8& r, int w,
 
 // The scalar run-time registers (no grids, no CONTROL): what a host changes per frame.
 void write_scalars(sm::AxilMaster<Top>& axil, const sm::Regs& r) {
-  using namespace sm::regmap;
-  uint64_t table = 0;
-  for (int k = 0; k < 32; ++k) table |= static_cast<uint64_t>(r.sw_table[k] & 3u) << (2 * k);
-  const std::pair<uint32_t, uint32_t> wr[] = {{kWIDTH, static_cast<uint32_t>(r.width)},
-                                              {kHEIGHT, static_cast<uint32_t>(r.height)},
-                                              {kGAIN_L, r.gain_l},
-                                              {kGAIN_R, r.gain_r},
-                                              {kOFFSET_L, static_cast<uint32_t>(static_cast<int32_t>(r.offset_l))},
-                                              {kOFFSET_R, static_cast<uint32_t>(static_cast<int32_t>(r.offset_r))},
-                                              {kRECT_ENABLE, r.rect_enable ? 1u : 0u},
-                                              {kOCC, r.occ},
-                                              {kSW_TABLE0, static_cast<uint32_t>(table)},
-                                              {kSW_TABLE1, static_cast<uint32_t>(table >> 32)},
-                                              {kFILTER_ENABLE, r.filter_enable},
-                                              {kOBJ_NEAR, r.obj_near},
-                                              {kOBJ_TOL, r.obj_tol},
-                                              {kOBJ_MIN_PIXELS, r.obj_min_pixels}};
-  for (const auto& [a, v] : wr) check(axil.write(a, v) == 0, fmt::format("write 0x{:x}", a));
+  for (const sm::RegWord& w : sm::register_words(r))
+    check(axil.write(w.addr, w.value) == 0, fmt::format("{} write accepted", w.name));
 }
 
 uint32_t clamp_u(uint32_t v, uint32_t lo, uint32_t hi) { return std::min(std::max(v, lo), hi); }
