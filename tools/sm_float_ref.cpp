@@ -1,0 +1,185 @@
+// sm_float_ref: the floating-point reference of the pipeline (tools/float_ref, issue 21)
+// on one pair or on every scene of a dataset, with any subset of the bit-exact model's
+// simplifications switched on (--simplify) and a sweep of occlusion penalties on the raw
+// Hamming scale (--penalty a,b,c: the aggregation runs once per scene, the DP once per
+// penalty). Dataset mode scores bad-1.0 with tools/common's bad1 and reports the mean over
+// all scenes and over the four classic ones. docs/evaluation.md, "What each fixed-point
+// simplification costs".
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/sm_io.hpp"
+#include "float_ref/float_ref.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sm::tools::ToolError;
+using json = nlohmann::json;
+
+std::vector<double> parse_list(const std::string& s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) continue;
+    size_t used = 0;
+    double x = 0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !(x >= 0)) throw ToolError(fmt::format("--penalty: '{}' is not a number >= 0", item));
+    v.push_back(x);
+  }
+  if (v.empty()) throw ToolError("--penalty: empty");
+  return v;
+}
+
+std::array<uint8_t, 32> parse_table(const std::string& s) {
+  std::array<uint8_t, 32> t{};
+  std::stringstream ss(s);
+  std::string item;
+  size_t k = 0;
+  while (std::getline(ss, item, ',')) {
+    if (k >= t.size()) throw ToolError("--sw-table: more than 32 codes");
+    if (item != "0" && item != "1" && item != "2" && item != "3")
+      throw ToolError(fmt::format("--sw-table: code '{}' is not 0..3", item));
+    t[k++] = static_cast<uint8_t>(item[0] - '0');
+  }
+  return t;
+}
+
+bool is_classic(const std::string& n) { return n == "cones" || n == "teddy" || n == "tsukuba" || n == "venus"; }
+
+int run(int argc, char** argv) {
+  sm::fref::Params p = sm::fref::Params::defaults();
+  std::string left, right, dataset, simplify = "none", penalties = "30", post = "chain", disp_file, json_path;
+  std::string table;
+  for (size_t k = 0; k < p.sw_table.size(); ++k) table += fmt::format("{}{}", k ? "," : "", p.sw_table[k]);
+  bool quiet = false;
+  CLI::App app{"floating-point reference of the pipeline, with the bit-exact model's simplifications switchable"};
+  app.add_option("left", left, "left image (one pair; or use --dataset)");
+  app.add_option("right", right, "right image");
+  app.add_option("--dataset", dataset, "score every scene of this folder (../shared/datasets layout)");
+  app.add_option("--simplify", simplify,
+                 fmt::format("simplifications on: comma-separated {}, or all / none",
+                             fmt::format("{}", fmt::join(sm::fref::simplify_names(), ","))))
+      ->capture_default_str();
+  app.add_option("--penalty", penalties,
+                 "occlusion penalties on the raw Hamming scale, comma-separated (model occ = penalty / "
+                 "2^cost-shift when shift is on); one pair: the first")
+      ->capture_default_str();
+  app.add_option("--post", post, "post filters: chain (the model's F1-F3), med5x5, none")->capture_default_str();
+  app.add_option("--levels", p.levels, "disparity levels")->check(CLI::Range(2, 256))->capture_default_str();
+  app.add_option("--census", p.census, "census window side")->check(CLI::Range(3, 15))->capture_default_str();
+  app.add_option("--sw", p.sw, "support-weight window side")->check(CLI::Range(1, 7))->capture_default_str();
+  app.add_option("--cost-shift", p.cost_shift, "COST_SHIFT of the 'shift' simplification")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
+  app.add_option("--gc", p.gc, "float weights: intensity scale")->capture_default_str();
+  app.add_option("--gp", p.gp, "float weights: spatial scale")->capture_default_str();
+  app.add_option("--sw-table", table, "2-bit weight codes by |dI| >> 3 of the 'table' simplification")
+      ->capture_default_str();
+  app.add_option("--disp-file", disp_file, "one pair: disparity file (.pfm or 16-bit .png, x16)");
+  app.add_option("--json", json_path, "dataset: write the results as JSON");
+  app.add_flag("-q,--quiet", quiet, "no progress lines");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  sm::tools::quiet_opencv();
+  try {
+    p.simp = sm::fref::parse_simplify(simplify);
+    p.post = sm::fref::parse_post(post);
+  } catch (const std::invalid_argument& e) {
+    throw ToolError(e.what());
+  }
+  p.sw_table = parse_table(table);
+  if (p.census % 2 == 0 || p.sw % 2 == 0) throw ToolError("--census and --sw must be odd");
+  if (!(p.gc > 0) || !(p.gp > 0)) throw ToolError("--gc and --gp must be positive");
+  const std::vector<double> pen = parse_list(penalties);
+
+  if (dataset.empty()) {
+    if (left.empty() || right.empty()) throw ToolError("give LEFT RIGHT or --dataset DIR");
+    if (disp_file.empty()) throw ToolError("one pair: --disp-file is required");
+    const sm::Image8 l = sm::tools::load_grey(left), r = sm::tools::load_grey(right);
+    if (l.w != r.w || l.h != r.h)
+      throw ToolError(fmt::format("{}: size {}x{} differs from {}'s {}x{}", right, r.w, r.h, left, l.w, l.h));
+    sm::tools::write_disparity_file(disp_file, sm::tools::disp_to_float(sm::fref::run(l, r, p, pen[0])));
+    return 0;
+  }
+  if (!left.empty()) throw ToolError("--dataset: no LEFT RIGHT images");
+
+  const auto dirs = sm::tools::list_scenes(dataset);
+  if (dirs.empty()) throw ToolError(fmt::format("{}: no scenes", dataset));
+  json jout;
+  jout["dataset"] = dataset;
+  jout["simplify"] = sm::fref::simplify_string(p.simp);
+  jout["params"] = {{"census", p.census}, {"sw", p.sw}, {"levels", p.levels}, {"cost_shift", p.cost_shift},
+                    {"gc", p.gc},         {"gp", p.gp}, {"post", post},       {"sw_table", p.sw_table},
+                    {"penalties", pen}};
+  jout["scenes"] = json::array();
+  std::vector<double> sum(pen.size(), 0), sum_c(pen.size(), 0);
+  int n = 0, n_c = 0;
+  std::string head = fmt::format("{:<12}", "penalty");
+  for (double v : pen) head += fmt::format(" {:>7g}", v);
+  fmt::print("simplify: {}\n{}\n{}\n", sm::fref::simplify_string(p.simp), head, std::string(head.size(), '-'));
+  for (const auto& d : dirs) {
+    const sm::tools::Scene sc = sm::tools::load_scene(d);
+    const std::string name = fs::path(d).filename().string();
+    if (!quiet) fmt::print(stderr, "{} ({}x{}) ...\n", name, sc.left.cols, sc.left.rows);
+    const auto vol = sm::fref::aggregate(sm::tools::to_image8(sc.left), sm::tools::to_image8(sc.right), p);
+    std::string line = fmt::format("{:<12}", name);
+    json js = {{"name", name}, {"bad1_pct", json::array()}};
+    for (size_t k = 0; k < pen.size(); ++k) {
+      const sm::DispImage out = sm::fref::post(sm::fref::trellis(vol, pen[k], p), p);
+      const double b = sm::tools::bad1(sm::tools::disp_to_float(out), sc.gt, sc.nonocc).bad_pct();
+      sum[k] += b;
+      if (is_classic(name)) sum_c[k] += b;
+      js["bad1_pct"].push_back(b);
+      line += fmt::format(" {:>7.2f}", b);
+    }
+    ++n;
+    if (is_classic(name)) ++n_c;
+    fmt::print("{}\n", line);
+    jout["scenes"].push_back(js);
+  }
+  std::string mean = fmt::format("{:<12}", fmt::format("mean ({})", n)), mean_c = fmt::format("{:<12}", "mean classic");
+  size_t best = 0;
+  for (size_t k = 0; k < pen.size(); ++k) {
+    mean += fmt::format(" {:>7.2f}", sum[k] / n);
+    mean_c += n_c ? fmt::format(" {:>7.2f}", sum_c[k] / n_c) : fmt::format(" {:>7}", "-");
+    if (sum[k] < sum[best]) best = k;
+  }
+  fmt::print("{}\n{}\n", mean, mean_c);
+  fmt::print("best penalty on all {} scenes: {:g} -> mean {:.2f}, classic {}\n", n, pen[best], sum[best] / n,
+             n_c ? fmt::format("{:.2f}", sum_c[best] / n_c) : "-");
+  for (size_t k = 0; k < pen.size(); ++k) {
+    jout["mean"].push_back(sum[k] / n);
+    jout["mean_classic"].push_back(n_c ? json(sum_c[k] / n_c) : json(nullptr));
+  }
+  jout["best"] = {
+      {"penalty", pen[best]}, {"mean", sum[best] / n}, {"mean_classic", n_c ? json(sum_c[best] / n_c) : json(nullptr)}};
+  if (!json_path.empty()) sm::tools::write_text_atomic(json_path, jout.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "sm_float_ref: error: {}\n", e.what());
+    return 1;
+  }
+}
