@@ -63,11 +63,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "bench_icarus_vectors: error: {}\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return sm::tools::guarded_main("bench_icarus_vectors", run, argc, argv); }

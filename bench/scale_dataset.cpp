@@ -61,11 +61,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "bench_scale_dataset: error: {}\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return sm::tools::guarded_main("bench_scale_dataset", run, argc, argv); }

@@ -301,11 +301,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "sm_evaluate: error: {}\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return sm::tools::guarded_main("sm_evaluate", run, argc, argv); }

@@ -140,11 +140,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "sm_ref_frames: error: {}\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return sm::tools::guarded_main("sm_ref_frames", run, argc, argv); }

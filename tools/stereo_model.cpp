@@ -239,11 +239,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "stereo_model: error: {}\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return sm::tools::guarded_main("stereo_model", run, argc, argv); }

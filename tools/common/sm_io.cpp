@@ -19,6 +19,15 @@ namespace fs = std::filesystem;
 
 namespace sm::tools {
 
+int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "{}: error: {}\n", tool, e.what());
+    return 1;
+  }
+}
+
 namespace {
 
 // libpng prints its own messages to stderr before OpenCV gives up on a broken file;

@@ -18,6 +18,10 @@ struct ToolError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A tool's main(): runs `run` and turns any exception into the one-line error
+// "<tool>: error: <what>" on stderr and exit code 1.
+int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** argv);
+
 // Silences OpenCV's own logging (tools report errors themselves, in one line).
 void quiet_opencv();
 
