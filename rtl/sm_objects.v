@@ -95,6 +95,9 @@ module sm_objects #(
       .s_x(s_x), .c_side(c_side), .c_x(c_x), .row_ok(row_ok), .col_ok(col_ok)
   );
   wire unused_ok = row_ok[1] & col_ok[1];
+  // For a power-of-two MAX_WIDTH the row buffer's index needs one bit less than a column
+  // count; that top bit is 0 for every column in the frame.
+  wire unused_sx_top = s_x[XW-1];
 
   reg  [YW-1:0] y_q;  // row of the last entering real beat
   wire [YW-1:0] c_y = c_side[1] ? {YW{1'b0}} : (c_side[2] ? y_q + 1'b1 : y_q);
