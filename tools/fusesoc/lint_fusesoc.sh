@@ -28,4 +28,5 @@ done
 echo "$(verilator --version | sed 's/^ *//'), $(fusesoc --version 2>&1 | tail -1)"
 cd "$root"
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint" --target lint sm:stereo:sm_stereo
-echo "lint_fusesoc: sm_stereo.core lints clean"
+fusesoc --cores-root "$root" run --clean --work-root "$work/lint_small" --target lint --flag small sm:stereo:sm_stereo
+echo "lint_fusesoc: sm_stereo.core lints clean (paper and small configurations)"
