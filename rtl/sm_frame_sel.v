@@ -19,7 +19,9 @@ module sm_frame_sel #(
     input  wire          rst_n,
     input  wire          ce,
     input  wire [4:0]    ev_side,
+    /* verilator lint_off UNUSEDSIGNAL */  // a stage uses one field of each entry
     input  wire [4*PW-1:0] hist,
+    /* verilator lint_on UNUSEDSIGNAL */
     output reg  [W-1:0]  par
 );
   generate
@@ -38,7 +40,20 @@ module sm_frame_sel #(
     if (!rst_n) tag_q <= 2'd0;
     else if (ce && ev_side[0] && ev_side[1]) tag_q <= ev_side[4:3] + STEP;
   end
-  always @(posedge clk) par <= hist[tag_q*PW + LSB +: W];
+  // Constant slices and a 4:1 select: an index computed from tag_q would make Yosys
+  // build a multiplier (a DSP) and a barrel shifter for what is one LUT per bit.
+  wire [W-1:0] e0 = hist[0*PW + LSB +: W];
+  wire [W-1:0] e1 = hist[1*PW + LSB +: W];
+  wire [W-1:0] e2 = hist[2*PW + LSB +: W];
+  wire [W-1:0] e3 = hist[3*PW + LSB +: W];
+  always @(posedge clk) begin
+    case (tag_q)
+      2'd0:    par <= e0;
+      2'd1:    par <= e1;
+      2'd2:    par <= e2;
+      default: par <= e3;
+    endcase
+  end
   wire unused_sol = ev_side[2];  // only real, sof and the frame tag matter
 endmodule
 `default_nettype wire
