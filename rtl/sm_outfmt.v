@@ -114,7 +114,9 @@ module sm_outfmt #(
   wire          pad_start = restart && keep_next && open_w && (eofs_q == {LW{1'b0}});
   wire          pad_next = pad_q ? open_w : pad_start;
   wire          open_next = (restart && !pad_q && !pad_start) ? 1'b0 : open_w;
-  wire          flush_next = (restart || flush_q) && !(level_next == {LW{1'b0}} && !pad_next && !keep_next);
+  // The flush ends once the FIFO is empty with nothing left to pad or deliver (nothing
+  // is written then: ce is low and the padding is done), judged on this clock's state.
+  wire          flush_next = restart || (flush_q && !(level == {LW{1'b0}} && !pad_q && !keep_q));
 
   always @(posedge clk) begin
     if (!rst_n) begin
@@ -132,7 +134,9 @@ module sm_outfmt #(
       room         <= 1'b0;
       err_overflow <= 1'b0;
     end else begin
-      room         <= !flush_next && (level_next <= CAP);
+      // Low from the restart to the clock after the flush (kept off the flush's own
+      // logic: the FIFO level's adder already leads here).
+      room         <= !restart && !flush_q && (level_next <= CAP);
       err_overflow <= wr_in && full;
       if (wr_ok) begin
         x_q     <= x;
