@@ -15,7 +15,7 @@ need "$SIM" "cmake --build $LEAD --target stereo_sim"
 machine
 
 echo "## 1. full size, 128 levels: bad-1.0 % (invalid %), model vs OpenCV"
-nice "$BENCH/tools/sm_evaluate" "$DATASETS" --json "$OUT/full.json" -q | tee "$OUT/full.txt"
+nice "$BENCH/tools/sm_evaluate" "$DATASETS" --peer-levels 128 --json "$OUT/full.json" -q | tee "$OUT/full.txt"
 
 echo
 echo "## 2. model per stage, full size, 128 levels: bad-1.0 %"

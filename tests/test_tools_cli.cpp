@@ -189,16 +189,60 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   const cv::Mat nonocc = cv::imread((fx.scene / "nonocc.png").string(), cv::IMREAD_GRAYSCALE);
   const cv::Mat gt = cv::imread((fx.scene / "gt.png").string(), cv::IMREAD_ANYDEPTH);
   const long expect = cv::countNonZero(nonocc & (gt > 0));
-  for (const char* m : {"model", "bm", "sgbm", "binsgbm"}) {
+  // Every method, the model after each post-processing step, the dense peer variants.
+  const cv::Mat gtf = [&] {
+    cv::Mat f;
+    gt.convertTo(f, CV_32F, 1.0 / sm::tools::kGtScale);
+    return f;
+  }();
+  const long smooth = sm::tools::streaks(gtf, gtf, nonocc).smooth;
+  REQUIRE(smooth > 0);
+  for (const char* m : {"model_dp", "model_f1", "model_f1f2", "model", "bm", "bm-dense", "sgbm", "sgbm-dense",
+                        "sgbm-hh", "sgbm-hh-dense", "binsgbm", "binsgbm-dense"}) {
     INFO(m);
     REQUIRE(s["methods"].contains(m));
-    CHECK(s["methods"][m]["evaluated"] == expect);
-    CHECK(s["methods"][m]["bad1_pct"].get<double>() >= 0.0);
-    CHECK(s["methods"][m]["bad1_pct"].get<double>() <= 100.0);
+    const auto& e = s["methods"][m];
+    CHECK(e["evaluated"] == expect);
+    CHECK(e["bad1_pct"].get<double>() >= 0.0);
+    CHECK(e["bad1_pct"].get<double>() <= 100.0);
+    CHECK(e["smooth"] == smooth);
+    REQUIRE(e["streak"].size() == 2);  // default --streak-rows 1,5
+    CHECK(e["streak"][0]["max_rows"] == 1);
+    CHECK(e["streak"][1]["max_rows"] == 5);
+    CHECK(e["streak"][0]["pixels"].get<long>() <= e["streak"][1]["pixels"].get<long>());
+    CHECK(e["streak"][1]["pixels"].get<long>() <= e["bad"].get<long>());
     CHECK(fs::exists(out / "img" / ("small_" + std::string(m) + ".png")));
+    // The peers run at the scene's own range (16 levels), the model at --levels.
+    CHECK(e["levels"] == 16);
+    REQUIRE(j["mean"].contains(m));
   }
-  // StereoBM leaves the leftmost numDisparities columns invalid: they show up as invalid.
+  CHECK(s["peer_levels"] == 16);
+  CHECK(s["methods"]["model"]["ms"].is_number());
+  CHECK(s["methods"]["model_dp"]["ms"].is_null());  // the steps come from the model's one run
+  // StereoBM leaves the leftmost numDisparities columns invalid: they show up as invalid;
+  // the dense variants never have more invalid pixels than the filtered ones.
   CHECK(s["methods"]["bm"]["invalid"].get<long>() > 0);
+  for (const char* m : {"bm", "sgbm", "sgbm-hh", "binsgbm"})
+    CHECK(s["methods"][std::string(m) + "-dense"]["invalid"].get<long>() <= s["methods"][m]["invalid"].get<long>());
+  // Console: the three tables with their mean rows.
+  for (const char* t : {"bad-1.0 %", "streak % (streaks up to 1 row thick", "up to 5 rows thick", "ms per frame"})
+    CHECK(r.out.find(t) != std::string::npos);
+  // --peer-levels: the peers at the given numDisparities, the model unchanged.
+  const Run r2 = run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --levels 16 --peer-levels 32 -q " +
+                                          "--methods model,bm --streak-rows 2 --json " + (out / "r2.json").string());
+  INFO(r2.err);
+  REQUIRE(r2.rc == 0);
+  const auto j2 = nlohmann::json::parse(slurp(out / "r2.json"));
+  CHECK(j2["scenes"][0]["peer_levels"] == 32);
+  CHECK(j2["scenes"][0]["methods"]["bm"]["levels"] == 32);
+  CHECK(j2["scenes"][0]["methods"]["model"]["levels"] == 16);
+  CHECK(j2["scenes"][0]["methods"]["model"]["bad1_pct"] == s["methods"]["model"]["bad1_pct"]);
+  CHECK(j2["scenes"][0]["methods"]["model"]["streak"][0]["max_rows"] == 2);
+  CHECK(j2["scenes"][0]["methods"].size() == 5);  // the model's four outputs and bm
+  const std::string ds = (fx.dir / "dataset").string() + " -q";
+  expect_error(run(SM_EVALUATE_EXE, ds + " --peer-levels 40"), "--peer-levels 40");
+  expect_error(run(SM_EVALUATE_EXE, ds + " --methods model,bm,model"), "twice");
+  expect_only(out, {"r.json", "r2.json", "img"});
 }
 
 TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {
@@ -215,7 +259,7 @@ TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {
   REQUIRE(js["scenes"].size() == 2);
   CHECK(js["scenes"][1]["name"] == "synthetic2");
   CHECK(js["scenes"][0]["width"] == 48);
-  CHECK(js["scenes"][0]["methods"].size() == 2);
+  CHECK(js["scenes"][0]["methods"].size() == 5);  // model_dp, model_f1, model_f1f2, model, sgbm
   expect_error(run(SM_EVALUATE_EXE, "--synthetic 1 --synthetic-size 48by32"), "48by32");
   expect_error(run(SM_EVALUATE_EXE, "--levels 15 --synthetic 1"), "--levels 15");
 }

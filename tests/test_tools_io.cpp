@@ -40,6 +40,68 @@ TEST_CASE("bad-1.0 on a hand-computed 4x2 case", "[unit][tools]") {
   CHECK(s.invalid == 0);
 }
 
+TEST_CASE("streak measure on a hand-built 12x10 case", "[unit][tools]") {
+  // Ground truth 5 everywhere, except: (x=11, y=4) unknown, (10, 5) a one-row thin
+  // structure at 8, (9, 2) at 6 (a step of exactly 1 is smooth); nonocc mask 0 at (0, 7).
+  // Smooth pixels: rows 1..8 (96) minus (11, 3..5) [unknown neighbour], (10, 4..6)
+  // [gt step of 3] and (0, 6..8) [masked neighbour] = 87.
+  cv::Mat gt(10, 12, CV_32F, cv::Scalar(5.0f));
+  gt.at<float>(4, 11) = 0;
+  gt.at<float>(5, 10) = 8;
+  gt.at<float>(2, 9) = 6;
+  cv::Mat mask(10, 12, CV_8UC1, cv::Scalar(255));
+  mask.at<uint8_t>(7, 0) = 0;
+  cv::Mat est(10, 12, CV_32F, cv::Scalar(5.0f));
+  // One-row streaks (7 pixels): a run of 4 in row 3; a sub-pixel spike 2.5 off; at x = 7
+  // two wrong pixels around a right one (the right one differs from both but is not bad).
+  for (int x = 0; x < 4; ++x) est.at<float>(3, x) = 9;
+  est.at<float>(6, 6) = 7.5f;
+  est.at<float>(4, 7) = 8;
+  est.at<float>(6, 7) = 8;
+  // Two rows thick (4 pixels), and (8, 2) below an invalid pixel with good pixels two
+  // rows above and one below (the invalid row is inside the span: 2 rows).
+  for (int y = 5; y < 7; ++y)
+    for (int x = 4; x < 6; ++x) est.at<float>(y, x) = 9;
+  est.at<float>(1, 8) = -1;
+  est.at<float>(2, 8) = 9;
+  // Three rows thick (3 pixels; the bounding good pixel below is in the last row).
+  for (int y = 6; y < 9; ++y) est.at<float>(y, 3) = 9;
+  // Never streaks: a difference of exactly 1, an invalid pixel, a wrong pixel in the first
+  // row, and one-row streaks at pixels that are not smooth (unknown neighbour, masked
+  // neighbour, gt step).
+  est.at<float>(2, 6) = 6;
+  est.at<float>(4, 8) = -1;
+  est.at<float>(0, 5) = 9;
+  est.at<float>(3, 11) = 9;
+  est.at<float>(6, 0) = 9;
+  est.at<float>(5, 10) = 12;
+  StreakStats s = streaks(est, gt, mask);
+  CHECK(s.smooth == 87);
+  CHECK(s.streak == 7);
+  CHECK(s.streak_pct() == Approx(700.0 / 87));
+  CHECK(streaks(est, gt, mask, 2).streak == 7 + 4 + 1);
+  CHECK(streaks(est, gt, mask, 3).streak == 7 + 4 + 1 + 3);
+  CHECK(streaks(est, gt, mask, 8).streak == 15);
+  CHECK(streaks(est, gt, mask, 3).smooth == 87);  // the denominator does not depend on the thickness
+  // The denominator depends on the ground truth only; the truth itself has no streaks.
+  CHECK(streaks(gt, gt, mask).smooth == 87);
+  CHECK(streaks(gt, gt, mask, 8).streak == 0);
+  // Without the mask, (0, 6..8) are smooth and (0, 6) is a streak.
+  s = streaks(est, gt, cv::Mat());
+  CHECK(s.smooth == 90);
+  CHECK(s.streak == 8);
+  // A whole wrong row is W streak pixels; the same two rows wrong are none of one row, and
+  // 22 of two rows: (11, 3) is not smooth and (11, 2)'s span would reach the unknown (11, 4).
+  cv::Mat row = gt.clone();
+  row.row(2).setTo(20.0f);
+  s = streaks(row, gt, mask);
+  CHECK(s.smooth == 87);
+  CHECK(s.streak == 12);  // every pixel of row 2 is smooth, (9, 2) with its gt 6 too
+  row.row(3).setTo(20.0f);
+  CHECK(streaks(row, gt, mask).streak == 0);
+  CHECK(streaks(row, gt, mask, 2).streak == 22);
+}
+
 TEST_CASE("disparity renderings", "[unit][tools]") {
   sm::DispImage d(3, 1);
   d.at(0, 0) = sm::make_disp(0, true);

@@ -311,4 +311,44 @@ BadStats bad1(const cv::Mat& est_f, const cv::Mat& gt, const cv::Mat& mask) {
   return s;
 }
 
+StreakStats streaks(const cv::Mat& est_f, const cv::Mat& gt, const cv::Mat& mask, int max_rows) {
+  CV_Assert(est_f.type() == CV_32F && gt.type() == CV_32F && est_f.size() == gt.size());
+  CV_Assert(mask.empty() || (mask.type() == CV_8UC1 && mask.size() == gt.size()));
+  CV_Assert(max_rows >= 1);
+  auto evaluated = [&](int y, int x) {
+    return gt.at<float>(y, x) > 0 && (mask.empty() || mask.at<uint8_t>(y, x) != 0);
+  };
+  StreakStats s;
+  for (int y = 1; y + 1 < gt.rows; ++y)
+    for (int x = 0; x < gt.cols; ++x) {
+      const float g = gt.at<float>(y, x);
+      // near(j): row y + j is evaluated and its truth within 1 of this pixel's
+      auto near = [&](int j) {
+        return y + j >= 0 && y + j < gt.rows && evaluated(y + j, x) && std::fabs(gt.at<float>(y + j, x) - g) <= 1.0f;
+      };
+      if (!near(0) || !near(-1) || !near(1)) continue;
+      ++s.smooth;
+      const float e = est_f.at<float>(y, x);
+      if (e < 0 || std::fabs(e - g) <= 1.0f) continue;  // invalid or not bad
+      // differs(j): row y + j has a valid estimate more than 1 away from this pixel's
+      auto differs = [&](int j) {
+        const float o = est_f.at<float>(y + j, x);
+        return o >= 0 && std::fabs(e - o) > 1.0f;
+      };
+      // rows y-du+1 .. y+dd-1 (at most max_rows) between two rows that disagree, truth smooth
+      // from y-du to y+dd
+      bool found = false;
+      for (int du = 1; du <= max_rows && !found && near(-du); ++du) {
+        if (!differs(-du)) continue;
+        for (int dd = 1; du + dd <= max_rows + 1 && near(dd); ++dd)
+          if (differs(dd)) {
+            found = true;
+            break;
+          }
+      }
+      if (found) ++s.streak;
+    }
+  return s;
+}
+
 }  // namespace sm::tools

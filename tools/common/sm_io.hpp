@@ -1,6 +1,6 @@
 // Helpers shared by the command-line tools (sm_scene, stereo_model, sm_evaluate):
 // image loading with one-line errors, atomic output files, disparity colour maps, the
-// stereo-dataset reader (../shared/datasets layout) and the bad-1.0 metric.
+// stereo-dataset reader (../shared/datasets layout), the bad-1.0 metric and the streak measure.
 // See docs/evaluation.md.
 #pragma once
 
@@ -85,5 +85,24 @@ struct BadStats {
   double bad_pct() const { return evaluated ? 100.0 * bad / evaluated : 0.0; }
 };
 BadStats bad1(const cv::Mat& est_f, const cv::Mat& gt, const cv::Mat& mask);
+
+// Streak measure (docs/evaluation.md, "Streaks and fair peers"): the share of pixels whose
+// ground truth is vertically smooth that are horizontal-streak errors. A pixel (x, y) is
+// *smooth* when it and both vertical neighbours (x, y-1), (x, y+1) are evaluated pixels of
+// bad1 (gt > 0, mask set where given) with |gt(y-1) - gt(y)| <= 1 and |gt(y+1) - gt(y)| <= 1
+// (so the first and last rows never are); this set, the denominator, depends on the
+// ground truth only. A smooth pixel is a *streak* pixel (of at most max_rows rows) when its
+// estimate d is valid (>= 0) and bad (|d - gt(y)| > 1) and there are du, dd >= 1 with
+// du + dd <= max_rows + 1 such that the estimates at y - du and y + dd are valid and differ
+// from d by more than 1, every row y - du .. y + dd of the column is evaluated and its gt is
+// within 1 of gt(y). max_rows = 1: the pixel disagrees with both vertical neighbours while
+// the truth is smooth; larger: it lies in a band of at most max_rows rows between two rows
+// that disagree with it. Invalid estimates are never streaks (bad1 counts them).
+struct StreakStats {
+  long smooth = 0;  // smooth pixels (the denominator)
+  long streak = 0;  // of those, streak pixels
+  double streak_pct() const { return smooth ? 100.0 * streak / smooth : 0.0; }
+};
+StreakStats streaks(const cv::Mat& est_f, const cv::Mat& gt, const cv::Mat& mask, int max_rows = 1);
 
 }  // namespace sm::tools
