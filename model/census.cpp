@@ -25,10 +25,16 @@ CensusPad::CensusPad(const Image8& in, int r_)
       h(in.h),
       r(r_),
       stride(static_cast<size_t>(in.w + 2 * r_ + kBlock)),
-      px(stride * static_cast<size_t>(in.h + 2 * r_), 255) {
-  for (int y = 0; y < h; ++y)
-    std::memcpy(px.data() + static_cast<size_t>(y + r) * stride + r, &in.px[static_cast<size_t>(y) * w],
-                static_cast<size_t>(w));
+      px(stride * static_cast<size_t>(in.h + 2 * r_)) {
+  // Row y of the padded image is image row clamp(y, 0, h-1), each row extended with its
+  // first pixel on the left and its last on the right (the vector tail included).
+  for (int y = -r; y < h + r; ++y) {
+    const uint8_t* src = &in.px[static_cast<size_t>(std::clamp(y, 0, h - 1)) * w];
+    uint8_t* dst = px.data() + static_cast<size_t>(y + r) * stride;
+    std::memset(dst, src[0], static_cast<size_t>(r));
+    std::memcpy(dst + r, src, static_cast<size_t>(w));
+    std::memset(dst + r + w, src[w - 1], stride - static_cast<size_t>(r + w));
+  }
 }
 
 #if defined(__GNUC__)
@@ -39,7 +45,7 @@ typedef uint8_t VB __attribute__((vector_size(kBlock)));
 // centre skipped), computed for a whole row with one compare per neighbour and block of
 // pixels (the compare loop vectorizes); then each pixel's four words are assembled
 // from its plane bytes ((CENSUS^2 - 1) / 8, 28 at CENSUS 15; the others are 0). The
-// border of 255 replaces the in-image tests.
+// replicated border gives an outside neighbour the nearest inside pixel's value.
 SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
   const int r = in.r, w = in.w, side = 2 * r + 1;
   const int nbits = side * side - 1, ngroups = (nbits + 7) / 8;

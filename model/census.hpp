@@ -7,7 +7,8 @@ namespace sm {
 
 // Census vector of every pixel of `in` with a hw.census x hw.census window: bit k is
 // I(neighbour k) < I(centre), neighbours in raster order with the centre skipped;
-// neighbours outside the image give 0. Bits above hw.census_bits() are 0.
+// a neighbour outside the image is the pixel at the nearest position inside (coordinates
+// clamped to the image, row and column independently). Bits above hw.census_bits() are 0.
 CensusImage census_transform(const Image8& in, const HwConfig& hw);
 
 // H(x, y, d) = popcount(cl(x, y) ^ cr(x - d, y)) for d = 0..hw.disp-1, or

@@ -38,9 +38,9 @@ namespace sm::detail {
 // 32-byte blocks (the lanes beyond the last level are computed and dropped).
 constexpr size_t kCostPad = 32;
 
-// An image with a border of r pixels of value 255 on every side (and room for whole
-// vectors of pixels on the right): a neighbour outside the image then compares as
-// "not smaller", i.e. gives bit 0, without a test.
+// An image with a border of r pixels on every side that repeats the nearest edge pixel
+// (and room for whole vectors of pixels on the right): a neighbour outside the image
+// then compares as the pixel at the clamped coordinates, without a test.
 struct CensusPad {
   int w, h, r;
   size_t stride;

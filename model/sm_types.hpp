@@ -109,7 +109,7 @@ struct Regs {
   bool rect_enable = true;  // false: the rectifier passes pixels through
   RectGrid grid_l;          // empty = identity for the active size
   RectGrid grid_r;
-  uint8_t occ = 12;                    // DP occlusion penalty (8 bits); 12 by measurement (docs/evaluation.md)
+  uint8_t occ = 8;                     // DP occlusion penalty (8 bits); 8 by measurement (docs/evaluation.md)
   std::array<uint8_t, 32> sw_table{};  // 2-bit weight codes by |dI| >> 3 (set by defaults())
   uint8_t filter_enable = 7;           // bit n enables post-processing filter n+1
   uint8_t obj_near = 32;               // objects: disparity >= obj_near is "near"

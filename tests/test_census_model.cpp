@@ -1,7 +1,9 @@
 // Model unit tests of census_transform and hamming_cost against independent truth:
 // hand-computed vectors and costs, a naive per-bit reference, brightness invariance
 // and the known disparity of a shifted random texture.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <opencv2/core.hpp>
 #include <random>
 
 #include "census.hpp"
@@ -30,8 +32,8 @@ sm::CensusVec naive_census(const sm::Image8& im, int x, int y, int census) {
   for (int dy = -r; dy <= r; ++dy)
     for (int dx = -r; dx <= r; ++dx) {
       if (dx == 0 && dy == 0) continue;
-      const int nx = x + dx, ny = y + dy;
-      if (nx >= 0 && nx < im.w && ny >= 0 && ny < im.h && im.at(nx, ny) < im.at(x, y))
+      const int nx = std::clamp(x + dx, 0, im.w - 1), ny = std::clamp(y + dy, 0, im.h - 1);
+      if (im.at(nx, ny) < im.at(x, y))
         v[k / 64] |= uint64_t{1} << (k % 64);
       ++k;
     }
@@ -49,11 +51,16 @@ TEST_CASE("census of a hand-made 5x5 patch", "[census]") {
   // centre 50: smaller are 10 20 30 40 (k 0-3), 0 5 (k 14, 15), 45 (k 17), 49 (k 19),
   // 1 2 (k 22, 23); equal neighbours (50) give 0
   CHECK(c.at(2, 2) == sm::CensusVec{0xCAC00Full, 0, 0, 0});
-  // corner (4, 4) = 2: only the 1 at dx = -1, dy = 0 (k 11) is smaller; the rest of the
-  // window is outside the image and gives 0
-  CHECK(c.at(4, 4) == sm::CensusVec{0x800ull, 0, 0, 0});
-  // corner (0, 0) = 10: every in-image neighbour is larger
+  // corner (4, 4) = 2: the 1 at (3, 4) is the only smaller pixel; an outside neighbour
+  // is the nearest inside pixel, so rows dy = 1, 2 repeat row 4: k 11 (dx -1, dy 0), then
+  // k 15 and k 20 (dx -1, dy 1 and 2); columns dx = 1, 2 repeat the centre (bit 0)
+  CHECK(c.at(4, 4) == sm::CensusVec{0x108800ull, 0, 0, 0});
+  // corner (0, 0) = 10: every neighbour, inside or clamped, is larger or the centre
   CHECK(c.at(0, 0) == sm::CensusVec{0, 0, 0, 0});
+  // (0, 2) = 110: columns dx = -2, -1 repeat column 0, so each row reads columns
+  // 0, 0, 0, 1, 2: rows 0, 1, 3, 4 are all smaller (10 10 10 20 30, 60 60 60 70 80,
+  // 0 0 0 5 50, 49 49 49 51 50); in the centre row (110 110 c 120 50) only the 50
+  CHECK(c.at(0, 2) == sm::CensusVec{0xFFFFFFull & ~(0x7ull << 10), 0, 0, 0});
 }
 
 TEST_CASE("census matches the per-bit definition for every window size", "[census]") {
@@ -139,4 +146,30 @@ TEST_CASE("minimum cost finds the shift of a random texture", "[cost]") {
     }
   CHECK(unique >= checked * 97 / 100);
   CHECK(checked > 500);
+}
+
+TEST_CASE("census border equals a census of the replicate-padded image (OpenCV)", "[census]") {
+  // Independent truth for the border rule: cv::copyMakeBorder(BORDER_REPLICATE) pads the
+  // image, and the plain census of the padded image's inside pixels has no border at all.
+  for (int census : {3, 7, 15}) {
+    const int r = (census - 1) / 2;
+    const auto im = random_image(21, 17, 300 + census, census == 7 ? 9 : 255);
+    cv::Mat m(im.h, im.w, CV_8U, const_cast<uint8_t*>(im.px.data())), pad;
+    cv::copyMakeBorder(m, pad, r, r, r, r, cv::BORDER_REPLICATE);
+    const auto c = sm::census_transform(im, config(census));
+    for (int y = 0; y < im.h; ++y)
+      for (int x = 0; x < im.w; ++x) {
+        sm::CensusVec v{0, 0, 0, 0};
+        int k = 0;
+        for (int dy = -r; dy <= r; ++dy)
+          for (int dx = -r; dx <= r; ++dx) {
+            if (dx == 0 && dy == 0) continue;
+            if (pad.at<uint8_t>(y + r + dy, x + r + dx) < pad.at<uint8_t>(y + r, x + r))
+              v[static_cast<size_t>(k / 64)] |= uint64_t{1} << (k % 64);
+            ++k;
+          }
+        INFO("census " << census << " x " << x << " y " << y);
+        REQUIRE(c.at(x, y) == v);
+      }
+  }
 }

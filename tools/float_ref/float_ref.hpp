@@ -28,14 +28,16 @@ struct Simplify {
   bool no_spatial = false;     // drop the spatial term exp(-dist/gp)
   bool norm_round = false;     // A rounded to an integer: the model's RECIP formula when the
                                // weights are integers, else round to nearest
-  bool census_border = false;  // census: a neighbour outside the image gives bit 0 (model);
-                               // off: the nearest pixel inside (clamped coordinates)
+  bool census_border = false;  // census: a neighbour outside the image gives bit 0 (the
+                               // model before issue 21; not in all()); off: the nearest
+                               // pixel inside (clamped coordinates, the model)
   bool agg_border = false;     // aggregation: a neighbour outside the image has weight 0
                                // (model); off: clamped coordinates
   bool int_penalty = false;    // occlusion penalty: an integer 0..255 in the units of A
                                // (the model's 8-bit occ register)
   static Simplify none() { return {}; }
-  static Simplify all() { return {true, true, true, true, true, true, true, true}; }
+  // Every simplification the bit-exact model makes.
+  static Simplify all() { return {true, true, true, true, true, false, true, true}; }
   bool integer_weights() const { return (weight_quant || weight_table) && no_spatial; }
 };
 
