@@ -1,5 +1,8 @@
 // The compile-time configuration of the Verilated sm_top this program links against:
-// the SM_P_<NAME> definitions that sm_verilated() sets from the Verilog parameters.
+// the SM_P_<NAME> definitions that sm_verilated() sets from the Verilog parameters it
+// overrides. A parameter left at its Verilog default keeps HwConfig's default, which
+// test_regmap checks against sm_top.v's parameter list, so no field of HwConfig can
+// silently differ from the RTL this program simulates.
 #pragma once
 
 #include "sm_types.hpp"
@@ -14,6 +17,15 @@ inline HwConfig verilated_config() {
   hw.census = SM_P_CENSUS;
   hw.sw = SM_P_SW;
   hw.rect_radius = SM_P_RECT_RADIUS;
+#ifdef SM_P_COST_SHIFT
+  hw.cost_shift = SM_P_COST_SHIFT;
+#endif
+#ifdef SM_P_MAX_OBJECTS
+  hw.max_objects = SM_P_MAX_OBJECTS;
+#endif
+#ifdef SM_P_LABEL_SLOTS
+  hw.label_slots = SM_P_LABEL_SLOTS;
+#endif
   return hw;
 }
 

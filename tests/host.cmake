@@ -27,6 +27,7 @@ sm_host_test(tb_outfmt_paper sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=320 FIFO_D
 add_executable(test_regmap ${SM_HOST_TESTS}/test_regmap.cpp)
 target_include_directories(test_regmap PRIVATE ${SM_GEN_DIR})
 target_link_libraries(test_regmap PRIVATE sm_model Catch2::Catch2)
+target_compile_definitions(test_regmap PRIVATE SM_RTL_DIR="${SM_RTL_DIR}")
 target_compile_options(test_regmap PRIVATE ${SM_WARNINGS})
 add_dependencies(test_regmap sm_regmap_gen_files)
 add_test(NAME test_regmap COMMAND test_regmap)

@@ -4,7 +4,11 @@
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
+#include <fstream>
+#include <map>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "sm_regmap.hpp"
@@ -111,4 +115,24 @@ TEST_CASE("the grid window holds the spec's grid", "[regmap]") {
   }
   // MAX_OBJECTS up to the model's limit fits the object window
   CHECK(4 * (rm::kObjFirstIdx + rm::kObjWords * 64) <= rm::kObjSize);
+}
+
+TEST_CASE("HwConfig defaults are sm_top's parameter defaults", "[regmap]") {
+  // sim/sm_vconfig.hpp relies on this for every parameter a build does not override.
+  std::ifstream f(SM_RTL_DIR "/sm_top.v");
+  REQUIRE(f);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str();
+  const std::regex re(R"(parameter\s+([A-Z_]+)\s*=\s*([0-9]+))");
+  std::map<std::string, int> p;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
+    p[(*it)[1].str()] = std::stoi((*it)[2].str());
+  const sm::HwConfig hw;
+  const std::map<std::string, int> model = {
+      {"MAX_WIDTH", hw.max_width},     {"MAX_HEIGHT", hw.max_height},   {"DISP", hw.disp},
+      {"CENSUS", hw.census},           {"SW", hw.sw},                   {"RECT_RADIUS", hw.rect_radius},
+      {"COST_SHIFT", hw.cost_shift},   {"MAX_OBJECTS", hw.max_objects}, {"LABEL_SLOTS", hw.label_slots}};
+  // every HwConfig field is a parameter of sm_top with the same default, and back
+  CHECK(p == model);
 }
