@@ -33,8 +33,7 @@ sm::CensusVec naive_census(const sm::Image8& im, int x, int y, int census) {
     for (int dx = -r; dx <= r; ++dx) {
       if (dx == 0 && dy == 0) continue;
       const int nx = std::clamp(x + dx, 0, im.w - 1), ny = std::clamp(y + dy, 0, im.h - 1);
-      if (im.at(nx, ny) < im.at(x, y))
-        v[k / 64] |= uint64_t{1} << (k % 64);
+      if (im.at(nx, ny) < im.at(x, y)) v[k / 64] |= uint64_t{1} << (k % 64);
       ++k;
     }
   return v;
