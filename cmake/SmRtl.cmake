@@ -6,7 +6,9 @@
 #   into the executable target. The target gets SM_VTOP / SM_VTOP_H naming the model
 #   class and header, and SM_P_<NAME>=<VALUE> for every parameter. OPT_FAST / OPT_SLOW
 #   are extra compiler flags for the generated files Verilator marks as run every
-#   cycle / run once (construction, initial blocks, trace declarations).
+#   cycle / run once (construction, initial blocks, trace declarations). With
+#   -DSM_COVERAGE=ON the model has line and toggle coverage and the target (and its
+#   users) get SM_COVERAGE=1 (tests/common/sm_coverage.hpp).
 #
 # verilate() lists the generated C++ files when CMake configures, and runs Verilator
 # again at configure time only when its command line changes. An RTL edit that changes
@@ -30,6 +32,9 @@ function(sm_verilated)
   set(args ${SM_VERILATOR_ARGS})
   if(V_TRACE_DEPTH)
     list(APPEND args --trace-depth ${V_TRACE_DEPTH})
+  endif()
+  if(SM_COVERAGE)
+    list(APPEND args --coverage-line --coverage-toggle)
   endif()
   set(defs SM_VTOP=V${V_TARGET} SM_VTOP_H="V${V_TARGET}.h")
   foreach(p ${V_PARAMS})
@@ -55,6 +60,10 @@ function(sm_verilated)
   verilate(${V_TARGET} SOURCES ${SM_RTL_DIR}/${V_TOP}.v TOP_MODULE ${V_TOP}
            PREFIX V${V_TARGET} VERILATOR_ARGS ${args} ${extra})
   target_compile_definitions(${V_TARGET} PRIVATE ${defs})
+  if(SM_COVERAGE)
+    # tests/common/sm_coverage.hpp writes the data; PUBLIC: also the users of a library
+    target_compile_definitions(${V_TARGET} PUBLIC SM_COVERAGE=1)
+  endif()
 endfunction()
 
 # sm_rtl_test(NAME <test> TOP <module> SOURCES <tb.cpp ...> [PARAMS ...] [LABELS ...]

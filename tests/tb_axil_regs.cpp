@@ -21,6 +21,7 @@
 #include SM_VTOP_H
 #include "sm_regmap.hpp"
 #include "sm_types.hpp"
+#include "sm_coverage.hpp"
 
 namespace rm = sm::regmap;
 using Top = SM_VTOP;
@@ -54,6 +55,7 @@ uint32_t obj_word(uint32_t idx) { return 0x5A000000u ^ (idx * 0x00010203u) ^ (id
 struct Dut {
   std::unique_ptr<VerilatedContext> ctx{new VerilatedContext};
   std::unique_ptr<Top> top;
+  sm::CoverageOnExit cov{ctx.get()};  // after top: written before top is deleted
   std::mt19937 rng{12345};
   uint64_t cycle = 0;
   int frame_starts = 0;

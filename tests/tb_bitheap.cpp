@@ -16,6 +16,7 @@
 #include <verilated.h>
 
 #include "sm_port.hpp"
+#include "sm_coverage.hpp"
 
 namespace {
 
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
 
   auto ctx = std::make_unique<VerilatedContext>();
   auto top = std::make_unique<SM_VTOP>(ctx.get());
+  sm::CoverageOnExit cov{ctx.get()};
   const size_t want_bytes = (static_cast<size_t>(total) * kL + 31) / 32 * 4;
   if (sizeof(top->bits) != want_bytes && !(want_bytes <= 8 && sizeof(top->bits) <= 8)) {
     fmt::print(stderr, "tb_bitheap: bits port has {} bytes, the heights need {}\n", sizeof(top->bits), want_bytes);

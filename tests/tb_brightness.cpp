@@ -11,6 +11,7 @@
 #include "beat_schedule.hpp"
 #include "pre.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 #include SM_VTOP_H
 
 using sm::test::BeatInfo;
@@ -48,6 +49,7 @@ int main() {
   }
 
   sm::Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   auto& top = tb.top();
   top.rst_n = 0;
   top.ce = 1;

@@ -12,6 +12,7 @@
 #include "census.hpp"
 #include "sm_port.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 
 namespace {
 
@@ -57,6 +58,7 @@ int main() {
   const auto sched = sm::test::make_schedule(w, heights, r + 2);
 
   sm::Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   sm::test::CeGen ce_gen(0xce11u, 30);
   sm::test::OutputOrder order(w, heights);
   tb->width = w;

@@ -13,6 +13,7 @@
 #include "census.hpp"
 #include "sm_port.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 
 namespace {
 
@@ -65,6 +66,7 @@ int main() {
   const auto sched = sm::test::make_schedule(w, heights, 1);
 
   sm::Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   sm::test::CeGen ce_gen(0xc057u, 30);
   sm::test::OutputOrder order(w, heights);
   tb->width = w;

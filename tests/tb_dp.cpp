@@ -15,6 +15,7 @@
 #include "dp.hpp"
 #include "sm_port.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 
 namespace {
 
@@ -115,6 +116,7 @@ int main(int argc, char** argv) {
   auto& grng = ce_gen.rng();
 
   sm::Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   std::vector<uint8_t> garbage(kDisp);
   auto random_cost = [&]() {
     for (auto& g : garbage) g = static_cast<uint8_t>(grng() % (cmax + 1));

@@ -37,6 +37,7 @@
 #include "sm_regs_io.hpp"
 #include "sm_tb.hpp"
 #include "sm_vconfig.hpp"
+#include "sm_coverage.hpp"
 #include SM_VTOP_H
 
 namespace {
@@ -599,6 +600,7 @@ class FaultTb {
   static constexpr int kStuckBound = 6000;
   sm::HwConfig hw_;
   sm::Testbench<Top> tb_;
+  sm::CoverageOnExit cov_{tb_->contextp()};  // after tb_: written first
   std::mt19937 rng_;
   sm::AxilMaster<Top> axil_;
   SeqModel model_;

@@ -15,6 +15,7 @@
 #include "beat_schedule.hpp"
 #include "post.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 
 using namespace sm;
 using namespace sm::test;
@@ -116,6 +117,7 @@ int main(int argc, char** argv) {
   const auto sched = make_schedule(w, heights, 2);
 
   Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   tb->rst_n = 0;
   tb->out_rst_n = 0;
   tb->ce = 1;

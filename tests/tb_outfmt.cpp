@@ -20,6 +20,7 @@
 
 #include SM_VTOP_H
 #include "beat_schedule.hpp"
+#include "sm_coverage.hpp"
 
 using Top = SM_VTOP;
 using sm::test::BeatInfo;
@@ -80,6 +81,7 @@ int main(int argc, char** argv) {
   auto ctx = std::make_unique<VerilatedContext>();
   ctx->randReset(0);
   auto top = std::make_unique<Top>(ctx.get());
+  sm::CoverageOnExit cov{ctx.get()};
   auto tick = [&] {
     top->clk = 0;
     top->eval();

@@ -13,6 +13,7 @@
 #include <verilated.h>
 
 #include "sm_port.hpp"
+#include "sm_coverage.hpp"
 
 namespace {
 
@@ -24,6 +25,7 @@ constexpr int kL = SM_P_L;
 int main() {
   auto ctx = std::make_unique<VerilatedContext>();
   auto top = std::make_unique<SM_VTOP>(ctx.get());
+  sm::CoverageOnExit cov{ctx.get()};
   std::mt19937 rng(0x91a7e5u);
   long passed = 0, failed = 0;
   for (int round = 0; round < 200; ++round) {

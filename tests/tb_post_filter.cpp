@@ -12,6 +12,7 @@
 #include "beat_schedule.hpp"
 #include "post.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 
 using namespace sm;
 using namespace sm::test;
@@ -79,6 +80,7 @@ int main(int argc, char** argv) {
     }
 
   Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   tb->rst_n = 0;
   tb->ce = 1;
   tb->width = w;

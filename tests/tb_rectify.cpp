@@ -18,6 +18,7 @@
 #include "calib_file.hpp"
 #include "pre.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 #include SM_VTOP_H
 
 using sm::test::BeatInfo;
@@ -104,6 +105,7 @@ int main() {
   }
 
   sm::Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   CeGen ce_gen(7, 30);
   std::mt19937 garbage(99);
   auto& top = tb.top();

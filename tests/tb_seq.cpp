@@ -16,6 +16,7 @@
 
 #include SM_VTOP_H
 #include "beat_schedule.hpp"
+#include "sm_coverage.hpp"
 
 using Top = SM_VTOP;
 
@@ -192,6 +193,7 @@ RunOut run(std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, ui
   auto ctx = std::make_unique<VerilatedContext>();
   ctx->randReset(0);
   auto top = std::make_unique<Top>(ctx.get());
+  sm::CoverageOnExit cov{ctx.get()};
   std::mt19937 rng(seed);
   sm::test::CeGen room(seed * 7 + 1, ce_idle_percent);
   auto tick = [&] {

@@ -20,6 +20,7 @@
 #include "beat_schedule.hpp"
 #include "sm_port.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 
 namespace {
 
@@ -157,6 +158,7 @@ int main(int argc, char** argv) {
     if (sched[i].frame >= 0 && sched[i].x == 0 && sched[i].y == 0) frame_start[static_cast<size_t>(sched[i].frame)] = i;
 
   sm::Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   if (!trace.empty() && !tb.open_trace(trace)) fmt::print("note: model built without tracing, --trace ignored\n");
   sm::test::CeGen ceg(seed * 7919u + 1u, idle);
   std::mt19937& grng = ceg.rng();

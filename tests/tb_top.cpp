@@ -21,6 +21,7 @@
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
 #include "sm_vconfig.hpp"
+#include "sm_coverage.hpp"
 #include SM_VTOP_H
 
 namespace {
@@ -86,6 +87,7 @@ int main(int argc, char** argv) {
     if (mode == "calib") apply_calib(sm::load_calib(arg), regs);
 
     sm::Testbench<SM_VTOP> tb;
+    sm::CoverageOnExit cov{tb->contextp()};
     sm::SimEngine<SM_VTOP> sim(tb);
     sim.reset();
     sm::write_registers(sim.axil(), regs, hw);

@@ -11,6 +11,7 @@
 #include SM_VTOP_H
 #include "beat_schedule.hpp"
 #include "sm_tb.hpp"
+#include "sm_coverage.hpp"
 
 using sm::test::BeatInfo;
 
@@ -61,6 +62,7 @@ int main() {
   // H = 1 and 2 are shorter than the window; 0 virtual rows puts frames back to back.
   const auto sched = build(w, {{6, 0}, {1, 0}, {2, 1}, {9, 0}, {3, 2}, {kDRows + 1, 0}, {5, kDRows + 2}}, &heights);
   sm::Testbench<SM_VTOP> tb;
+  sm::CoverageOnExit cov{tb->contextp()};
   sm::test::CeGen ce_gen(0x5eed1u, 30);
   std::mt19937 rng(7);
   tb->width = w;
