@@ -14,6 +14,18 @@ int clog2(long v) {  // ceil(log2(v)), as Verilog's $clog2
 
 int HwConfig::cost_bits() const { return clog2((census_bits() >> cost_shift) + 1); }
 
+std::map<std::string, int> HwConfig::parameters() const {
+  return {{"MAX_WIDTH", max_width},
+          {"MAX_HEIGHT", max_height},
+          {"DISP", disp},
+          {"CENSUS", census},
+          {"SW", sw},
+          {"RECT_RADIUS", rect_radius},
+          {"COST_SHIFT", cost_shift},
+          {"MAX_OBJECTS", max_objects},
+          {"LABEL_SLOTS", label_slots}};
+}
+
 void HwConfig::validate() const {
   auto bad = [](const std::string& m) { throw std::invalid_argument(m); };
   if (max_width < 16 || max_width > 4095) bad(fmt::format("max_width {} outside 16..4095", max_width));

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -81,6 +82,8 @@ struct HwConfig {
   int min_width() const { return disp / 2 + 3 > 16 ? disp / 2 + 3 : 16; }
   int cost_bits() const;  // width of the aggregated cost (see algorithm.md)
   void validate() const;  // throws std::invalid_argument on an illegal combination
+  // Every field by its sm_top parameter name (the one list of them in C++).
+  std::map<std::string, int> parameters() const;
 };
 
 // Rectification map as a coarse grid of source coordinates (docs/algorithm.md, stage 2).

@@ -87,35 +87,16 @@ module sm_census #(
   // A neighbour outside the image takes the nearest inside pixel (coordinates clamped,
   // row and column independently). Its bit is then the bit of that inside window
   // position, compared with the same centre, so the clamp selects comparison bits
-  // instead of 8-bit pixels: rows first (a row outside the image takes the bits of the
-  // first, or last, row inside), then columns of those row-clamped bits. The masks are
-  // contiguous runs that hold the centre, so "first row inside" is the one row whose
-  // bit is set while the one above is clear: a one-hot select shared by every column.
+  // instead of 8-bit pixels (sm_edge_clamp): rows first (a row outside the image takes
+  // the bits of the first, or last, row inside), then columns of those row-clamped bits.
   wire [7:0]     ctr_l = win[R*CWW + R*16 +: 8];
   wire [7:0]     ctr_r = win[R*CWW + R*16 + 8 +: 8];
   wire [C*C-1:0] lt_l, lt_r;  // window position (r, j) at bit r*C + j
-  wire [C-1:0]   row_top, row_bot, col_lft, col_rgt;  // one-hot first / last inside
   wire [C*C-1:0] rc_l, rc_r;  // row-clamped bits
   wire [C*C-1:0] cc_l, cc_r;  // row- and column-clamped bits
   wire [CB-1:0]  cl_bits;
   wire [CB-1:0]  cr_bits;
   generate
-    for (r = 0; r < C; r = r + 1) begin : g_first
-      if (r >= 1 && r <= R) begin : g_top
-        assign row_top[r] = row_ok_q2[r] & ~row_ok_q2[r-1];
-        assign col_lft[r] = col_ok_q2[r] & ~col_ok_q2[r-1];
-      end else begin : g_no_top
-        assign row_top[r] = 1'b0;
-        assign col_lft[r] = 1'b0;
-      end
-      if (r >= R && r <= C - 2) begin : g_bot
-        assign row_bot[r] = row_ok_q2[r] & ~row_ok_q2[r+1];
-        assign col_rgt[r] = col_ok_q2[r] & ~col_ok_q2[r+1];
-      end else begin : g_no_bot
-        assign row_bot[r] = 1'b0;
-        assign col_rgt[r] = 1'b0;
-      end
-    end
     for (r = 0; r < C; r = r + 1) begin : g_cmp_row
       for (j = 0; j < C; j = j + 1) begin : g_cmp_col
         assign lt_l[r*C + j] = win[j*CWW + r*16 +: 8] < ctr_l;
@@ -123,42 +104,19 @@ module sm_census #(
       end
     end
     for (j = 0; j < C; j = j + 1) begin : g_rclamp
-      wire [C-1:0] col_l, col_r;  // column j's bits by row
+      wire [C-1:0] col_l, col_r, q_l, q_r;  // column j by row
       for (r = 0; r < C; r = r + 1) begin : g_gather
-        assign col_l[r] = lt_l[r*C + j];
-        assign col_r[r] = lt_r[r*C + j];
+        assign col_l[r]       = lt_l[r*C + j];
+        assign col_r[r]       = lt_r[r*C + j];
+        assign rc_l[r*C + j]  = q_l[r];
+        assign rc_r[r*C + j]  = q_r[r];
       end
-      wire top_l = |(row_top & col_l), top_r = |(row_top & col_r);
-      wire bot_l = |(row_bot & col_l), bot_r = |(row_bot & col_r);
-      for (r = 0; r < C; r = r + 1) begin : g_sel
-        if (r < R) begin : g_up
-          assign rc_l[r*C + j] = row_ok_q2[r] ? col_l[r] : top_l;
-          assign rc_r[r*C + j] = row_ok_q2[r] ? col_r[r] : top_r;
-        end else if (r > R) begin : g_dn
-          assign rc_l[r*C + j] = row_ok_q2[r] ? col_l[r] : bot_l;
-          assign rc_r[r*C + j] = row_ok_q2[r] ? col_r[r] : bot_r;
-        end else begin : g_mid
-          assign rc_l[r*C + j] = col_l[r];
-          assign rc_r[r*C + j] = col_r[r];
-        end
-      end
+      sm_edge_clamp #(.N(C)) u_l (.ok(row_ok_q2), .bits(col_l), .q(q_l));
+      sm_edge_clamp #(.N(C)) u_r (.ok(row_ok_q2), .bits(col_r), .q(q_r));
     end
     for (r = 0; r < C; r = r + 1) begin : g_cclamp
-      wire [C-1:0] row_l = rc_l[r*C +: C], row_r = rc_r[r*C +: C];
-      wire lft_l = |(col_lft & row_l), lft_r = |(col_lft & row_r);
-      wire rgt_l = |(col_rgt & row_l), rgt_r = |(col_rgt & row_r);
-      for (j = 0; j < C; j = j + 1) begin : g_sel
-        if (j < R) begin : g_lf
-          assign cc_l[r*C + j] = col_ok_q2[j] ? row_l[j] : lft_l;
-          assign cc_r[r*C + j] = col_ok_q2[j] ? row_r[j] : lft_r;
-        end else if (j > R) begin : g_rt
-          assign cc_l[r*C + j] = col_ok_q2[j] ? row_l[j] : rgt_l;
-          assign cc_r[r*C + j] = col_ok_q2[j] ? row_r[j] : rgt_r;
-        end else begin : g_mid
-          assign cc_l[r*C + j] = row_l[j];
-          assign cc_r[r*C + j] = row_r[j];
-        end
-      end
+      sm_edge_clamp #(.N(C)) u_l (.ok(col_ok_q2), .bits(rc_l[r*C +: C]), .q(cc_l[r*C +: C]));
+      sm_edge_clamp #(.N(C)) u_r (.ok(col_ok_q2), .bits(rc_r[r*C +: C]), .q(cc_r[r*C +: C]));
     end
     // raster order with the centre skipped; the centre's own bit (always 0) is dropped
     assign cl_bits = {cc_l[C*C-1:R*C+R+1], cc_l[R*C+R-1:0]};

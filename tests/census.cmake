@@ -6,6 +6,13 @@ sm_rtl_test(NAME tb_win_ctrl_3x3 TOP sm_win_ctrl SOURCES ${CMAKE_CURRENT_LIST_DI
 sm_rtl_test(NAME tb_win_ctrl_rows TOP sm_win_ctrl SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_win_ctrl.cpp
             PARAMS MAX_WIDTH=64 D_ROWS=4 D_COLS=0 R_UP=3 R_DN=3 R_L=0 R_R=0)
 
+# The census border clamp along one window line: every inside run, the 3x3 and 7x7
+# windows of the small tests and the paper's 15x15.
+foreach(n 3 7 15)
+  sm_rtl_test(NAME tb_edge_clamp_${n} TOP sm_edge_clamp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_edge_clamp.cpp
+              PARAMS N=${n})
+endforeach()
+
 # Census and cost at a small point, width 37 (odd, below MAX_WIDTH).
 sm_rtl_test(NAME tb_census TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_census.cpp
             PARAMS MAX_WIDTH=64 CENSUS=7)

@@ -128,16 +128,6 @@ TEST_CASE("HwConfig defaults are sm_top's parameter defaults", "[regmap]") {
   std::map<std::string, int> p;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
     p[(*it)[1].str()] = std::stoi((*it)[2].str());
-  const sm::HwConfig hw;
-  const std::map<std::string, int> model = {{"MAX_WIDTH", hw.max_width},
-                                            {"MAX_HEIGHT", hw.max_height},
-                                            {"DISP", hw.disp},
-                                            {"CENSUS", hw.census},
-                                            {"SW", hw.sw},
-                                            {"RECT_RADIUS", hw.rect_radius},
-                                            {"COST_SHIFT", hw.cost_shift},
-                                            {"MAX_OBJECTS", hw.max_objects},
-                                            {"LABEL_SLOTS", hw.label_slots}};
   // every HwConfig field is a parameter of sm_top with the same default, and back
-  CHECK(p == model);
+  CHECK(p == sm::HwConfig{}.parameters());
 }

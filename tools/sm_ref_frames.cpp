@@ -85,15 +85,7 @@ int run(int argc, char** argv) {
 
   json j;
   j["generator"] = "sm_ref_frames";
-  j["hw"] = {{"MAX_WIDTH", hw.max_width},
-             {"MAX_HEIGHT", hw.max_height},
-             {"DISP", hw.disp},
-             {"CENSUS", hw.census},
-             {"SW", hw.sw},
-             {"RECT_RADIUS", hw.rect_radius},
-             {"COST_SHIFT", hw.cost_shift},
-             {"MAX_OBJECTS", hw.max_objects},
-             {"LABEL_SLOTS", hw.label_slots}};
+  j["hw"] = hw.parameters();
   j["width"] = r.width;
   j["height"] = r.height;
   namespace rm = sm::regmap;
