@@ -81,3 +81,88 @@ function(sm_add_sim target lib)
 endfunction()
 sm_add_sim(stereo_sim vtop_paper)
 sm_add_sim(stereo_sim_small vtop_small)
+
+# Wave builds (issue 22): sm_top traced at full depth, so that one block's internals can
+# be dumped at run time (stereo_sim --wave FILE.vcd|FILE.fst --wave-scope ... --wave-depth
+# ...). The plain builds above stay at trace depth 1: a full-depth trace slows the model
+# even with no trace open, so the wave builds are separate executables. Verilator 5.006
+# writes one trace format per model (--trace or --trace-fst), so a wave library holds
+# one model of the same RTL per format and stereo_sim picks the model by the file's
+# extension. Their per-cycle code is built at -O1 (compile time; a debugging run needs no
+# top speed). docs/verification.md, "Waves".
+set(SM_WAVE_FORMATS "vcd;fst" CACHE STRING "Trace formats of the stereo_sim wave builds: vcd, fst or both")
+option(SM_WAVE_PAPER "Build stereo_sim_wave (paper configuration, full-depth trace) with the default target" OFF)
+find_package(ZLIB REQUIRED)  # FST
+# Verilator's trace runtime (5.006, and still 5.048) reads its std::vector<bool> of enabled
+# trace codes past the end when dumpvars() selects signals: traceInit() calls reserve()
+# where resize() is meant, so codes above about twice the last enabled one come out
+# enabled at random; the FST writer then crashes on a code it never declared and the VCD
+# writer writes values of undeclared identifiers. The wave libraries compile the VCD and
+# FST runtime from copies whose verilated_trace_imp.h has that one line fixed.
+set(_sm_trace_fix ${CMAKE_BINARY_DIR}/verilator_trace_fix)
+set(_sm_vinc ${VERILATOR_ROOT}/include)
+file(READ ${_sm_vinc}/verilated_trace_imp.h _sm_imp)
+set(_sm_bad "m_sigs_enabledVec.reserve(nextCode());")
+string(FIND "${_sm_imp}" "${_sm_bad}" _sm_at)
+if(_sm_at EQUAL -1)
+  message(STATUS "verilated_trace_imp.h: no reserve() to fix, the wave builds use Verilator's trace runtime as it is")
+  set(_sm_trace_fix "")
+else()
+  string(REPLACE "${_sm_bad}" "m_sigs_enabledVec.resize(nextCode());  // sm: was reserve()" _sm_imp "${_sm_imp}")
+  file(WRITE ${_sm_trace_fix}/verilated_trace_imp.h.new "${_sm_imp}")
+  configure_file(${_sm_trace_fix}/verilated_trace_imp.h.new ${_sm_trace_fix}/verilated_trace_imp.h COPYONLY)
+  # the copies include "verilated_trace_imp.h" from their own folder first
+  foreach(f verilated_vcd_c.cpp verilated_fst_c.cpp)
+    configure_file(${_sm_vinc}/${f} ${_sm_trace_fix}/${f} COPYONLY)
+  endforeach()
+endif()
+function(sm_vtop_wave lib)
+  add_library(${lib} STATIC ${CMAKE_SOURCE_DIR}/sim/sm_vtop_anchor.cpp)
+  set(vargs ${SM_VERILATOR_ARGS})
+  set(defs VM_TRACE=1)
+  foreach(p ${ARGN})
+    list(APPEND vargs -G${p})
+    string(REPLACE "=" ";" kv ${p})
+    list(GET kv 0 k)
+    list(GET kv 1 v)
+    list(APPEND defs SM_P_${k}=${v})
+  endforeach()
+  set(n 0)
+  foreach(fmt ${SM_WAVE_FORMATS})
+    if(fmt STREQUAL "vcd")
+      set(tr TRACE)
+      list(APPEND defs VM_TRACE_VCD=1 SM_WAVE_VCD=V${lib}_vcd SM_WAVE_VCD_H="V${lib}_vcd.h")
+    elseif(fmt STREQUAL "fst")
+      set(tr TRACE_FST)
+      list(APPEND defs VM_TRACE_FST=1 SM_WAVE_FST=V${lib}_fst SM_WAVE_FST_H="V${lib}_fst.h")
+    else()
+      message(FATAL_ERROR "SM_WAVE_FORMATS: '${fmt}' is not vcd or fst")
+    endif()
+    verilate(${lib} SOURCES ${SM_RTL_DIR}/sm_top.v TOP_MODULE sm_top PREFIX V${lib}_${fmt}
+             VERILATOR_ARGS ${vargs} ${tr} OPT_SLOW -O1 OPT_FAST -O1)
+    math(EXPR n "${n} + 1")
+  endforeach()
+  if(n EQUAL 0)
+    message(FATAL_ERROR "SM_WAVE_FORMATS is empty")
+  endif()
+  if(_sm_trace_fix)
+    get_target_property(srcs ${lib} SOURCES)
+    list(TRANSFORM srcs REPLACE "^${_sm_vinc}/verilated_(vcd|fst)_c\\.cpp$" "${_sm_trace_fix}/verilated_\\1_c.cpp")
+    set_target_properties(${lib} PROPERTIES SOURCES "${srcs}")
+  endif()
+  add_dependencies(${lib} sm_regmap_gen_files)
+  target_compile_definitions(${lib} INTERFACE ${defs})
+  target_link_libraries(${lib} PUBLIC ZLIB::ZLIB)
+endfunction()
+
+# sm_add_sim_wave(<target> <params...>): stereo_sim on a wave library.
+function(sm_add_sim_wave target)
+  sm_vtop_wave(${target}_lib ${ARGN})
+  sm_add_sim(${target} ${target}_lib)
+  target_compile_definitions(${target} PRIVATE SM_WAVE_BUILD=1)
+endfunction()
+sm_add_sim_wave(stereo_sim_small_wave ${SM_SMALL_PARAMS})
+sm_add_sim_wave(stereo_sim_wave ${SM_PAPER_PARAMS})
+if(NOT SM_WAVE_PAPER)
+  set_target_properties(stereo_sim_wave stereo_sim_wave_lib PROPERTIES EXCLUDE_FROM_ALL ON)
+endif()

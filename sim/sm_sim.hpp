@@ -67,6 +67,7 @@ struct VcdWindow {
   int line = 0;         // ... and this input line
   uint64_t cycles = 0;  // dump this many cycles (0: use lines)
   int lines = 4;        // or this many input line periods
+  TraceScope scope;     // the signals dumped (default: every traced signal)
 };
 
 template <class Top>
@@ -138,7 +139,8 @@ class SimEngine {
       // VCD window: opens when the camera reaches the chosen frame/line.
       if (!vcd.path.empty() && !vcd_on && vcd_end == 0 && f == static_cast<size_t>(vcd.frame) && y == vcd.line &&
           x == 0) {
-        if (!tb_.open_trace(vcd.path)) throw std::runtime_error("this simulator was built without tracing (--trace)");
+        if (!tb_.open_trace(vcd.path, 99, vcd.scope))
+          throw std::runtime_error("this simulator was built without tracing (--trace)");
         vcd_on = true;
         vcd_end = tb_.cycles() + (vcd.cycles ? vcd.cycles : vcd.lines * line_period);
       }

@@ -1,16 +1,37 @@
 // Small test-bench wrapper around a Verilated top: tick() evaluates both clock edges,
-// dumps the trace when one is open, and advances time. Traces are opt-in.
+// dumps the trace when one is open, and advances time. Traces are opt-in; the trace
+// format (VCD or FST) is the one the model was Verilated with (--trace / --trace-fst).
 #pragma once
 
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include <verilated.h>
 #if VM_TRACE
 #include <verilated_vcd_c.h>
+#if VM_TRACE_FST
+#include <verilated_fst_c.h>
+#else
+class VerilatedFstC;
+#endif
 #endif
 
 namespace sm {
+
+// Which signals a trace holds: every traced signal (no scopes), or those in the scopes'
+// subtrees (Verilog names with '.', e.g. "TOP.sm_top.u_dp"), each `depth` levels deep (1:
+// the scope's own signals, 2: and its children's, ...; 0: every level). Verilator's
+// dumpvars(level, hier), the $dumpvars of Verilog.
+struct TraceScope {
+  struct Scope {
+    std::string name;
+    int depth = 0;
+  };
+  std::vector<Scope> scopes;
+};
 
 namespace detail {
 // The clock input is `clk` on blocks and `aclk` on the AXI top level.
@@ -22,6 +43,14 @@ template <class T>
 auto clock_of(T& t, long) -> decltype((t.clk)) {
   return t.clk;
 }
+#if VM_TRACE
+// The trace file class of a model: VerilatedVcdC for --trace, VerilatedFstC for --trace-fst.
+template <class T, class = void>
+struct traces_vcd : std::false_type {};
+template <class T>
+struct traces_vcd<T, std::void_t<decltype(std::declval<T&>().trace(static_cast<VerilatedVcdC*>(nullptr), 0))>>
+    : std::true_type {};
+#endif
 }  // namespace detail
 
 template <class Top>
@@ -42,19 +71,38 @@ class Testbench {
   Top& top() { return *top_; }
   uint64_t cycles() const { return cycles_; }
 
-  // Open a VCD file; returns false when the model was built without --trace.
-  bool open_trace(const std::string& path, int depth = 99) {
+#if VM_TRACE
+  using TraceFile = std::conditional_t<detail::traces_vcd<Top>::value, VerilatedVcdC, VerilatedFstC>;
+  static constexpr const char* kTraceFormat = detail::traces_vcd<Top>::value ? "vcd" : "fst";
+#else
+  static constexpr const char* kTraceFormat = "";
+#endif
+
+  // Open a trace file (the model's format) holding the signals `sel` chooses; returns
+  // false when the model was built without tracing.
+  bool open_trace(const std::string& path, int depth = 99, const TraceScope& sel = {}) {
 #if VM_TRACE
     ctx_->traceEverOn(true);
-    trace_ = std::make_unique<VerilatedVcdC>();
+    trace_ = std::make_unique<TraceFile>();
+    for (const auto& s : sel.scopes) trace_->dumpvars(s.depth > 0 ? s.depth : 1 << 20, s.name);
     top_->trace(trace_.get(), depth);
     trace_->open(path.c_str());
     return trace_->isOpen();
 #else
     (void)path;
     (void)depth;
+    (void)sel;
     return false;
 #endif
+  }
+  // Open a trace of the signals `sel` chooses at `path` and close it with no value dumped
+  // (the clock does not move): the file declares what a trace of `sel` would hold.
+  // Verilator 5.006's FST writer crashes on a dump with no signal enabled and writes no
+  // readable file without one: a probe should enable a signal that always exists.
+  bool probe_trace(const std::string& path, const TraceScope& sel) {
+    if (!open_trace(path, 99, sel)) return false;
+    close_trace();
+    return true;
   }
   void close_trace() {
 #if VM_TRACE
@@ -95,7 +143,7 @@ class Testbench {
   std::unique_ptr<VerilatedContext> ctx_;
   std::unique_ptr<Top> top_;
 #if VM_TRACE
-  std::unique_ptr<VerilatedVcdC> trace_;
+  std::unique_ptr<TraceFile> trace_;
 #endif
   uint64_t cycles_ = 0;
 };

@@ -4,7 +4,9 @@
 // model, and reports cycles, the 30 frames/s budget, accuracy and area. Every run-time
 // register can be set (--regs) and changed frame by frame (--regs-at): the harness writes
 // the changes over AXI4-Lite while the camera streams, as a host would; the report lists
-// each frame's object packet and the status read back at the end.
+// each frame's object packet and the status read back at the end. A wave window
+// (--wave FILE.vcd|FILE.fst) dumps sm_top's signals, or one block's (--wave-scope, in the
+// full-depth wave builds stereo_sim_wave / stereo_sim_small_wave).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -21,6 +23,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <tuple>
+#include <unistd.h>
 
 #include "calib_file.hpp"
 #include "pipeline.hpp"
@@ -30,7 +33,17 @@
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
 #include "sm_vconfig.hpp"
+#include "sm_wave_names.hpp"
+#if SM_WAVE_BUILD
+#ifdef SM_WAVE_VCD
+#include SM_WAVE_VCD_H
+#endif
+#ifdef SM_WAVE_FST
+#include SM_WAVE_FST_H
+#endif
+#else
 #include SM_VTOP_H
+#endif
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -47,6 +60,62 @@ struct Input {
 };
 
 [[noreturn]] void fail(const std::string& msg) { throw std::runtime_error(msg); }
+
+template <class T>
+struct ModelTag {
+  using type = T;
+};
+
+// The wave formats this program writes, and what it traces.
+#if SM_WAVE_BUILD
+constexpr bool kWaveBuild = true;
+#ifdef SM_WAVE_VCD
+constexpr bool kWaveVcd = true;
+#else
+constexpr bool kWaveVcd = false;
+#endif
+#ifdef SM_WAVE_FST
+constexpr bool kWaveFst = true;
+#else
+constexpr bool kWaveFst = false;
+#endif
+constexpr const char* kTraced = "every signal of sm_top, at every depth";
+#else
+constexpr bool kWaveBuild = false;
+constexpr bool kWaveVcd = true;
+constexpr bool kWaveFst = false;
+constexpr const char* kTraced =
+    "sm_top's own signals only (trace depth 1); the blocks' internals and FST are in stereo_sim_wave / "
+    "stereo_sim_small_wave";
+#endif
+
+// A user's scope in Verilog form: "TOP.sm_top.u_dp", also "sm_top.u_dp" or "u_dp".
+std::string full_scope(const std::string& s) {
+  if (s == "TOP" || s.rfind("TOP.", 0) == 0) return s;
+  if (s == "sm_top" || s.rfind("sm_top.", 0) == 0) return "TOP." + s;
+  return "TOP.sm_top." + s;
+}
+
+// Whether a signal name (GTKWave's, '.'-separated) is inside `scope`: below it, or the
+// scope is the signal itself (dumpvars takes a signal's path too).
+bool in_scope(const std::string& name, const std::string& scope) {
+  if (name.rfind(scope, 0) != 0) return false;
+  const std::string rest = name.substr(scope.size());
+  return rest.empty() || rest[0] == '.' || (rest[0] == '[' && rest.find('.') == std::string::npos);
+}
+
+// A wave file is written under a temporary name and renamed when complete; a failed run
+// leaves none behind.
+struct PartFile {
+  std::string path, final_path;
+  bool done = false;
+  ~PartFile() {
+    if (!done && !path.empty()) {
+      std::error_code ec;
+      fs::remove(path, ec);
+    }
+  }
+};
 
 sm::Image8 to_size(const cv::Mat& grey, int w, int h, bool* resized) {
   cv::Mat g = grey;
@@ -200,7 +269,22 @@ int main(int argc, char** argv) {
   app.add_option("--clock-mhz", clock_mhz, "clock for the frames/s figure")
       ->check(CLI::Range(1.0e-3, 1.0e5))
       ->capture_default_str();
-  app.add_option("--vcd", vcd_path, "dump a VCD window to this file (e.g. waves/top.vcd)");
+  std::vector<std::string> wave_scopes;
+  int wave_depth = 0;
+  bool wave_list_scopes = false;
+  std::string wave_list;
+  auto* o_wave = app.add_option("--wave,--vcd", vcd_path,
+                                fmt::format("dump a wave window to this file, .vcd{} (e.g. waves/top.vcd); traced: {}",
+                                            kWaveFst ? " or .fst" : "", kTraced));
+  app.add_option("--wave-scope", wave_scopes,
+                 "dump only this scope's signals, e.g. TOP.sm_top.u_dp (also sm_top.u_dp or u_dp; repeatable)")
+      ->needs(o_wave);
+  app.add_option("--wave-depth", wave_depth,
+                 "levels below each --wave-scope: 1 = its own signals, 2 = and its children's, 0 = all")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  app.add_flag("--wave-scopes", wave_list_scopes, "list the scopes this simulator traces and exit");
+  app.add_option("--wave-list", wave_list, "list the signals of a .vcd/.fst file (GTKWave's names) and exit");
   app.add_option("--vcd-frame", vcd_frame, "VCD window: input frame")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
@@ -233,7 +317,35 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (wave_depth > 0 && wave_scopes.empty()) {
+    fmt::print(stderr, "stereo_sim: error: --wave-depth needs --wave-scope\n");
+    return 2;
+  }
   try {
+    if (!wave_list.empty()) {
+      for (const auto& n : sm::wave_signal_names(wave_list)) fmt::print("{}\n", n);
+      return 0;
+    }
+    // Verilator's dumpvars() needs the fixed trace runtime of the wave builds (sim/sim.cmake).
+    if (!wave_scopes.empty() && !kWaveBuild)
+      fail(
+          fmt::format("--wave-scope needs a wave build (stereo_sim_wave, stereo_sim_small_wave); this simulator "
+                      "traces {}",
+                      kTraced));
+    for (auto& s : wave_scopes) s = full_scope(s);
+    std::string wave_fmt = kWaveVcd ? "vcd" : "fst";
+    if (!vcd_path.empty()) {
+      wave_fmt = sm::wave_extension(vcd_path);
+      if (wave_fmt != "vcd" && wave_fmt != "fst")
+        fail(fmt::format("--wave {}: the file name must end in .vcd or .fst", vcd_path));
+      if ((wave_fmt == "vcd" && !kWaveVcd) || (wave_fmt == "fst" && !kWaveFst))
+        fail(fmt::format("--wave {}: this simulator writes {} only ({})", vcd_path,
+                         kWaveVcd && kWaveFst ? ".vcd and .fst" : (kWaveVcd ? ".vcd" : ".fst"),
+                         kWaveBuild ? "built with SM_WAVE_FORMATS without it" : kTraced));
+      // No window from an earlier run is left to look like this run's when this one fails.
+      std::error_code ec;
+      fs::remove(vcd_path, ec);
+    }
     sm::tools::quiet_opencv();
     // ---- registers (before any input is read: a bad file simulates nothing) ----
     sm::Regs base = sm::Regs::defaults(hw);
@@ -368,10 +480,10 @@ int main(int argc, char** argv) {
     regs.resize(nframes);
 
     // ---- simulate ----
-    sm::Testbench<SM_VTOP> tb;
-    sm::SimEngine<SM_VTOP> sim(tb);
-    sim.reset();
-    sm::write_registers(sim.axil(), regs[0], hw);
+    if (!vcd_path.empty() && vcd_frame >= static_cast<int>(nframes))
+      fail(fmt::format("--vcd-frame {}: the input has only {} frame(s)", vcd_frame, nframes));
+    if (!vcd_path.empty() && vcd_line >= height)
+      fail(fmt::format("--vcd-line {}: the active height is {}", vcd_line, height));
     std::vector<sm::FrameHostPlan> plan;
     const std::vector<sm::HostOp> host = sm::plan_register_schedule(regs, hw, late_regs, &plan);
     sm::CameraTiming timing;
@@ -379,46 +491,116 @@ int main(int argc, char** argv) {
     timing.hblank = hblank;
     timing.vblank_lines = vblank;
     timing.pixel_clock_hz = pixel_clock;
-    sm::VcdWindow vw;
-    if (!vcd_path.empty()) {
-      fs::create_directories(fs::path(vcd_path).parent_path().empty() ? fs::path(".")
-                                                                      : fs::path(vcd_path).parent_path());
-      vw.path = vcd_path;
-      vw.frame = vcd_frame;
-      vw.line = vcd_line;
-      vw.lines = vcd_lines;
-      vw.cycles = vcd_cycles;
-    }
-    const auto t0 = std::chrono::steady_clock::now();
-    sim.on_frame = [&](size_t done, size_t total) {
-      if (quiet) return;
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      fmt::print(stderr, "\rsimulated frame {}/{} ({:.1f} s)", done, total, s);
-      if (done == total) fmt::print(stderr, "\n");
-    };
-    const sm::SimResult res = sim.run(in.frames, width, height, timing, vw, 0, &host);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // What the host reads back at the end: STATUS and the error registers.
+    sm::SimResult res;
     json status;
     std::vector<std::string> status_lines;
-    for (const auto& reg : sm::regmap::registers()) {
-      const std::string name = reg.name;
-      if (name != "STATUS" && name.rfind("ERR_", 0) != 0) continue;
-      unsigned resp = 0;
-      const uint32_t word = sim.axil().read(reg.addr, &resp);
-      if (resp != 0) fail(fmt::format("status read of {} refused", name));
-      json j = {{"word", word}};
-      std::string line = fmt::format("{:<13} 0x{:08x}", name, word);
-      for (int i = 0; i < reg.num_fields; ++i) {
-        const auto& fd = sm::regmap::fields()[static_cast<size_t>(reg.first_field + i)];
-        const std::string fname = std::string(fd.name).substr(name.size() + 1);
-        const uint32_t v = (word & fd.mask()) >> fd.lsb;
-        j[fname] = v;
-        line += fmt::format("  {} {}", fname, v);
+    double wall = 0;
+    PartFile part;
+    const auto simulate = [&](auto tag) {
+      using Top = typename decltype(tag)::type;
+      sm::Testbench<Top> tb;
+      // Each scope must hold at least one traced signal: a trace of it alone is written
+      // and read back before the run (no clock moves), and --wave-scopes lists them all.
+      if (wave_list_scopes || !wave_scopes.empty()) {
+        const fs::path dir = vcd_path.empty() ? fs::temp_directory_path() : fs::path(vcd_path).parent_path();
+        if (!dir.empty()) fs::create_directories(dir);
+        const std::string probe =
+            ((dir.empty() ? fs::path(".") : dir) / fmt::format(".stereo_sim_probe_{}.{}", ::getpid(), wave_fmt))
+                .string();
+        PartFile probe_guard{probe, "", false};
+        // The top level's own signals (its ports) are always in the probe.
+        auto names_of = [&](sm::TraceScope sel) {
+          if (!sel.scopes.empty()) sel.scopes.push_back({"TOP", 1});
+          if (!tb.probe_trace(probe, sel)) fail("this simulator was built without tracing");
+          return sm::wave_signal_names(probe);
+        };
+        if (wave_list_scopes) {
+          std::vector<std::string> scopes;
+          for (const auto& n : names_of({})) {
+            for (size_t p = n.find('.'); p != std::string::npos; p = n.find('.', p + 1))
+              scopes.push_back(n.substr(0, p));
+          }
+          std::sort(scopes.begin(), scopes.end());
+          scopes.erase(std::unique(scopes.begin(), scopes.end()), scopes.end());
+          for (const auto& sc : scopes) fmt::print("{}\n", sc);
+          return false;
+        }
+        for (const auto& sc : wave_scopes) {
+          const auto names = names_of({{{sc, wave_depth}}});
+          if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return in_scope(n, sc); }))
+            fail(
+                fmt::format("--wave-scope {}: no traced signal in this scope (this simulator traces {}; "
+                            "--wave-scopes lists its scopes)",
+                            sc, kTraced));
+        }
       }
-      status[name] = j;
-      status_lines.push_back(line);
-    }
+      sm::SimEngine<Top> sim(tb);
+      sim.reset();
+      sm::write_registers(sim.axil(), regs[0], hw);
+      sm::VcdWindow vw;
+      if (!vcd_path.empty()) {
+        const fs::path p(vcd_path);
+        fs::create_directories(p.parent_path().empty() ? fs::path(".") : p.parent_path());
+        // Written as <stem>.part.<ext>, renamed when the window is complete.
+        part.final_path = vcd_path;
+        part.path = (p.parent_path() / (p.stem().string() + ".part" + p.extension().string())).string();
+        std::error_code ec;
+        fs::remove(part.path, ec);
+        vw.path = part.path;
+        vw.frame = vcd_frame;
+        vw.line = vcd_line;
+        vw.lines = vcd_lines;
+        vw.cycles = vcd_cycles;
+        for (const auto& sc : wave_scopes) vw.scope.scopes.push_back({sc, wave_depth});
+      }
+      const auto t0 = std::chrono::steady_clock::now();
+      sim.on_frame = [&](size_t done, size_t total) {
+        if (quiet) return;
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        fmt::print(stderr, "\rsimulated frame {}/{} ({:.1f} s)", done, total, s);
+        if (done == total) fmt::print(stderr, "\n");
+      };
+      res = sim.run(in.frames, width, height, timing, vw, 0, &host);
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      tb.close_trace();
+      if (!part.path.empty()) {
+        if (!fs::exists(part.path)) fail(fmt::format("--wave {}: the window never opened", vcd_path));
+        fs::rename(part.path, part.final_path);
+        part.done = true;
+      }
+      // What the host reads back at the end: STATUS and the error registers.
+      for (const auto& reg : sm::regmap::registers()) {
+        const std::string name = reg.name;
+        if (name != "STATUS" && name.rfind("ERR_", 0) != 0) continue;
+        unsigned resp = 0;
+        const uint32_t word = sim.axil().read(reg.addr, &resp);
+        if (resp != 0) fail(fmt::format("status read of {} refused", name));
+        json j = {{"word", word}};
+        std::string line = fmt::format("{:<13} 0x{:08x}", name, word);
+        for (int i = 0; i < reg.num_fields; ++i) {
+          const auto& fd = sm::regmap::fields()[static_cast<size_t>(reg.first_field + i)];
+          const std::string fname = std::string(fd.name).substr(name.size() + 1);
+          const uint32_t v = (word & fd.mask()) >> fd.lsb;
+          j[fname] = v;
+          line += fmt::format("  {} {}", fname, v);
+        }
+        status[name] = j;
+        status_lines.push_back(line);
+      }
+      return true;
+    };
+    bool ran = false;
+#if SM_WAVE_BUILD
+#ifdef SM_WAVE_FST
+    if (wave_fmt == "fst") ran = simulate(ModelTag<SM_WAVE_FST>{});
+#endif
+#ifdef SM_WAVE_VCD
+    if (wave_fmt == "vcd") ran = simulate(ModelTag<SM_WAVE_VCD>{});
+#endif
+#else
+    ran = simulate(ModelTag<SM_VTOP>{});
+#endif
+    if (!ran) return 0;  // --wave-scopes
 
     // ---- check against the model ----
     json rep;
