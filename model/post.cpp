@@ -137,6 +137,30 @@ DispImage post_vmedian(const DispImage& in, const HwConfig& hw) { return post_me
 DispImage post_median3(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 1, 1); }
 DispImage post_median53(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 2, 1); }
 
+DispImage post_band(const DispImage& in, const HwConfig& hw, int k) {
+  if (k < 0) throw std::invalid_argument("post_band: negative look-ahead");
+  const int dmask = (1 << clog2(hw.disp)) - 1;
+  auto d = [dmask](DispPix p) { return static_cast<int>(p) & dmask; };
+  // Output words as the medians': valid -> 0x8000 | d, invalid -> 0x0000.
+  auto norm = [&](DispPix p) { return disp_valid(p) ? make_disp(static_cast<unsigned>(d(p)), true) : DispPix{0}; };
+  DispImage out(in.w, in.h);
+  for (int x = 0; x < in.w && in.h > 0; ++x) out.at(x, 0) = norm(in.at(x, 0));
+  for (int y = 1; y < in.h; ++y)
+    for (int x = 0; x < in.w; ++x) {
+      const DispPix a = out.at(x, y - 1), c = in.at(x, y);
+      out.at(x, y) = norm(c);
+      if (!disp_valid(a) || !disp_valid(c) || std::abs(d(c) - d(a)) <= 1) continue;
+      for (int j = 1; j <= k && y + j < in.h; ++j) {
+        const DispPix b = in.at(x, y + j);
+        if (disp_valid(b) && std::abs(d(b) - d(a)) <= 1) {
+          out.at(x, y) = a;
+          break;
+        }
+      }
+    }
+  return out;
+}
+
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps) {
   DispImage cur = in;
   if (steps) steps->clear();

@@ -25,6 +25,16 @@ DispImage post_vmedian(const DispImage& in, const HwConfig& hw);   // filter 1: 
 DispImage post_median3(const DispImage& in, const HwConfig& hw);   // filter 2: 3 x 3
 DispImage post_median53(const DispImage& in, const HwConfig& hw);  // filter 3: 5 x 3
 
+// Recursive band filter (issue 21 streak study, docs/evaluation.md "Streak study"; not part
+// of the chain, not in the RTL): top to bottom, a = the output at (x, y-1), c = the input at
+// (x, y), d(p) = the low clog2(DISP) bits. When a and c are valid, |d(c) - d(a)| > 1 and some
+// input row y+j (1 <= j <= k, inside the frame) is valid with |d(in(x, y+j)) - d(a)| <= 1,
+// the output is a (a band of at most k rows between rows that agree is replaced from
+// above); otherwise it is c. Row 0 is c. Output words as the medians': 0x8000 | d when
+// valid, 0x0000 when invalid (so DW + 1 bits per stored word are exact). k = 0: no change
+// but that normalisation.
+DispImage post_band(const DispImage& in, const HwConfig& hw, int k);
+
 // Filter n runs when bit n-1 of regs.filter_enable is set; a disabled filter passes its
 // input unchanged. `steps` (optional) receives the image after each of the three steps.
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,

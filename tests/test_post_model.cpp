@@ -274,3 +274,47 @@ TEST_CASE("object packet format", "[unit][objects]") {
   CHECK(p == want);
   CHECK(object_packet(ObjectList{}, false) == std::vector<uint32_t>{0xA5000000u});
 }
+
+TEST_CASE("band filter: hand-computed columns", "[unit][post]") {
+  const HwConfig hw = small_hw();  // DISP 64: disparity bits 5:0
+  // One column per case, rows top to bottom ('-' = invalid 7).
+  const std::vector<std::vector<int>> in = {
+      {5, 5, 9, 9, 5, 5, 5, 5},     // 0: two-row band between rows of 5 -> all 5 (k >= 2)
+      {5, 5, 20, 20, 20, 5, 5, 5},  // 1: three-row band: kept at k = 2, replaced at k = 3
+      {5, 5, 6, 6, 9, 6, 5, 5},     // 2: 6 is within 1 of 5 (kept); row 4: a = 6, row 5 = 6 -> 6
+      {5, 5, 9, 9, 6, 9, 9, 9},     // 3: returns to 6 (within 1 of a = 5): rows 2, 3 -> 5
+      {5, 5, 9, -1, 5, 9, 9, 9},    // 4: the invalid row never agrees; row 2 -> 5 (row 4);
+                                    //    row 3 invalid stays; rows 5.. never return
+      {5, 5, 5, 5, 5, 5, 9, 9},     // 5: a band at the bottom has no row to return to
+      {9, 5, 5, 5, 5, 5, 5, 5},     // 6: row 0 passes unchanged
+  };
+  const int w = static_cast<int>(in.size()), h = 8;
+  DispImage m(w, h);
+  for (int x = 0; x < w; ++x)
+    for (int y = 0; y < h; ++y) m.at(x, y) = in[x][y] < 0 ? make_disp(7, false) : make_disp(in[x][y], true);
+  auto col = [&](const DispImage& o, int x) {
+    std::vector<int> c;
+    for (int y = 0; y < h; ++y) c.push_back(disp_valid(o.at(x, y)) ? static_cast<int>(disp_value(o.at(x, y))) : -1);
+    return c;
+  };
+  const DispImage k2 = post_band(m, hw, 2), k3 = post_band(m, hw, 3), k1 = post_band(m, hw, 1);
+  CHECK(col(k2, 0) == std::vector<int>{5, 5, 5, 5, 5, 5, 5, 5});
+  CHECK(col(k1, 0) == std::vector<int>{5, 5, 9, 9, 5, 5, 5, 5});  // row 2: row 3 is 9 -> kept
+  CHECK(col(k2, 1) == in[1]);
+  CHECK(col(k3, 1) == std::vector<int>{5, 5, 5, 5, 5, 5, 5, 5});
+  CHECK(col(k2, 2) == std::vector<int>{5, 5, 6, 6, 6, 6, 5, 5});
+  CHECK(col(k2, 3) == std::vector<int>{5, 5, 5, 5, 6, 9, 9, 9});
+  CHECK(col(k2, 4) == std::vector<int>{5, 5, 5, -1, 5, 9, 9, 9});
+  CHECK(k2.at(4, 3) == 0);  // an invalid output is exactly 0x0000, like the medians'
+  CHECK(col(k3, 5) == in[5]);
+  CHECK(col(k3, 6) == in[6]);
+  DispImage norm = m;
+  norm.at(4, 3) = 0;
+  CHECK(post_band(m, hw, 0) == norm);
+  // the replacement is the output word above; bits above the disparity bits are dropped
+  CHECK(k2.at(0, 2) == k2.at(0, 1));
+  DispImage hi = m;
+  hi.at(0, 1) = static_cast<DispPix>(make_disp(5, true) | 0x40);  // bit 6: above DISP 64's bits
+  CHECK(post_band(hi, hw, 2).at(0, 1) == make_disp(5, true));
+  CHECK(post_band(hi, hw, 2).at(0, 2) == make_disp(5, true));
+}
