@@ -9,11 +9,12 @@
 //     to every matched cost A(x, d) of row y, with d_prev = this DP's own output of row
 //     y - back (back 1 = the ideal previous row, 2 = what sm_dp could feed, 3 = safe).
 // Every candidate is judged on all scenes at once (means over the whole dataset).
-//   sm_streak_study DATASET [--json out.json] [--groups dp,post,...] [--detail NAME ...]
+//   sm_streak_study DATASET [--json out.json] [--groups rband,dp,...] [--detail NAME,...] [--dump DIR]
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -360,12 +361,14 @@ struct Score {
 
 int main(int argc, char** argv) {
   CLI::App app{"Streak study (issue 21): bad-1.0 and the streak measure of the post chain and of candidates"};
-  std::string dataset, json_out;
+  std::string dataset, json_out, dump_dir;
   std::vector<std::string> groups, detail;
   app.add_option("dataset", dataset, "dataset folder (scene subfolders, ../shared/datasets layout)")->required();
   app.add_option("--json", json_out, "write every candidate's per-scene scores as JSON");
   app.add_option("--groups", groups, "only these candidate groups (base is always run)")->delimiter(',');
   app.add_option("--detail", detail, "print per-scene tables for these candidates (exact names)")->delimiter(',');
+  app.add_option("--dump", dump_dir,
+                 "write <scene>__<candidate>.png colour maps of the two base and --detail candidates");
   CLI11_PARSE(app, argc, argv);
   quiet_opencv();
 
@@ -373,6 +376,15 @@ int main(int argc, char** argv) {
   for (auto& c : candidates())
     if (c.group == "base" || groups.empty() || std::find(groups.begin(), groups.end(), c.group) != groups.end())
       cands.push_back(std::move(c));
+  std::vector<size_t> det_user;  // --detail candidates, checked before the long run
+  for (const auto& n : detail) {
+    auto it = std::find_if(cands.begin(), cands.end(), [&](const Candidate& c) { return c.name == n; });
+    if (it == cands.end()) {
+      fmt::print(stderr, "sm_streak_study: --detail: no candidate '{}'\n", n);
+      return 1;
+    }
+    det_user.push_back(static_cast<size_t>(it - cands.begin()));
+  }
 
   const std::vector<std::string> classic = {"cones", "teddy", "tsukuba", "venus"};
   std::vector<std::string> names;
@@ -403,6 +415,12 @@ int main(int argc, char** argv) {
         if (cands[c].name == "chain F1+F2+F3" && d != r.post)
           throw std::logic_error(s.name + ": chain differs from the model");
         const cv::Mat e = disp_to_float(d);
+        if (!dump_dir.empty() && (c < 2 || std::find(det_user.begin(), det_user.end(), c) != det_user.end())) {
+          std::string file = cands[c].name;
+          for (char& ch : file)
+            if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+          write_image_atomic(dump_dir + "/" + s.name + "__" + file + ".png", disp_to_colour(e, hw.disp));
+        }
         score[c].push_back({bad1(e, s.gt, s.nonocc).bad_pct(), streaks(e, s.gt, s.nonocc, 1).streak_pct(),
                             streaks(e, s.gt, s.nonocc, 5).streak_pct(), streaks(e, s.gt, s.nonocc, 8).streak_pct()});
       }
@@ -494,14 +512,7 @@ int main(int argc, char** argv) {
                mean(best, &Score::bad, false), mean(best, &Score::bad, true), mean(best, &Score::s1, false),
                mean(best, &Score::s5, false), mean(best, &Score::s8, false));
   }
-  for (const auto& n : detail) {
-    auto it = std::find_if(cands.begin(), cands.end(), [&](const Candidate& c) { return c.name == n; });
-    if (it == cands.end()) {
-      fmt::print(stderr, "sm_streak_study: --detail: no candidate '{}'\n", n);
-      return 1;
-    }
-    det.push_back(static_cast<size_t>(it - cands.begin()));
-  }
+  det.insert(det.end(), det_user.begin(), det_user.end());
   for (auto [title, m] : {std::pair<const char*, double Score::*>{"bad-1.0 %", &Score::bad},
                           {"streak-1 %", &Score::s1},
                           {"streak-5 %", &Score::s5},
