@@ -47,18 +47,10 @@ endif()
 # simulation time (wide internal vectors copied or assembled bit by bit).
 function(sm_vtop lib)
   add_library(${lib} STATIC ${CMAKE_SOURCE_DIR}/sim/sm_vtop_anchor.cpp)
-  # The run-once code (construction, initial blocks, trace declarations: about half of
-  # the generated C++) is built at -O1, which saves compile time and no run time.
+  # Four groups of per-cycle code: at -O3 the paper configuration's is the longest
+  # compile of the build, and the groups keep both cores busy with it.
   sm_verilated(TARGET ${lib} TOP sm_top PARAMS ${ARGN} TRACE TRACE_DEPTH 1 THREADS ${SM_SIM_THREADS}
-               OPT_SLOW -O1 OPT_FAST ${_sm_sim_cxxflags})
-  add_dependencies(${lib} sm_regmap_gen_files)
-  get_target_property(defs ${lib} COMPILE_DEFINITIONS)
-  # The copy taken here still has verilate()'s tracing-off defaults: the harness must see
-  # the library's real VM_TRACE to open VCDs.
-  list(FILTER defs EXCLUDE REGEX "^VM_TRACE")
-  target_compile_definitions(${lib} INTERFACE ${defs} VM_TRACE=1 VM_TRACE_VCD=1 VM_TRACE_FST=0)
-  get_target_property(incs ${lib} INCLUDE_DIRECTORIES)
-  target_include_directories(${lib} INTERFACE ${incs})
+               FAST_GROUPS 4 OPT_FAST ${_sm_sim_cxxflags})
   if(_sm_sim_pgo_link)
     target_link_options(${lib} INTERFACE ${_sm_sim_pgo_link})
   endif()
@@ -92,61 +84,31 @@ sm_add_sim(stereo_sim_small vtop_small)
 # top speed). docs/verification.md, "Waves".
 set(SM_WAVE_FORMATS "vcd;fst" CACHE STRING "Trace formats of the stereo_sim wave builds: vcd, fst or both")
 option(SM_WAVE_PAPER "Build stereo_sim_wave (paper configuration, full-depth trace) with the default target" OFF)
-find_package(ZLIB REQUIRED)  # FST
-# Verilator's trace runtime (5.006, and still 5.048) reads its std::vector<bool> of enabled
-# trace codes past the end when dumpvars() selects signals: traceInit() calls reserve()
-# where resize() is meant, so codes above about twice the last enabled one come out
-# enabled at random; the FST writer then crashes on a code it never declared and the VCD
-# writer writes values of undeclared identifiers. The wave libraries compile the VCD and
-# FST runtime from copies whose verilated_trace_imp.h has that one line fixed.
-set(_sm_trace_fix ${CMAKE_BINARY_DIR}/verilator_trace_fix)
-set(_sm_vinc ${VERILATOR_ROOT}/include)
-file(READ ${_sm_vinc}/verilated_trace_imp.h _sm_imp)
-set(_sm_bad "m_sigs_enabledVec.reserve(nextCode());")
-string(FIND "${_sm_imp}" "${_sm_bad}" _sm_at)
-if(_sm_at EQUAL -1)
-  message(STATUS "verilated_trace_imp.h: no reserve() to fix, the wave builds use Verilator's trace runtime as it is")
-  set(_sm_trace_fix "")
-else()
-  string(REPLACE "${_sm_bad}" "m_sigs_enabledVec.resize(nextCode());  // sm: was reserve()" _sm_imp "${_sm_imp}")
-  file(WRITE ${_sm_trace_fix}/verilated_trace_imp.h.new "${_sm_imp}")
-  configure_file(${_sm_trace_fix}/verilated_trace_imp.h.new ${_sm_trace_fix}/verilated_trace_imp.h COPYONLY)
-  # the copies include "verilated_trace_imp.h" from their own folder first
-  foreach(f verilated_vcd_c.cpp verilated_fst_c.cpp)
-    configure_file(${_sm_vinc}/${f} ${_sm_trace_fix}/${f} COPYONLY)
-  endforeach()
-endif()
 function(sm_vtop_wave lib)
   add_library(${lib} STATIC ${CMAKE_SOURCE_DIR}/sim/sm_vtop_anchor.cpp)
-  set(vargs ${SM_VERILATOR_ARGS})
-  set(defs VM_TRACE=1)
+  set(vargs)
+  set(defs)
   sm_param_flags(vargs defs ${ARGN})
   set(n 0)
   foreach(fmt ${SM_WAVE_FORMATS})
     if(fmt STREQUAL "vcd")
       set(tr TRACE)
-      list(APPEND defs VM_TRACE_VCD=1 SM_WAVE_VCD=V${lib}_vcd SM_WAVE_VCD_H="V${lib}_vcd.h")
+      list(APPEND defs SM_WAVE_VCD=V${lib}_vcd SM_WAVE_VCD_H="V${lib}_vcd.h")
     elseif(fmt STREQUAL "fst")
       set(tr TRACE_FST)
-      list(APPEND defs VM_TRACE_FST=1 SM_WAVE_FST=V${lib}_fst SM_WAVE_FST_H="V${lib}_fst.h")
+      list(APPEND defs SM_WAVE_FST=V${lib}_fst SM_WAVE_FST_H="V${lib}_fst.h")
     else()
       message(FATAL_ERROR "SM_WAVE_FORMATS: '${fmt}' is not vcd or fst")
     endif()
-    verilate(${lib} SOURCES ${SM_RTL_DIR}/sm_top.v TOP_MODULE sm_top PREFIX V${lib}_${fmt}
-             VERILATOR_ARGS ${vargs} ${tr} OPT_SLOW -O1 OPT_FAST -O1)
+    sm_verilate_model(${lib} TOP sm_top PREFIX V${lib}_${fmt} VERILATOR_ARGS ${vargs} ${tr})
     math(EXPR n "${n} + 1")
   endforeach()
   if(n EQUAL 0)
     message(FATAL_ERROR "SM_WAVE_FORMATS is empty")
   endif()
-  if(_sm_trace_fix)
-    get_target_property(srcs ${lib} SOURCES)
-    list(TRANSFORM srcs REPLACE "^${_sm_vinc}/verilated_(vcd|fst)_c\\.cpp$" "${_sm_trace_fix}/verilated_\\1_c.cpp")
-    set_target_properties(${lib} PROPERTIES SOURCES "${srcs}")
-  endif()
-  add_dependencies(${lib} sm_regmap_gen_files)
-  target_compile_definitions(${lib} INTERFACE ${defs})
-  target_link_libraries(${lib} PUBLIC ZLIB::ZLIB)
+  # a debugging run needs no top speed: the per-cycle code at -O1 (compile time)
+  target_compile_options(${lib} PRIVATE -O1)
+  target_compile_definitions(${lib} PUBLIC ${defs})
 endfunction()
 
 # sm_add_sim_wave(<target> <params...>): stereo_sim on a wave library.

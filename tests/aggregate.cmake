@@ -7,7 +7,6 @@ catch_discover_tests(test_aggregate_model PROPERTIES LABELS unit)
 
 # Block tests: odd width 37, three frames back to back, 30 % idle cycles.
 set(_agg_tb ${CMAKE_CURRENT_LIST_DIR}/tb_sw_aggregate.cpp)
-set_source_files_properties(${_agg_tb} PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
 sm_rtl_test(NAME tb_sw_aggregate_sw3 TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 SW=3 COST_SHIFT=2
             ARGS --width 37 --heights 9 6 11)
@@ -19,8 +18,6 @@ sm_rtl_test(NAME tb_sw_aggregate_paper TOP sm_sw_aggregate SOURCES ${_agg_tb}
             ARGS --width 317 --heights 6 5 --seed 3 LABELS "rtl;slow")
 foreach(_t tb_sw_aggregate_sw3 tb_sw_aggregate_sw5 tb_sw_aggregate_paper)
   target_link_libraries(${_t} PRIVATE CLI11::CLI11)
-  # The test bench is built with warnings on; Verilator's own headers are not ours.
-  target_include_directories(${_t} SYSTEM PRIVATE ${VERILATOR_ROOT}/include)
 endforeach()
 # Full MAX_WIDTH line (last column of the line buffer) with the paper-point binary.
 add_test(NAME tb_sw_aggregate_paper_w320

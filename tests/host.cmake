@@ -6,12 +6,6 @@ function(sm_host_test name top src)
   sm_rtl_test(NAME ${name} TOP ${top} SOURCES ${SM_HOST_TESTS}/${src} ${ARGN})
   add_dependencies(${name} sm_regmap_gen_files)
 endfunction()
-# Warnings on the test benches only (not on the Verilator runtime compiled alongside);
-# verilated_types.h itself trips -Wunused-parameter.
-set_source_files_properties(${SM_HOST_TESTS}/tb_axil_regs.cpp ${SM_HOST_TESTS}/tb_seq.cpp
-                            ${SM_HOST_TESTS}/tb_outfmt.cpp
-                            PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS};-Wno-unused-parameter")
-
 sm_host_test(tb_axil_regs sm_axil_regs tb_axil_regs.cpp
              PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 MAX_OBJECTS=4)
 sm_host_test(tb_axil_regs_paper sm_axil_regs tb_axil_regs.cpp

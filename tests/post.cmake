@@ -3,9 +3,6 @@ add_executable(test_post_model ${CMAKE_CURRENT_LIST_DIR}/test_post_model.cpp)
 target_link_libraries(test_post_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
 target_include_directories(test_post_model PRIVATE ${OpenCV_INCLUDE_DIRS})
 target_compile_options(test_post_model PRIVATE ${SM_WARNINGS})
-set_source_files_properties(${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
-                            ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
-                            PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
 catch_discover_tests(test_post_model PROPERTIES LABELS unit)
 
 set(_post_filters vmed med3 med53)

@@ -10,7 +10,7 @@ target_include_directories(tb_faults PRIVATE ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOU
                                              ${SM_GEN_DIR})
 target_link_libraries(tb_faults PRIVATE vtop_small sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
 set_source_files_properties(${CMAKE_SOURCE_DIR}/tests/tb_faults.cpp
-                            PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS};-Wno-unused-parameter")
+                            PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
 # The main run: ~1000 input steps mixing every fault class (a few seconds).
 add_test(NAME robust_faults COMMAND tb_faults ${SM_SCENE_SMALL_DIR} 1000 20240611 nosoft)
 # A second seed: different fault positions.

@@ -10,27 +10,6 @@ target_compile_options(sm_regmap_gen PRIVATE ${SM_WARNINGS})
 
 set(SM_REGMAP_JSON ${SM_RTL_DIR}/regmap.json)
 
-# verilate() runs Verilator at configure time, so sm_regmap.vh must exist before any
-# Verilated target is declared: build the generator with try_compile and run it now as
-# well. Editing the json or the generator re-runs the configure step.
-set(SM_REGMAP_BOOT ${CMAKE_BINARY_DIR}/regmap_boot/sm_regmap_gen_boot)
-try_compile(SM_REGMAP_BOOT_OK ${CMAKE_BINARY_DIR}/regmap_boot/build
-            SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/sm_regmap_gen.cpp
-            LINK_LIBRARIES nlohmann_json::nlohmann_json fmt::fmt CLI11::CLI11
-            CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON
-            OUTPUT_VARIABLE SM_REGMAP_BOOT_LOG
-            COPY_FILE ${SM_REGMAP_BOOT})
-if(NOT SM_REGMAP_BOOT_OK)
-  message(FATAL_ERROR "tools/sm_regmap_gen.cpp does not compile:\n${SM_REGMAP_BOOT_LOG}")
-endif()
-execute_process(COMMAND ${SM_REGMAP_BOOT} ${SM_REGMAP_JSON} ${SM_GEN_DIR}
-                RESULT_VARIABLE SM_REGMAP_RC ERROR_VARIABLE SM_REGMAP_ERR)
-if(NOT SM_REGMAP_RC EQUAL 0)
-  message(FATAL_ERROR "register map generation failed: ${SM_REGMAP_ERR}")
-endif()
-set_property(DIRECTORY ${CMAKE_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
-             ${SM_REGMAP_JSON} ${CMAKE_CURRENT_SOURCE_DIR}/sm_regmap_gen.cpp)
-
 set(SM_REGMAP_OUTPUTS ${SM_GEN_DIR}/sm_regmap.vh ${SM_GEN_DIR}/sm_regmap.hpp
                       ${SM_GEN_DIR}/registers.md)
 add_custom_command(
