@@ -33,7 +33,6 @@ target_compile_definitions(tb_cost_paper PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
 add_executable(test_census_model ${CMAKE_CURRENT_LIST_DIR}/test_census_model.cpp)
 target_link_libraries(test_census_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
 target_compile_options(test_census_model PRIVATE ${SM_WARNINGS})
-target_compile_definitions(test_census_model PRIVATE CATCH_CONFIG_MAIN)
 add_test(NAME test_census_model COMMAND test_census_model)
 set_tests_properties(test_census_model PROPERTIES LABELS unit TIMEOUT 120)
 

@@ -37,4 +37,4 @@ add_custom_target(sm_cocotb_ref ALL DEPENDS ${_cb}/ref_small.json sm_regmap_gen_
 add_test(NAME system_cocotb_small
          COMMAND ${SM_VENV}/bin/python ${CMAKE_SOURCE_DIR}/tests/cocotb/run_sm_top.py --ref ${_cb}/ref_small.json
                  --gen-dir ${SM_GEN_DIR} --build-dir ${_cb}/sm_top_small)
-set_tests_properties(system_cocotb_small PROPERTIES LABELS "system" TIMEOUT 600)
+set_tests_properties(system_cocotb_small PROPERTIES LABELS "system" TIMEOUT 600 COST 60)  # builds its model

@@ -1,7 +1,6 @@
 // Unit tests of the support-weight aggregation model (docs/algorithm.md, section 5)
 // against independent truth: hand-computed cases, OpenCV box filters, and the
 // reciprocal as a rounded floating-point division.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <cmath>

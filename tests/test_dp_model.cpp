@@ -1,7 +1,6 @@
 // Unit tests of the trellis DP model (docs/algorithm.md, section 6) against
 // independent truth: exhaustive path enumeration on tiny lines, and hand-built cost
 // volumes whose optimal matching is known.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <algorithm>

@@ -9,7 +9,6 @@
 // comparisons and ties of the DP are the model's: the disparities must be bit-identical,
 // and are checked with ==, not with a tolerance. With any simplification off no equality
 // with the model is claimed.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <random>

@@ -1,6 +1,5 @@
 // Model tests of the post-processing (docs/algorithm.md sections 7-8) against
 // independent truth: hand-computed cases, OpenCV's medianBlur and connectedComponents.
-#define CATCH_CONFIG_MAIN
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>

@@ -1,6 +1,5 @@
 // Model tests of the pre-processing stages (docs/algorithm.md, sections 1-2) and the
 // calibration file, against hand-computed answers and OpenCV.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>

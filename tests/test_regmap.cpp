@@ -1,7 +1,6 @@
 // Unit tests of the generated register map (sm_regmap.hpp from rtl/regmap.json) against
 // independent truth: the model's defaults (sm::Regs::defaults), the spec's grid size
 // (sm::RectGrid), field widths from docs/algorithm.md and hand-computed addresses.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
 #include <fstream>

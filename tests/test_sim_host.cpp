@@ -3,7 +3,6 @@
 // that frame's registers, and the same run with every change one frame late fails), the
 // object list of report.json against the model (and the too-many flag), bad register
 // files, and the #22 outputs: lossless disparity files, resized ground truth, ranges.
-#define CATCH_CONFIG_MAIN
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

@@ -3,7 +3,6 @@
 // against the model itself, so these tests check what only the input side can get
 // wrong: which pair goes into which frame (the last frame's disparity must equal a run
 // of that pair alone), the video's left/right halves, and the errors on bad inputs.
-#define CATCH_CONFIG_MAIN
 
 #include <catch2/catch.hpp>
 #include <filesystem>

@@ -4,7 +4,6 @@
 // plain (depth-1) simulator refuses a block scope, and every GTKWave save file of
 // waves/gtkw names signals of a dump of its own scope (the exact names, bit ranges
 // included, at the paper configuration when stereo_sim_wave is built: SM_WAVE_PAPER).
-#define CATCH_CONFIG_MAIN
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

@@ -2,10 +2,8 @@
 # the command-line tools (bad inputs, outputs). They do not use ../shared.
 if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate AND TARGET sm_calibrate)
   set(SM_TOOLS_TEST_TMP ${CMAKE_CURRENT_BINARY_DIR}/tools_tmp)
-  add_library(sm_tools_catch_main OBJECT ${CMAKE_CURRENT_LIST_DIR}/test_tools_main.cpp)
-  target_link_libraries(sm_tools_catch_main PRIVATE Catch2::Catch2)
   foreach(t test_scene test_tools_io test_tools_cli)
-    add_executable(${t} ${CMAKE_CURRENT_LIST_DIR}/${t}.cpp $<TARGET_OBJECTS:sm_tools_catch_main>)
+    add_executable(${t} ${CMAKE_CURRENT_LIST_DIR}/${t}.cpp)
     target_link_libraries(${t} PRIVATE sm_toolio Catch2::Catch2 nlohmann_json::nlohmann_json)
     target_include_directories(${t} PRIVATE ${CMAKE_CURRENT_LIST_DIR}/common)
     target_compile_options(${t} PRIVATE ${SM_WARNINGS})
