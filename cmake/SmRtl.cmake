@@ -51,6 +51,29 @@ add_library(sm_verilated_vcd STATIC ${_sm_trace_src}/verilated_vcd_c.cpp)
 target_link_libraries(sm_verilated_vcd PUBLIC sm_verilated)
 add_library(sm_verilated_fst STATIC ${_sm_trace_src}/verilated_fst_c.cpp)
 target_link_libraries(sm_verilated_fst PUBLIC sm_verilated ZLIB::ZLIB)
+if(EXISTS ${_sm_vinc}/fstcpp)  # Verilator 5.04x's FST writer compresses with LZ4 as well
+  find_path(SM_LZ4_INCLUDE lz4.h REQUIRED)
+  find_library(SM_LZ4_LIB lz4 REQUIRED)
+  target_include_directories(sm_verilated_fst PRIVATE ${SM_LZ4_INCLUDE})
+  target_link_libraries(sm_verilated_fst PUBLIC ${SM_LZ4_LIB})
+endif()
+if(NOT EXISTS ${_sm_vinc}/gtkwave/fstapi.h)
+  # No FST reader in this Verilator (5.04x): sim/sm_wave_names.hpp reads FST files with
+  # GTKWave's fstapi from Debian's Verilator package (scripts/deps.sh installs it), copied
+  # into the build so that none of that Verilator's other headers are on the include path.
+  set(_sm_gtk /usr/share/verilator/include/gtkwave)
+  if(NOT EXISTS ${_sm_gtk}/fstapi.c)
+    message(FATAL_ERROR "${_sm_gtk}/fstapi.c not found: the FST reader comes from Debian's verilator package (scripts/deps.sh)")
+  endif()
+  foreach(f fstapi.c fstapi.h fastlz.c fastlz.h lz4.h fst_config.h fst_win_unistd.h wavealloca.h)
+    configure_file(${_sm_gtk}/${f} ${CMAKE_BINARY_DIR}/fst_reader/gtkwave/${f} COPYONLY)
+  endforeach()
+  add_library(sm_fst_reader STATIC ${CMAKE_SOURCE_DIR}/sim/sm_fst_reader.cpp)
+  target_include_directories(sm_fst_reader SYSTEM PUBLIC ${CMAKE_BINARY_DIR}/fst_reader)
+  target_include_directories(sm_fst_reader PRIVATE ${CMAKE_BINARY_DIR}/fst_reader/gtkwave)
+  target_link_libraries(sm_fst_reader PUBLIC ZLIB::ZLIB ${SM_LZ4_LIB} Threads::Threads)
+  target_link_libraries(sm_verilated_fst PUBLIC sm_fst_reader)
+endif()
 foreach(t sm_verilated_vcd sm_verilated_fst)
   target_include_directories(${t} PRIVATE ${_sm_trace_src})
 endforeach()
@@ -118,7 +141,7 @@ function(sm_verilate_model target)
   set(slow ${vdir}/${V_PREFIX}__sm_slow_0.cpp)
   add_custom_command(
     OUTPUT ${vdir}/${V_PREFIX}.h ${fast} ${slow}
-    COMMAND ${VERILATOR_BIN} ${args} ${SM_RTL_DIR}/${V_TOP}.v
+    COMMAND ${CMAKE_COMMAND} -E env VERILATOR_ROOT=${VERILATOR_ROOT} ${VERILATOR_BIN} ${args} ${SM_RTL_DIR}/${V_TOP}.v
     COMMAND ${CMAKE_COMMAND} -DVDIR=${vdir} -DPREFIX=${V_PREFIX} -DFAST=${V_FAST_GROUPS} -DSLOW=1
             -P ${CMAKE_SOURCE_DIR}/cmake/SmVerilatorGroup.cmake
     DEPENDS ${SM_RTL_FILES} ${VERILATOR_BIN} ${CMAKE_SOURCE_DIR}/cmake/SmVerilatorGroup.cmake

