@@ -30,11 +30,12 @@ int run(int argc, char** argv) {
   sm::tools::quiet_opencv();
   const auto scenes = sm::tools::list_scenes(dataset);
   if (scenes.empty()) throw sm::tools::ToolError(fmt::format("{}: no scene folders", dataset));
-  const char* names[] = {"DP alone", "+ 5x1 vertical median", "+ 3x3 median", "+ 5x3 median (output)"};
-  std::vector<double> sum(4, 0.0);
+  const char* names[] = {"DP alone", "+ band filter", "+ 5x1 vertical median", "+ 3x3 median", "+ 5x3 median (output)"};
+  constexpr int kSteps = 5;
+  std::vector<double> sum(kSteps, 0.0);
   nlohmann::json js;
-  fmt::print("| scene | size | {} | {} | {} | {} |\n|---|---|---|---|---|---|\n", names[0], names[1], names[2],
-             names[3]);
+  fmt::print("| scene | size | {} | {} | {} | {} | {} |\n|---|---|---|---|---|---|---|\n", names[0], names[1], names[2],
+             names[3], names[4]);
   for (const auto& dir : scenes) {
     const sm::tools::Scene sc = sm::tools::load_scene(dir);
     sm::HwConfig hw;
@@ -46,10 +47,10 @@ int run(int argc, char** argv) {
         sm::run_pipeline(sm::tools::to_image8(sc.left), sm::tools::to_image8(sc.right), hw, regs, false);
     std::vector<const sm::DispImage*> st{&r.dp};
     for (const auto& s : r.post_steps) st.push_back(&s);
-    if (st.size() != 4) throw sm::tools::ToolError("expected three post-processing steps");
+    if (st.size() != kSteps) throw sm::tools::ToolError("expected four post-processing steps");
     if (*st.back() != r.post) throw sm::tools::ToolError("last step differs from the output");
     std::string row = fmt::format("| {} | {}x{} |", sc.name, sc.left.cols, sc.left.rows);
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < kSteps; ++k) {
       const double b = sm::tools::bad1(sm::tools::disp_to_float(*st[k]), sc.gt, sc.nonocc).bad_pct();
       sum[k] += b;
       row += fmt::format(" {:.2f} |", b);
@@ -58,7 +59,7 @@ int run(int argc, char** argv) {
     fmt::print("{}\n", row);
   }
   std::string row = "| mean | |";
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < kSteps; ++k) {
     row += fmt::format(" {:.2f} |", sum[k] / scenes.size());
     js["mean"][names[k]] = sum[k] / scenes.size();
   }

@@ -22,7 +22,7 @@ struct PipelineResult {
   CostVolume agg;                     // aggregated costs (kept when keep_volumes)
   DispImage dp;                       // trellis DP output
   DispImage post;                     // after the enabled post-processing filters
-  std::vector<DispImage> post_steps;  // after each filter step (enabled or not)
+  std::vector<DispImage> post_steps;  // after each filter step F0..F3 (enabled or not)
   ObjectList objects;
   std::vector<std::pair<std::string, double>> stage_ms;  // wall time per stage
 };

@@ -164,6 +164,9 @@ DispImage post_band(const DispImage& in, const HwConfig& hw, int k) {
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps) {
   DispImage cur = in;
   if (steps) steps->clear();
+  // F0, the band filter (bit 3), runs first; then F1..F3 (bits 0..2).
+  if (regs.filter_enable & 8u) cur = post_band(cur, hw, hw.band_k);
+  if (steps) steps->push_back(cur);
   for (int n = 0; n < 3; ++n) {
     if (regs.filter_enable & (1u << n)) {
       if (n == 0) cur = post_vmedian(cur, hw);

@@ -25,8 +25,8 @@ DispImage post_vmedian(const DispImage& in, const HwConfig& hw);   // filter 1: 
 DispImage post_median3(const DispImage& in, const HwConfig& hw);   // filter 2: 3 x 3
 DispImage post_median53(const DispImage& in, const HwConfig& hw);  // filter 3: 5 x 3
 
-// Recursive band filter (issue 21 streak study, docs/evaluation.md "Streak study"; not part
-// of the chain, not in the RTL): top to bottom, a = the output at (x, y-1), c = the input at
+// Recursive band filter F0 (issue 21 streak study, docs/evaluation.md "Streak study"; the
+// chain's first step with k = hw.band_k, RTL sm_post_band): top to bottom, a = the output at (x, y-1), c = the input at
 // (x, y), d(p) = the low clog2(DISP) bits. When a and c are valid, |d(c) - d(a)| > 1 and some
 // input row y+j (1 <= j <= k, inside the frame) is valid with |d(in(x, y+j)) - d(a)| <= 1,
 // the output is a (a band of at most k rows between rows that agree is replaced from
@@ -35,8 +35,9 @@ DispImage post_median53(const DispImage& in, const HwConfig& hw);  // filter 3: 
 // but that normalisation.
 DispImage post_band(const DispImage& in, const HwConfig& hw, int k);
 
-// Filter n runs when bit n-1 of regs.filter_enable is set; a disabled filter passes its
-// input unchanged. `steps` (optional) receives the image after each of the three steps.
+// The chain F0 (post_band with k = hw.band_k, bit 3 of regs.filter_enable), then F1..F3
+// (bits 0..2); a disabled filter passes its input unchanged. `steps` (optional) receives
+// the image after each of the four steps, F0 first.
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,
                        std::vector<DispImage>* steps = nullptr);
 

@@ -23,7 +23,12 @@ std::map<std::string, int> HwConfig::parameters() const {
           {"RECT_RADIUS", rect_radius},
           {"COST_SHIFT", cost_shift},
           {"MAX_OBJECTS", max_objects},
-          {"LABEL_SLOTS", label_slots}};
+          {"LABEL_SLOTS", label_slots},
+          {"BAND_K", band_k}};
+}
+
+int HwConfig::flush_rows() const {  // as sm_top.v's FLUSH_ROWS
+  return (rect_radius + 1) + (census - 1) / 2 + (sw - 1) / 2 + 2 + band_k + 5 + (disp / 2 + 64 + 1 + 15) / 16 + 1;
 }
 
 void HwConfig::validate() const {
@@ -40,6 +45,14 @@ void HwConfig::validate() const {
   if (max_objects < 1 || max_objects > 64) bad(fmt::format("max_objects {} outside 1..64", max_objects));
   if (label_slots < max_objects || label_slots > 1024)
     bad(fmt::format("label_slots {} outside max_objects..1024", label_slots));
+  if (band_k < 1 || band_k > 16) bad(fmt::format("band_k {} outside 1..16", band_k));
+  // sm_top's pipeline depth in rows of 16 beats must stay below the 4-frame parameter
+  // history (its g_bad_flush check, docs/algorithm.md "Per-frame parameters").
+  if (flush_rows() >= 64)
+    bad(
+        fmt::format("pipeline of {} narrow rows (FLUSH_ROWS) outlasts the 4-frame parameter history: lower "
+                    "rect_radius, band_k or disp",
+                    flush_rows()));
 }
 
 RectGrid RectGrid::identity(int width, int height) {

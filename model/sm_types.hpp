@@ -75,12 +75,15 @@ struct HwConfig {
   int cost_shift = 2;    // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
   int max_objects = 8;   // MAX_OBJECTS (K): objects reported per frame
   int label_slots = 64;  // LABEL_SLOTS: equivalence-table entries of the labeller
+  int band_k = 8;        // BAND_K: look-ahead rows of the band filter F0 (1..16)
   int census_bits() const { return census * census - 1; }
   // Narrowest active line: 16, or DISP/2 + 3 when larger -- the DP reads a line's
   // decisions back DISP/2 + 2 beats after its forward pass wrote them (sm_dp.v), so a
   // shorter line would overlap its own backward pass.
   int min_width() const { return disp / 2 + 3 > 16 ? disp / 2 + 3 : 16; }
   int cost_bits() const;  // width of the aggregated cost (see algorithm.md)
+  // Virtual rows after a frame, sm_top's FLUSH_ROWS: the pipeline depth in rows of 16 beats.
+  int flush_rows() const;
   void validate() const;  // throws std::invalid_argument on an illegal combination
   // Every field by its sm_top parameter name (the one list of them in C++).
   std::map<std::string, int> parameters() const;
@@ -114,7 +117,7 @@ struct Regs {
   RectGrid grid_r;
   uint8_t occ = 8;                     // DP occlusion penalty (8 bits); 8 by measurement (docs/evaluation.md)
   std::array<uint8_t, 32> sw_table{};  // 2-bit weight codes by |dI| >> 3 (set by defaults())
-  uint8_t filter_enable = 7;           // bit n enables post-processing filter n+1
+  uint8_t filter_enable = 15;          // bits 0..2: median filters F1..F3, bit 3: band filter F0
   uint8_t obj_near = 32;               // objects: disparity >= obj_near is "near"
   uint8_t obj_tol = 2;                 // objects: neighbours merge when |d1 - d2| <= obj_tol
   uint16_t obj_min_pixels = 64;        // objects smaller than this are not reported

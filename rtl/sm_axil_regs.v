@@ -55,7 +55,7 @@ module sm_axil_regs #(
     output reg               cfg_grid_bank,
     output reg  [7:0]        cfg_occ,
     output reg  [63:0]       cfg_sw_table,    // code k at bits 2k+1:2k
-    output reg  [2:0]        cfg_filter_enable,
+    output reg  [3:0]        cfg_filter_enable,
     output reg  [7:0]        cfg_obj_near,
     output reg  [7:0]        cfg_obj_tol,
     output reg  [15:0]       cfg_obj_min_pixels,
@@ -125,7 +125,7 @@ module sm_axil_regs #(
   reg          rect_enable_q;
   reg [7:0]    occ_q;
   reg [63:0]   sw_table_q;
-  reg [2:0]    filter_enable_q;
+  reg [3:0]    filter_enable_q;
   reg [7:0]    obj_near_q, obj_tol_q;
   reg [15:0]   obj_min_pixels_q;
   // ---- status
@@ -214,7 +214,7 @@ module sm_axil_regs #(
         SM_OCC_ADDR: host_value = {24'd0, occ_q};
         SM_SW_TABLE0_ADDR: host_value = sw_table_q[31:0];
         SM_SW_TABLE1_ADDR: host_value = sw_table_q[63:32];
-        SM_FILTER_ENABLE_ADDR: host_value = {29'd0, filter_enable_q};
+        SM_FILTER_ENABLE_ADDR: host_value = {28'd0, filter_enable_q};
         SM_OBJ_NEAR_ADDR: host_value = {24'd0, obj_near_q};
         SM_OBJ_TOL_ADDR: host_value = {24'd0, obj_tol_q};
         SM_OBJ_MIN_PIXELS_ADDR: host_value = {16'd0, obj_min_pixels_q};
@@ -355,7 +355,7 @@ module sm_axil_regs #(
       rect_enable_q    <= SM_RECT_ENABLE_VALUE_RESET[0];
       occ_q            <= SM_OCC_VALUE_RESET[7:0];
       sw_table_q       <= {SM_SW_TABLE1_CODES_RESET, SM_SW_TABLE0_CODES_RESET};
-      filter_enable_q  <= SM_FILTER_ENABLE_VALUE_RESET[2:0];
+      filter_enable_q  <= SM_FILTER_ENABLE_VALUE_RESET[3:0];
       obj_near_q       <= SM_OBJ_NEAR_VALUE_RESET[7:0];
       obj_tol_q        <= SM_OBJ_TOL_VALUE_RESET[7:0];
       obj_min_pixels_q <= SM_OBJ_MIN_PIXELS_VALUE_RESET[15:0];
@@ -398,7 +398,7 @@ module sm_axil_regs #(
           SM_OCC_ADDR: occ_q <= c_occ[7:0];
           SM_SW_TABLE0_ADDR: sw_table_q[31:0] <= wm;
           SM_SW_TABLE1_ADDR: sw_table_q[63:32] <= wm;
-          SM_FILTER_ENABLE_ADDR: filter_enable_q <= wm[2:0];
+          SM_FILTER_ENABLE_ADDR: filter_enable_q <= wm[3:0];
           SM_OBJ_NEAR_ADDR: obj_near_q <= c_near[7:0];
           SM_OBJ_TOL_ADDR: obj_tol_q <= c_tol[7:0];
           SM_OBJ_MIN_PIXELS_ADDR: obj_min_pixels_q <= c_minpix[15:0];
@@ -421,7 +421,7 @@ module sm_axil_regs #(
       cfg_grid_bank      <= SM_CONTROL_GRID_BANK_RESET[0];
       cfg_occ            <= SM_OCC_VALUE_RESET[7:0];
       cfg_sw_table       <= {SM_SW_TABLE1_CODES_RESET, SM_SW_TABLE0_CODES_RESET};
-      cfg_filter_enable  <= SM_FILTER_ENABLE_VALUE_RESET[2:0];
+      cfg_filter_enable  <= SM_FILTER_ENABLE_VALUE_RESET[3:0];
       cfg_obj_near       <= SM_OBJ_NEAR_VALUE_RESET[7:0];
       cfg_obj_tol        <= SM_OBJ_TOL_VALUE_RESET[7:0];
       cfg_obj_min_pixels <= SM_OBJ_MIN_PIXELS_VALUE_RESET[15:0];

@@ -17,7 +17,8 @@ module sm_top #(
     parameter RECT_RADIUS = 18,   // rows above/below an output row the rectifier reads (the reference rig needs 18)
     parameter COST_SHIFT  = 2,    // raw Hamming cost >> COST_SHIFT before aggregation
     parameter MAX_OBJECTS = 8,    // objects reported per frame
-    parameter LABEL_SLOTS = 64    // equivalence-table entries of the object labeller
+    parameter LABEL_SLOTS = 64,   // equivalence-table entries of the object labeller
+    parameter BAND_K      = 8     // look-ahead rows of the band filter F0 (1..16)
 ) (
     input  wire        aclk,
     input  wire        aresetn,
@@ -71,11 +72,12 @@ module sm_top #(
   localparam GAW  = 2 + GYB + GXB;
   localparam OIW  = $clog2(4 + 4 * MAX_OBJECTS);
   // Virtual rows that push a frame's tail out: the row delays of every stage
-  // (rectify R+1, census, aggregation, DP 2, filters 2+1+2) plus their column delays
-  // (DP skew DISP/2 and the stage pipelines, < DISP/2 + 64 beats) counted in rows of the
-  // narrowest line (16). Extra virtual rows only cost idle time.
-  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + 5 +
-                          (DISP / 2 + 64 + 15) / 16 + 1;
+  // (rectify R+1, census, aggregation, DP 2, band filter BAND_K, medians 2+1+2) plus their
+  // column delays (DP skew DISP/2 and the stage pipelines, < DISP/2 + 64 beats, and the
+  // band filter's 1 beat) counted in rows of the narrowest line (16). Extra virtual rows
+  // only cost idle time.
+  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 +
+                          (DISP / 2 + 64 + 1 + 15) / 16 + 1;
 
 
   // ---------------------------------------------------------------- registers
@@ -86,7 +88,7 @@ module sm_top #(
   wire          cfg_rect_enable, cfg_grid_bank;
   wire [7:0]    cfg_occ;
   wire [63:0]   cfg_sw_table;
-  wire [2:0]    cfg_filter_enable;
+  wire [3:0]    cfg_filter_enable;
   wire [7:0]    cfg_obj_near, cfg_obj_tol;
   wire [15:0]   cfg_obj_min_pixels;
   wire          grid_we;
@@ -164,8 +166,8 @@ module sm_top #(
   localparam P_RECT = 0;               // rectification enable, grid bank
   localparam P_SWT  = P_RECT + 2;      // support-weight table
   localparam P_OCC  = P_SWT + 64;      // occlusion penalty
-  localparam P_FILT = P_OCC + 8;       // filter enables
-  localparam P_OBJ  = P_FILT + 3;      // object near, tol, min pixels, then the height
+  localparam P_FILT = P_OCC + 8;       // filter enables: F1..F3 medians, then F0 band
+  localparam P_OBJ  = P_FILT + 4;      // object near, tol, min pixels, then the height
   localparam P_H    = P_OBJ + 32;
   localparam PW     = P_H + YW;
   wire [PW-1:0]   fr_par = {cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
@@ -251,21 +253,26 @@ module sm_top #(
   );
 
   // ---------------------------------------------------------------- post-processing
-  wire [4:0]  f1_side, f2_side, f3_side;
-  wire [15:0] f1_disp, f2_disp, f3_disp;
-  wire [2:0]  par_filt;
-  wire [14:0] filt_ev = {f3_side, f2_side, f1_side};
+  // F0 band filter (FILTER_ENABLE bit 3), then the medians F1..F3 (bits 0..2)
+  wire [4:0]  f0_side, f1_side, f2_side, f3_side;
+  wire [15:0] f0_disp, f1_disp, f2_disp, f3_disp;
+  wire [3:0]  par_filt;
+  wire [19:0] filt_ev = {f0_side, f3_side, f2_side, f1_side};
   genvar fi;
   generate
-    for (fi = 0; fi < 3; fi = fi + 1) begin : g_fsel_post
+    for (fi = 0; fi < 4; fi = fi + 1) begin : g_fsel_post
       sm_frame_sel #(.PW(PW), .LSB(P_FILT + fi), .W(1), .NEXT(1)) u_fsel (
           .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[5*fi +: 5]), .hist(fr_hist), .par(par_filt[fi])
       );
     end
   endgenerate
+  sm_post_band #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .K(BAND_K)) u_post0 (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[3]),
+      .s_side(dp_side), .s_disp(dp_disp), .m_side(f0_side), .m_disp(f0_disp)
+  );
   sm_post_vmed #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post1 (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[0]),
-      .s_side(dp_side), .s_disp(dp_disp), .m_side(f1_side), .m_disp(f1_disp)
+      .s_side(f0_side), .s_disp(f0_disp), .m_side(f1_side), .m_disp(f1_disp)
   );
   sm_post_med3 #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post2 (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[1]),

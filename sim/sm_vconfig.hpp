@@ -26,6 +26,9 @@ inline HwConfig verilated_config() {
 #ifdef SM_P_LABEL_SLOTS
   hw.label_slots = SM_P_LABEL_SLOTS;
 #endif
+#ifdef SM_P_BAND_K
+  hw.band_k = SM_P_BAND_K;
+#endif
   return hw;
 }
 

@@ -141,7 +141,8 @@ bool apply_regs_file(const std::string& path, const sm::HwConfig& hw, sm::Regs& 
                                                                   {"rect_radius", h.rect_radius, hw.rect_radius},
                                                                   {"cost_shift", h.cost_shift, hw.cost_shift},
                                                                   {"max_objects", h.max_objects, hw.max_objects},
-                                                                  {"label_slots", h.label_slots, hw.label_slots}};
+                                                                  {"label_slots", h.label_slots, hw.label_slots},
+                                                                  {"band_k", h.band_k, hw.band_k}};
   for (const auto& [k, got, want] : hw_keys)
     if (got != want) fail(fmt::format("{}: '{}' = {}, but this simulator is built with {}", path, k, got, want));
   if (!size_ok && (r.width != w0 || r.height != h0))
@@ -256,7 +257,8 @@ int main(int argc, char** argv) {
                  "written over AXI4-Lite while frame FRAME-1 streams (repeatable)");
   app.add_option("--calib", calib, "calibration JSON from sm_calibrate (written over AXI4-Lite)");
   app.add_option("--occ", occ, "occlusion penalty register")->check(CLI::Range(0, 255));
-  app.add_option("--filters", filters, "post-processing filter enables (bit mask)")->check(CLI::Range(0, 7));
+  app.add_option("--filters", filters, "post-processing filter enables (bit mask: 0..2 medians F1..F3, 3 band F0)")
+      ->check(CLI::Range(0, 15));
   app.add_flag("--continuous", continuous, "no blanking: one pixel every clock");
   app.add_option("--hblank", hblank, "camera horizontal blanking (cycles)")
       ->check(CLI::Range(0, 65535))

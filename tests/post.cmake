@@ -24,3 +24,12 @@ sm_rtl_test(NAME tb_objects TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_
 sm_rtl_test(NAME tb_objects_paper TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
             PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABEL_SLOTS=64
             ARGS 320 40 LABELS "rtl;slow")
+
+# Band filter F0 (sm_post_band) against the model's post_band: odd and tiny widths one
+# after the other without a reset, frames of at most K rows among them.
+sm_rtl_test(NAME tb_post_band TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 K=3 ARGS 37,2,5,64 9)
+sm_rtl_test(NAME tb_post_band_k8 TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 K=8 ARGS 23,64,3 13)
+sm_rtl_test(NAME tb_post_band_paper TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 K=8 ARGS 319,320,17 20 LABELS "rtl;slow")

@@ -909,7 +909,7 @@ int main(int argc, char** argv) {
           r.obj_min_pixels = static_cast<uint16_t>(std::min(minpix, 65535u));
           expect_clamp |= occ > 255 || gain > 1023 || off != offc || near > 255 || tol > 255 || minpix > 65535;
           // Bit fields ignore bits outside their fields (no clamp).
-          ck(kFILTER_ENABLE, 0xfffffff8u | r.filter_enable, r.filter_enable, "FILTER_ENABLE");
+          ck(kFILTER_ENABLE, 0xfffffff0u | r.filter_enable, r.filter_enable, "FILTER_ENABLE");
           // Unmapped and read-only addresses answer SLVERR and change nothing.
           check(axil.write(0x3c, 0x1234) == 2, "write to an unmapped address answers SLVERR");
           check(axil.write(kSTATUS, 0xffffffffu) == 2, "write to STATUS answers SLVERR");
@@ -1010,7 +1010,7 @@ int main(int argc, char** argv) {
             r.offset_r = static_cast<int16_t>(static_cast<int>(rng() % 61) - 30);
             for (auto& c : r.sw_table) c = static_cast<uint8_t>(rng() & 3);
             r.occ = static_cast<uint8_t>(rng() % 40);
-            r.filter_enable = static_cast<uint8_t>(rng() % 8);
+            r.filter_enable = static_cast<uint8_t>(rng() % 16);
             r.rect_enable = rng() & 1;
             r.obj_near = static_cast<uint8_t>(rng() % hw.disp);
             r.obj_tol = static_cast<uint8_t>(rng() % 4);

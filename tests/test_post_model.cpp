@@ -102,16 +102,29 @@ TEST_CASE("post_process follows filter_enable and reports every step", "[unit][p
   for (auto& p : m.px) p = make_disp(rng() % 64, rng() % 8 != 0);
   Regs regs = Regs::defaults(hw);
   std::vector<DispImage> steps;
+  CHECK(regs.filter_enable == 15);  // every filter on by default
   regs.filter_enable = 0;
   CHECK(post_process(m, regs, hw, &steps) == m);
-  REQUIRE(steps.size() == 3);
+  REQUIRE(steps.size() == 4);
   regs.filter_enable = 2;
   CHECK(post_process(m, regs, hw) == post_median3(m, hw));
   regs.filter_enable = 7;
   const DispImage all = post_process(m, regs, hw, &steps);
-  CHECK(steps[0] == post_vmedian(m, hw));
-  CHECK(steps[1] == post_median3(steps[0], hw));
-  CHECK(all == post_median53(steps[1], hw));
+  CHECK(steps[0] == m);
+  CHECK(steps[1] == post_vmedian(m, hw));
+  CHECK(steps[2] == post_median3(steps[1], hw));
+  CHECK(all == post_median53(steps[2], hw));
+  // F0 (bit 3) runs first, with the hardware's look-ahead
+  regs.filter_enable = 8;
+  CHECK(post_process(m, regs, hw) == post_band(m, hw, hw.band_k));
+  REQUIRE(post_band(m, hw, hw.band_k) != post_band(m, hw, 1));  // band_k matters on this map
+  regs.filter_enable = 9;
+  CHECK(post_process(m, regs, hw) == post_vmedian(post_band(m, hw, hw.band_k), hw));
+  regs.filter_enable = 15;
+  const DispImage every = post_process(m, regs, hw, &steps);
+  REQUIRE(steps.size() == 4);
+  CHECK(steps[0] == post_band(m, hw, hw.band_k));
+  CHECK(every == post_median53(post_median3(post_vmedian(steps[0], hw), hw), hw));
 }
 
 TEST_CASE("objects: boxes at known depths on a far background", "[unit][objects]") {

@@ -8,6 +8,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "sm_regmap.hpp"
@@ -59,7 +60,7 @@ TEST_CASE("field widths and ranges follow the spec", "[regmap]") {
   CHECK(field("OFFSET_L.VALUE").min.eval(hw) == -256);
   CHECK(field("OFFSET_L.VALUE").max.eval(hw) == 255);
   CHECK(field("OCC.VALUE").width == 8);
-  CHECK(field("FILTER_ENABLE.VALUE").width == 3);
+  CHECK(field("FILTER_ENABLE.VALUE").width == 4);  // F1..F3, F0
   // narrowest line the DP's line memories allow: max(16, DISP/2 + 3), 67 at 128 levels
   CHECK(field("WIDTH.VALUE").min.eval(hw) == 67);
   sm::HwConfig small = hw;
@@ -129,4 +130,32 @@ TEST_CASE("HwConfig defaults are sm_top's parameter defaults", "[regmap]") {
     p[(*it)[1].str()] = std::stoi((*it)[2].str());
   // every HwConfig field is a parameter of sm_top with the same default, and back
   CHECK(p == sm::HwConfig{}.parameters());
+}
+
+TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
+  // sm_top's FLUSH_ROWS (its g_bad_flush check) as HwConfig::flush_rows(); validate()
+  // rejects the combinations sm_top rejects.
+  std::ifstream f(SM_RTL_DIR "/sm_top.v");
+  REQUIRE(f);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string text = ss.str();
+  CHECK(text.find("localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 +\n"
+                  "                          (DISP / 2 + 64 + 1 + 15) / 16 + 1;") != std::string::npos);
+  CHECK(text.find("if (FLUSH_ROWS >= 64) begin : g_bad_flush") != std::string::npos);
+  sm::HwConfig hw;
+  CHECK(hw.flush_rows() == 53);  // paper configuration: 11 rows of margin
+  CHECK_NOTHROW(hw.validate());
+  hw.census = 15;
+  hw.sw = 7;
+  hw.disp = 254;
+  hw.max_width = 320;
+  hw.rect_radius = 24;
+  CHECK(hw.flush_rows() == 63);
+  CHECK_NOTHROW(hw.validate());
+  hw.rect_radius = 25;
+  CHECK_THROWS_AS(hw.validate(), std::invalid_argument);
+  hw.rect_radius = 18;
+  hw.band_k = 16;  // 65 rows
+  CHECK_THROWS_AS(hw.validate(), std::invalid_argument);
 }

@@ -197,8 +197,8 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   }();
   const long smooth = sm::tools::streaks(gtf, gtf, nonocc).smooth;
   REQUIRE(smooth > 0);
-  for (const char* m : {"model_dp", "model_f1", "model_f1f2", "model", "bm", "bm-dense", "sgbm", "sgbm-dense",
-                        "sgbm-hh", "sgbm-hh-dense", "binsgbm", "binsgbm-dense"}) {
+  for (const char* m : {"model_dp", "model_f0", "model_f1", "model_f1f2", "model", "bm", "bm-dense", "sgbm",
+                        "sgbm-dense", "sgbm-hh", "sgbm-hh-dense", "binsgbm", "binsgbm-dense"}) {
     INFO(m);
     REQUIRE(s["methods"].contains(m));
     const auto& e = s["methods"][m];
@@ -238,7 +238,7 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   CHECK(j2["scenes"][0]["methods"]["model"]["levels"] == 16);
   CHECK(j2["scenes"][0]["methods"]["model"]["bad1_pct"] == s["methods"]["model"]["bad1_pct"]);
   CHECK(j2["scenes"][0]["methods"]["model"]["streak"][0]["max_rows"] == 2);
-  CHECK(j2["scenes"][0]["methods"].size() == 5);  // the model's four outputs and bm
+  CHECK(j2["scenes"][0]["methods"].size() == 6);  // the model's five outputs and bm
   const std::string ds = (fx.dir / "dataset").string() + " -q";
   expect_error(run(SM_EVALUATE_EXE, ds + " --peer-levels 40"), "--peer-levels 40");
   expect_error(run(SM_EVALUATE_EXE, ds + " --methods model,bm,model"), "twice");
@@ -259,7 +259,7 @@ TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {
   REQUIRE(js["scenes"].size() == 2);
   CHECK(js["scenes"][1]["name"] == "synthetic2");
   CHECK(js["scenes"][0]["width"] == 48);
-  CHECK(js["scenes"][0]["methods"].size() == 5);  // model_dp, model_f1, model_f1f2, model, sgbm
+  CHECK(js["scenes"][0]["methods"].size() == 6);  // model_dp, model_f0, model_f1, model_f1f2, model, sgbm
   expect_error(run(SM_EVALUATE_EXE, "--synthetic 1 --synthetic-size 48by32"), "48by32");
   expect_error(run(SM_EVALUATE_EXE, "--levels 15 --synthetic 1"), "--levels 15");
 }
@@ -311,6 +311,7 @@ TEST_CASE("--help shows the model's own defaults", "[unit][tools][cli]") {
                                               {"--cost-shift", hw.cost_shift},
                                               {"--max-objects", hw.max_objects},
                                               {"--label-slots", hw.label_slots},
+                                              {"--band-k", hw.band_k},
                                               {"--gain-l", r.gain_l},
                                               {"--gain-r", r.gain_r},
                                               {"--offset-l", r.offset_l},

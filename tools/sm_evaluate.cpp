@@ -102,23 +102,26 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
 std::vector<Method> all_methods(int occ, const std::string& results_dir, double results_scale) {
   std::vector<Method> m;
   // The model with every post-processing filter enabled (the default registers), scored
-  // after each step: the DP output, F1 (5x1 vertical median), F1+F2 (3x3), F1+F2+F3 (5x3)
-  // = the model's output.
-  m.push_back({"model", {"model_dp", "model_f1", "model_f1f2", "model"}, [occ](const sm::tools::Scene& s, int levels) {
+  // after each step: the DP output, F0 (band filter), F0+F1 (5x1 vertical median), F0+F1+F2
+  // (3x3), F0+F1+F2+F3 (5x3) = the model's output.
+  m.push_back({"model",
+               {"model_dp", "model_f0", "model_f1", "model_f1f2", "model"},
+               [occ](const sm::tools::Scene& s, int levels) {
                  sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
                  hw.disp = levels;
                  hw.max_width = s.left.cols;
                  hw.max_height = s.left.rows;
                  sm::Regs regs = sm::Regs::defaults(hw);
                  regs.occ = static_cast<uint8_t>(occ);
-                 regs.filter_enable = 7;
+                 regs.filter_enable = 15;
                  const auto res =
                      sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false);
-                 if (res.post_steps.size() != 3 || res.post_steps.back() != res.post)
-                   throw std::logic_error("model: expected three post-processing steps ending in the output");
+                 if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
+                   throw std::logic_error("model: expected four post-processing steps ending in the output");
                  return std::vector<cv::Mat>{
                      sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
-                     sm::tools::disp_to_float(res.post_steps[1]), sm::tools::disp_to_float(res.post)};
+                     sm::tools::disp_to_float(res.post_steps[1]), sm::tools::disp_to_float(res.post_steps[2]),
+                     sm::tools::disp_to_float(res.post)};
                }});
   using Scene = sm::tools::Scene;
   auto peer = [&m](const std::string& name, std::function<cv::Mat(const Scene&, int)> f) {

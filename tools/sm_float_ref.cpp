@@ -77,7 +77,7 @@ int run(int argc, char** argv) {
                  "occlusion penalties on the raw Hamming scale, comma-separated (model occ = penalty / "
                  "2^cost-shift when shift is on); one pair: the first")
       ->capture_default_str();
-  app.add_option("--post", post, "post filters: chain (the model's F1-F3), med5x5, none")->capture_default_str();
+  app.add_option("--post", post, "post filters: chain (the model's F0-F3), med5x5, none")->capture_default_str();
   app.add_option("--levels", p.levels, "disparity levels")->check(CLI::Range(2, 256))->capture_default_str();
   app.add_option("--census", p.census, "census window side")->check(CLI::Range(3, 15))->capture_default_str();
   app.add_option("--sw", p.sw, "support-weight window side")->check(CLI::Range(1, 7))->capture_default_str();

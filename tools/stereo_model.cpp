@@ -84,7 +84,8 @@ int run(int argc, char** argv) {
       app.add_option("--rect-radius", hw.rect_radius, "RECT_RADIUS")->capture_default_str(),
       app.add_option("--cost-shift", hw.cost_shift, "COST_SHIFT")->capture_default_str(),
       app.add_option("--max-objects", hw.max_objects, "MAX_OBJECTS")->capture_default_str(),
-      app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str()};
+      app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str(),
+      app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str()};
   auto* o_gl = app.add_option("--gain-l", gain_l, "left gain, Q2.8 (256 = 1.0)")->capture_default_str();
   auto* o_gr = app.add_option("--gain-r", gain_r, "right gain, Q2.8")->capture_default_str();
   auto* o_ol = app.add_option("--offset-l", offset_l, "left offset -256..255")->capture_default_str();
@@ -93,8 +94,9 @@ int run(int argc, char** argv) {
   auto* o_occ = app.add_option("--occ", occ, "DP occlusion penalty 0..255")->capture_default_str();
   auto* o_swt =
       app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated")->capture_default_str();
-  auto* o_fe =
-      app.add_option("--filter-enable", filter_enable, "post filters, bit n = filter n+1")->capture_default_str();
+  auto* o_fe = app.add_option("--filter-enable", filter_enable,
+                              "post filters: bits 0..2 = medians F1..F3, bit 3 = band filter F0")
+                   ->capture_default_str();
   auto* o_on = app.add_option("--obj-near", obj_near, "objects: near threshold")->capture_default_str();
   auto* o_ot = app.add_option("--obj-tol", obj_tol, "objects: merge tolerance")->capture_default_str();
   auto* o_om = app.add_option("--obj-min-pixels", obj_min_pixels, "objects: minimum size")->capture_default_str();
@@ -137,6 +139,7 @@ int run(int argc, char** argv) {
   if (hw_opts[4]->count()) hw.cost_shift = cli_hw.cost_shift;
   if (hw_opts[5]->count()) hw.max_objects = cli_hw.max_objects;
   if (hw_opts[6]->count()) hw.label_slots = cli_hw.label_slots;
+  if (hw_opts[7]->count()) hw.band_k = cli_hw.band_k;
   try {
     hw.validate();
   } catch (const std::invalid_argument& e) {
@@ -160,7 +163,7 @@ int run(int argc, char** argv) {
   if (o_or->count()) r.offset_r = in_range("offset-r", offset_r, -256, 255);
   if (o_nr->count()) r.rect_enable = !no_rect;
   if (o_occ->count()) r.occ = in_range("occ", occ, 0, 255);
-  if (o_fe->count()) r.filter_enable = in_range("filter-enable", filter_enable, 0, 7);
+  if (o_fe->count()) r.filter_enable = in_range("filter-enable", filter_enable, 0, 15);
   if (o_on->count()) r.obj_near = in_range("obj-near", obj_near, 0, 255);
   if (o_ot->count()) r.obj_tol = in_range("obj-tol", obj_tol, 0, 255);
   if (o_om->count()) r.obj_min_pixels = in_range("obj-min-pixels", obj_min_pixels, 0, 65535);

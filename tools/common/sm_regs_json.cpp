@@ -96,7 +96,8 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
       {"rect_radius", {1, 31, &hw.rect_radius}},
       {"cost_shift", {0, 4, &hw.cost_shift}},
       {"max_objects", {1, 64, &hw.max_objects}},
-      {"label_slots", {1, 1024, &hw.label_slots}}};
+      {"label_slots", {1, 1024, &hw.label_slots}},
+      {"band_k", {1, 16, &hw.band_k}}};
   RegsFile out;
   for (auto it = j.begin(); it != j.end(); ++it) {
     out.keys.push_back(it.key());

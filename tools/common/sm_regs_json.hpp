@@ -11,6 +11,7 @@
 //   calib                             calibration JSON (sm_calibrate, model/calib_file.hpp);
 //                                     a relative path is relative to the register file
 //   max_width max_height disp census sw rect_radius cost_shift max_objects label_slots
+//   band_k
 //                                     compile-time parameters (HwConfig)
 //
 // Any other key, a value of the wrong type or out of range is a ToolError naming the

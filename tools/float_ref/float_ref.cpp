@@ -265,7 +265,7 @@ DispImage post(const DispImage& dp, const Params& p) {
   switch (p.post) {
     case Post::chain: {
       Regs regs = Regs::defaults(hw);
-      regs.filter_enable = 7;
+      regs.filter_enable = 15;  // F0 (band, hw.band_k) and F1..F3
       return post_process(dp, regs, hw);
     }
     case Post::med5x5:

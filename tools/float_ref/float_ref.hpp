@@ -49,7 +49,7 @@ Simplify parse_simplify(const std::string& list);
 std::string simplify_string(const Simplify& s);  // "none" or the names that are on
 
 enum class Post { none, chain, med5x5 };
-Post parse_post(const std::string& s);  // "none", "chain" (the model's F1-F3), "med5x5"
+Post parse_post(const std::string& s);  // "none", "chain" (the model's F0-F3), "med5x5"
 
 struct Params {
   int census = 15;                     // census window side (odd, 3..15)
