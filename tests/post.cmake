@@ -28,8 +28,11 @@ sm_rtl_test(NAME tb_objects_paper TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DI
 # Band filter F0 (sm_post_band) against the model's post_band: odd and tiny widths one
 # after the other without a reset, frames of at most K rows among them.
 sm_rtl_test(NAME tb_post_band TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
-            PARAMS MAX_WIDTH=64 DISP=16 K=3 ARGS 37,2,5,64 9)
+            PARAMS MAX_WIDTH=64 DISP=16 K=3 ARGS --widths 37,2,5,64 --height 9)
 sm_rtl_test(NAME tb_post_band_k8 TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
-            PARAMS MAX_WIDTH=64 DISP=16 K=8 ARGS 23,64,3 13)
+            PARAMS MAX_WIDTH=64 DISP=16 K=8 ARGS --widths 23,64,3 --height 13)
 sm_rtl_test(NAME tb_post_band_paper TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
-            PARAMS MAX_WIDTH=320 DISP=128 K=8 ARGS 319,320,17 20 LABELS "rtl;slow")
+            PARAMS MAX_WIDTH=320 DISP=128 K=8 ARGS --widths 319,320,17 --height 20 LABELS "rtl;slow")
+foreach(_t tb_post_band tb_post_band_k8 tb_post_band_paper)
+  target_link_libraries(${_t} PRIVATE CLI11::CLI11)
+endforeach()

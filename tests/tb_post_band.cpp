@@ -6,11 +6,11 @@
 // flush without a reset, so stale memory contents are in the way. Every real output pixel
 // is compared with the model, and its latency (K*W + 1 beats) is checked.
 // Usage: tb_post_band W1[,W2...] H
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <cstdlib>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -62,21 +62,20 @@ DispImage band_map(std::mt19937& rng, int w, int h, int disp, unsigned dmask) {
   return m;
 }
 
-std::vector<int> parse_widths(const char* s) {
-  std::vector<int> v;
-  std::stringstream ss(s);
-  std::string t;
-  while (std::getline(ss, t, ',')) v.push_back(std::atoi(t.c_str()));
-  return v;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
   HwConfig hw;
   hw.max_width = SM_P_MAX_WIDTH;
   hw.disp = SM_P_DISP;
-  const std::vector<int> widths = parse_widths(argc > 1 ? argv[1] : "37");
-  const int h = argc > 2 ? std::atoi(argv[2]) : 12;
+  std::vector<int> widths{37};
+  int h = 12;
+  CLI::App app{"sm_post_band block test"};
+  app.add_option("--widths", widths, "active widths, one frame group each, no reset between")
+      ->delimiter(',')
+      ->check(CLI::Range(2, hw.max_width));
+  app.add_option("--height", h, "rows of the first frame of each group")->check(CLI::Range(1, 4096));
+  CLI11_PARSE(app, argc, argv);
   unsigned dmask = 1;
   while (dmask + 1 < static_cast<unsigned>(hw.disp)) dmask = dmask * 2 + 1;  // 2^clog2(DISP) - 1
   std::mt19937 rng(4321 + kK);
