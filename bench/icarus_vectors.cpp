@@ -10,7 +10,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 #include "pipeline.hpp"
 
 namespace {

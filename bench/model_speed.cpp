@@ -15,7 +15,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/stereo.hpp>
 
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 #include "pipeline.hpp"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 #include "pipeline.hpp"
 
 namespace {

@@ -27,8 +27,8 @@
 
 #include "calib_file.hpp"
 #include "pipeline.hpp"
-#include "common/sm_io.hpp"
-#include "common/sm_regs_json.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_regs_json.hpp"
 #include "sm_host.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 #include "pipeline.hpp"
 #include "post.hpp"
 #include "sm_axil.hpp"

@@ -17,7 +17,7 @@
 
 #include "calib_file.hpp"
 #include "pipeline.hpp"
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
 #include "sm_vconfig.hpp"

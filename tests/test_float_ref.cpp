@@ -15,8 +15,8 @@
 
 #include "aggregate.hpp"
 #include "census.hpp"
-#include "common/sm_io.hpp"
-#include "common/sm_scenegen.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_scenegen.hpp"
 #include "dp.hpp"
 #include "float_ref/float_ref.hpp"
 #include "pipeline.hpp"

@@ -1,4 +1,4 @@
-// Synthetic scene generator (tools/common/sm_scenegen.*, tools/sm_scene): determinism,
+// Synthetic scene generator (toolio/sm_scenegen.*, tools/sm_scene): determinism,
 // exactness of the ground truth, camera imperfections and the files it writes.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calib_file.hpp"
-#include "common/sm_io.hpp"
-#include "common/sm_scenegen.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_scenegen.hpp"
 #include "sm_cmd.hpp"
 
 namespace fs = std::filesystem;

@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "calib_file.hpp"
-#include "common/sm_io.hpp"
-#include "common/sm_scenegen.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
 #include "sm_cmd.hpp"
 

@@ -14,7 +14,7 @@
 #include <opencv2/videoio.hpp>
 #include <string>
 
-#include "common/sm_scenegen.hpp"
+#include "toolio/sm_scenegen.hpp"
 #include "sm_cmd.hpp"
 
 namespace fs = std::filesystem;

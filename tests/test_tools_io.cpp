@@ -1,4 +1,4 @@
-// Shared tool helpers (tools/common/sm_io.*): bad-1.0 metric on hand-computed cases,
+// Shared tool helpers (toolio/sm_io.*): bad-1.0 metric on hand-computed cases,
 // disparity renderings, disparity files, image loading errors and atomic writes.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 
 namespace fs = std::filesystem;
 using namespace sm::tools;

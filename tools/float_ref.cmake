@@ -1,7 +1,6 @@
 # Floating-point reference of the pipeline (issue 21; docs/evaluation.md, "What each
 # fixed-point simplification costs"): library sm_float_ref (tools/float_ref/, used by the
 # tool and its unit test) and the tool sm_float_ref. Not part of the IP or the model.
-include(${CMAKE_CURRENT_LIST_DIR}/common/toolio.cmake)
 add_library(sm_float_ref STATIC ${CMAKE_CURRENT_LIST_DIR}/float_ref/float_ref.cpp)
 target_include_directories(sm_float_ref PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(sm_float_ref PUBLIC sm_model fmt::fmt)

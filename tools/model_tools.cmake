@@ -1,6 +1,5 @@
 # Tools around the reference model: stereo_model (one pair -> disparity PNGs) and
 # sm_evaluate (bad-1.0 / run time against OpenCV matchers, docs/evaluation.md).
-include(${CMAKE_CURRENT_LIST_DIR}/common/toolio.cmake)
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d stereo)
 
 add_executable(stereo_model ${CMAKE_CURRENT_LIST_DIR}/stereo_model.cpp)

@@ -1,5 +1,4 @@
 # Post-processing filter study (docs/algorithm.md section 7).
-include(${CMAKE_CURRENT_LIST_DIR}/common/toolio.cmake)
 add_executable(sm_filter_study ${CMAKE_CURRENT_LIST_DIR}/sm_filter_study.cpp)
 target_link_libraries(sm_filter_study PRIVATE sm_toolio CLI11::CLI11 nlohmann_json::nlohmann_json)
 target_compile_options(sm_filter_study PRIVATE ${SM_WARNINGS})

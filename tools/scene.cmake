@@ -1,7 +1,6 @@
 # Synthetic stereo scenes: the sm_scene generator and the default scenes built with the
 # project (build/scene: paper configuration 320x240, 128 levels; build/scene_small:
-# 64x48, 16 levels for fast system tests). Helper library sm_toolio: tools/common.
-include(${CMAKE_CURRENT_LIST_DIR}/common/toolio.cmake)
+# 64x48, 16 levels for fast system tests). Helper library sm_toolio: toolio/.
 
 add_executable(sm_scene ${CMAKE_CURRENT_LIST_DIR}/sm_scene.cpp)
 target_link_libraries(sm_scene PRIVATE sm_toolio CLI11::CLI11)

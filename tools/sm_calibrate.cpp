@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "calib_file.hpp"
-#include "common/sm_io.hpp"
-#include "common/sm_outputs.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_outputs.hpp"
 #include "pre.hpp"
 
 namespace fs = std::filesystem;

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "common/sm_io.hpp"
-#include "common/sm_scenegen.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
 
 namespace {
@@ -316,7 +316,7 @@ int run(int argc, char** argv) {
   jout["streak_metric"] =
       "streak %: share of smooth pixels (evaluated, both vertical neighbours evaluated with gt within 1) whose "
       "estimate d is valid and bad and lies between two valid rows, at most max_rows rows apart, that differ from d "
-      "by more than 1, with every row between evaluated and gt within 1 (tools/common/sm_io.hpp, streaks)";
+      "by more than 1, with every row between evaluated and gt within 1 (toolio/sm_io.hpp, streaks)";
   jout["peer_levels"] = peer_levels ? json(peer_levels) : json("scene");
   jout["threads"] = 1;
   jout["scenes"] = json::array();

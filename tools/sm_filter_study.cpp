@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "common/sm_io.hpp"
-#include "common/sm_scenegen.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
 #include "post.hpp"
 

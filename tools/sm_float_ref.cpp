@@ -2,7 +2,7 @@
 // on one pair or on every scene of a dataset, with any subset of the bit-exact model's
 // simplifications switched on (--simplify) and a sweep of occlusion penalties on the raw
 // Hamming scale (--penalty a,b,c: the aggregation runs once per scene, the DP once per
-// penalty). Dataset mode scores bad-1.0 with tools/common's bad1 and reports the mean over
+// penalty). Dataset mode scores bad-1.0 with toolio's bad1 and reports the mean over
 // all scenes and over the four classic ones. docs/evaluation.md, "What each fixed-point
 // simplification costs".
 #include <fmt/format.h>
@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 #include "float_ref/float_ref.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 //
 //   sm_ref_frames --regs REGS.json --out REF.json LEFT0 RIGHT0 [LEFT1 RIGHT1 ...]
 //
-// REGS.json is the register file of stereo_model --regs (tools/common/sm_regs_json.hpp),
+// REGS.json is the register file of stereo_model --regs (toolio/sm_regs_json.hpp),
 // compile-time keys included (max_width ... rect_radius: the configuration the bench
 // verilates). Every frame uses the same registers; WIDTH x HEIGHT default to the size of
 // the first pair; grids are the identity unless the file names a calibration.
@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "calib_file.hpp"
-#include "common/sm_io.hpp"
-#include "common/sm_outputs.hpp"
-#include "common/sm_regs_json.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_outputs.hpp"
+#include "toolio/sm_regs_json.hpp"
 #include "pipeline.hpp"
 #include "post.hpp"
 #include "sm_regmap.hpp"

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "common/sm_io.hpp"
-#include "common/sm_scenegen.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_scenegen.hpp"
 
 int main(int argc, char** argv) {
   sm::tools::SceneParams p;

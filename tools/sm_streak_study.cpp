@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "common/sm_io.hpp"
+#include "toolio/sm_io.hpp"
 #include "dp.hpp"
 #include "pipeline.hpp"
 #include "post.hpp"

@@ -18,9 +18,9 @@
 #include <tuple>
 
 #include "calib_file.hpp"
-#include "common/sm_io.hpp"
-#include "common/sm_outputs.hpp"
-#include "common/sm_regs_json.hpp"
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_outputs.hpp"
+#include "toolio/sm_regs_json.hpp"
 #include "pipeline.hpp"
 
 namespace {
