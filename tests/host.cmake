@@ -19,7 +19,7 @@ sm_host_test(tb_outfmt_paper sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=320 FIFO_D
 
 # Register map against independent truth: sm::Regs defaults, the spec's grid size, layout.
 add_executable(test_regmap ${SM_HOST_TESTS}/test_regmap.cpp)
-target_include_directories(test_regmap PRIVATE ${SM_GEN_DIR})
+target_include_directories(test_regmap PRIVATE ${SM_GEN_DIR} ${SM_HOST_TESTS}/common)
 target_link_libraries(test_regmap PRIVATE sm_model Catch2::Catch2)
 target_compile_definitions(test_regmap PRIVATE SM_RTL_DIR="${SM_RTL_DIR}")
 target_compile_options(test_regmap PRIVATE ${SM_WARNINGS})

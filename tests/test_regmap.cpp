@@ -3,14 +3,13 @@
 // (sm::RectGrid), field widths from docs/algorithm.md and hand-computed addresses.
 #include <catch2/catch.hpp>
 
-#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "sm_cmd.hpp"
 #include "sm_regmap.hpp"
 #include "sm_types.hpp"
 
@@ -119,11 +118,8 @@ TEST_CASE("the grid window holds the spec's grid", "[regmap]") {
 
 TEST_CASE("HwConfig defaults are sm_top's parameter defaults", "[regmap]") {
   // sim/sm_vconfig.hpp relies on this for every parameter a build does not override.
-  std::ifstream f(SM_RTL_DIR "/sm_top.v");
-  REQUIRE(f);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const std::string text = ss.str();
+  const std::string text = sm::test::slurp(SM_RTL_DIR "/sm_top.v");
+  REQUIRE(!text.empty());
   const std::regex re(R"(parameter\s+([A-Z_]+)\s*=\s*([0-9]+))");
   std::map<std::string, int> p;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
@@ -135,11 +131,8 @@ TEST_CASE("HwConfig defaults are sm_top's parameter defaults", "[regmap]") {
 TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
   // sm_top's FLUSH_ROWS (its g_bad_flush check) as HwConfig::flush_rows(); validate()
   // rejects the combinations sm_top rejects.
-  std::ifstream f(SM_RTL_DIR "/sm_top.v");
-  REQUIRE(f);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const std::string text = ss.str();
+  const std::string text = sm::test::slurp(SM_RTL_DIR "/sm_top.v");
+  REQUIRE(!text.empty());
   CHECK(text.find("localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 +\n"
                   "                          (DISP / 2 + 64 + 1 + 15) / 16 + 1;") != std::string::npos);
   CHECK(text.find("if (FLUSH_ROWS >= 64) begin : g_bad_flush") != std::string::npos);
