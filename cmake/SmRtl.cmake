@@ -154,20 +154,15 @@ function(sm_verilate_model target)
   # the generated register map (sm_regmap.vh) must exist before Verilator runs
   add_dependencies(${target} sm_regmap_gen_files)
   target_link_libraries(${target} PUBLIC ${libs})
-  # VM_*: what the harness and Verilator's headers see of this model's options
-  get_target_property(old ${target} SM_VM_TRACE)
-  if(old)
-    set(tr 1)  # a second model without trace leaves the target's tracing on
-  endif()
-  set_target_properties(${target} PROPERTIES SM_VM_TRACE ${tr})
-  target_compile_definitions(${target} PUBLIC VM_COVERAGE=${cov})
+  # VM_*: what the harness and Verilator's headers see of this model's options (the
+  # models of one target agree: the wave libraries hold a VCD and an FST model)
+  target_compile_definitions(${target} PUBLIC VM_COVERAGE=${cov} VM_TRACE=${tr})
   if(vcd)
     target_compile_definitions(${target} PUBLIC VM_TRACE_VCD=1)
   endif()
   if(fst)
     target_compile_definitions(${target} PUBLIC VM_TRACE_FST=1)
   endif()
-  target_compile_definitions(${target} PUBLIC $<IF:$<BOOL:$<TARGET_PROPERTY:${target},SM_VM_TRACE>>,VM_TRACE=1,VM_TRACE=0>)
 endfunction()
 
 # sm_verilated(TARGET <target> TOP <module> [PARAMS NAME=VALUE ...] [TRACE] [THREADS n]

@@ -109,7 +109,7 @@ class Testbench {
   // readable file without one: a probe should enable a signal that always exists.
   bool probe_trace(const std::string& path, const TraceScope& sel) {
     if (!open_trace(path, 99, sel)) return false;
-    // one value dump: Verilator 5.04x's FST writer leaves a file without any unreadable
+    // one value dump: a file that Verilator 5.04x's FST writer closes without any is unreadable
     dump(2 * cycles_);
     close_trace();
     return true;
