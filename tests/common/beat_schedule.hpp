@@ -84,16 +84,29 @@ class OutputOrder {
   int frame_ = 0, x_ = 0, y_ = 0;
 };
 
-// Random clock-enable pattern: ce is low with probability idle_percent / 100.
+// Random clock-enable pattern: ce is low with probability idle_percent / 100. With
+// min_gap = F > 1 (a folded block, F = DISP / PU clocks per beat) ce is also low on the
+// F - 1 clocks after every high one, as sm_top's pacing guarantees; a bench of a folded
+// block then holds the next beat's input from the clock after a ce until its own ce.
 class CeGen {
  public:
-  CeGen(uint32_t seed, int idle_percent) : rng_(seed), idle_(idle_percent) {}
-  bool next() { return static_cast<int>(rng_() % 100) >= idle_; }
+  CeGen(uint32_t seed, int idle_percent, int min_gap = 1) : rng_(seed), idle_(idle_percent), gap_(min_gap) {}
+  bool next() {
+    if (wait_ > 0) {
+      --wait_;
+      return false;
+    }
+    const bool ce = static_cast<int>(rng_() % 100) >= idle_;
+    if (ce) wait_ = gap_ - 1;
+    return ce;
+  }
   std::mt19937& rng() { return rng_; }
 
  private:
   std::mt19937 rng_;
   int idle_;
+  int gap_;
+  int wait_ = 0;
 };
 
 }  // namespace sm::test
