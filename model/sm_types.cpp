@@ -24,7 +24,8 @@ std::map<std::string, int> HwConfig::parameters() const {
           {"COST_SHIFT", cost_shift},
           {"MAX_OBJECTS", max_objects},
           {"LABEL_SLOTS", label_slots},
-          {"BAND_K", band_k}};
+          {"BAND_K", band_k},
+          {"PU", pu}};
 }
 
 int HwConfig::flush_rows() const {  // as sm_top.v's FLUSH_ROWS
@@ -46,6 +47,8 @@ void HwConfig::validate() const {
   if (label_slots < max_objects || label_slots > 1024)
     bad(fmt::format("label_slots {} outside max_objects..1024", label_slots));
   if (band_k < 1 || band_k > 16) bad(fmt::format("band_k {} outside 1..16", band_k));
+  if (pu != 0 && pu != disp && (pu < 2 || pu % 2 || disp % pu))
+    bad(fmt::format("pu {} must be 0 (= disp), disp, or an even divisor of disp {}", pu, disp));
   // sm_top's pipeline depth in rows of 16 beats must stay below the 4-frame parameter
   // history (its g_bad_flush check, docs/algorithm.md "Per-frame parameters").
   if (flush_rows() >= 64)

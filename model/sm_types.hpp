@@ -76,6 +76,11 @@ struct HwConfig {
   int max_objects = 8;   // MAX_OBJECTS (K): objects reported per frame
   int label_slots = 64;  // LABEL_SLOTS: equivalence-table entries of the labeller
   int band_k = 8;        // BAND_K: look-ahead rows of the band filter F0 (1..16)
+  int pu = 0;            // PU: disparity levels computed per clock (0 = DISP, fully parallel)
+  // Levels per clock and clocks per beat of the folded datapath (docs/algorithm.md,
+  // "Folded datapath"): F = DISP / PU clocks per pixel in cost, aggregation and DP.
+  int levels_per_clock() const { return pu ? pu : disp; }
+  int clocks_per_beat() const { return disp / levels_per_clock(); }
   int census_bits() const { return census * census - 1; }
   // Narrowest active line: 16, or DISP/2 + 3 when larger -- the DP reads a line's
   // decisions back DISP/2 + 2 beats after its forward pass wrote them (sm_dp.v), so a

@@ -14,7 +14,9 @@ module sm_axil_regs #(
     parameter MAX_WIDTH   = 320,  // widest active line
     parameter MAX_HEIGHT  = 240,  // tallest active frame
     parameter DISP        = 128,  // disparity levels (reported in CAPS1)
-    parameter MAX_OBJECTS = 8     // objects in the list
+    parameter MAX_OBJECTS = 8,    // objects in the list
+    parameter PU          = DISP, // disparity levels per clock (reported in CAPS1)
+    parameter LEVEL_W     = 10    // width of the input FIFO level
 ) (
     input  wire              aclk,
     input  wire              aresetn,
@@ -39,6 +41,7 @@ module sm_axil_regs #(
     // from the stream edges
     input  wire              frame_start,   // copy host values into the shadow copy
     input  wire [6:0]        err_pulse,        // fault pulses, ERR_FLAGS bits 6:0
+    input  wire [LEVEL_W-1:0] in_level,     // input FIFO entries (IN_FIFO.LEVEL_MAX)
     // control (not shadowed)
     output reg               enable,
     output reg               soft_reset,    // one-clock pulse
@@ -111,6 +114,9 @@ module sm_axil_regs #(
     if (SM_OBJ_BASE % SM_OBJ_SIZE != 0) begin : g_bad_obj_base
       initial $error("sm_axil_regs: the object window must be aligned to its size");
     end
+    if (LEVEL_W < 1 || LEVEL_W > SM_IN_FIFO_LEVEL_MAX_W) begin : g_bad_level
+      initial $error("sm_axil_regs: LEVEL_W (%0d) must be 1..%0d", LEVEL_W, SM_IN_FIFO_LEVEL_MAX_W);
+    end
     if (MAX_WIDTH < 16 || MAX_WIDTH > 65535 || MAX_HEIGHT < 16 || MAX_HEIGHT > 65535) begin : g_bad_size
       initial $error("sm_axil_regs: MAX_WIDTH / MAX_HEIGHT must be 16..65535");
     end
@@ -132,6 +138,7 @@ module sm_axil_regs #(
   reg [15:0]   frame_count_q;
   reg [7:0]    err_flags_q;
   reg [111:0]  err_cnt_q;  // 7 x 16 bits, class n at 16n +: 16 (ERR_FLAGS bit order)
+  reg [LEVEL_W-1:0] level_max_q;  // input FIFO high-water mark
 
   assign host_width  = width_q;
   assign host_height = height_q;
@@ -144,7 +151,7 @@ module sm_axil_regs #(
       case ({a[ADDR_W-1:2], 2'b00})
         SM_ID_ADDR, SM_VERSION_ADDR, SM_CONTROL_ADDR, SM_STATUS_ADDR, SM_ERR_FLAGS_ADDR,
         SM_ERR_CNT_LINE_ADDR, SM_ERR_CNT_SOF_ADDR, SM_ERR_CNT_ROWS_ADDR, SM_ERR_CNT_OUT_ADDR,
-        SM_CAPS0_ADDR, SM_CAPS1_ADDR, SM_WIDTH_ADDR, SM_HEIGHT_ADDR, SM_GAIN_L_ADDR,
+        SM_CAPS0_ADDR, SM_CAPS1_ADDR, SM_IN_FIFO_ADDR, SM_WIDTH_ADDR, SM_HEIGHT_ADDR, SM_GAIN_L_ADDR,
         SM_GAIN_R_ADDR, SM_OFFSET_L_ADDR, SM_OFFSET_R_ADDR, SM_RECT_ENABLE_ADDR, SM_OCC_ADDR,
         SM_SW_TABLE0_ADDR, SM_SW_TABLE1_ADDR, SM_FILTER_ENABLE_ADDR, SM_OBJ_NEAR_ADDR,
         SM_OBJ_TOL_ADDR, SM_OBJ_MIN_PIXELS_ADDR: is_reg = 1'b1;
@@ -203,7 +210,9 @@ module sm_axil_regs #(
               SM_CAPS1_DISP_RESET[SM_CAPS1_DISP_W-1:0];
           host_value[SM_CAPS1_MAX_OBJECTS_LSB +: SM_CAPS1_MAX_OBJECTS_W] =
               SM_CAPS1_MAX_OBJECTS_RESET[SM_CAPS1_MAX_OBJECTS_W-1:0];
+          host_value[SM_CAPS1_PU_LSB +: SM_CAPS1_PU_W] = SM_CAPS1_PU_RESET[SM_CAPS1_PU_W-1:0];
         end
+        SM_IN_FIFO_ADDR: host_value[SM_IN_FIFO_LEVEL_MAX_LSB +: LEVEL_W] = level_max_q;
         SM_WIDTH_ADDR:  host_value = {{(32-XW){1'b0}}, width_q};
         SM_HEIGHT_ADDR: host_value = {{(32-YW){1'b0}}, height_q};
         SM_GAIN_L_ADDR: host_value = {22'd0, gain_l_q};
@@ -362,7 +371,10 @@ module sm_axil_regs #(
       frame_count_q    <= 16'd0;
       err_flags_q      <= 8'd0;
       err_cnt_q <= 112'd0;
+      level_max_q      <= {LEVEL_W{1'b0}};
     end else begin
+      if (clear_errors) level_max_q <= in_level;
+      else if (in_level > level_max_q) level_max_q <= in_level;
       soft_reset <= 1'b0;
       if (frame_start) frame_count_q <= frame_count_q + 1'b1;
       // Error bookkeeping: a clear loses against an event of the same clock.

@@ -20,7 +20,14 @@
 module sm_seq #(
     parameter MAX_WIDTH  = 320,  // widest active line
     parameter MAX_HEIGHT = 240,  // tallest active frame
-    parameter FLUSH_ROWS = 16    // virtual rows after a frame (pipeline depth in rows)
+    parameter FLUSH_ROWS = 16,   // virtual rows after a frame (pipeline depth in rows)
+    // Input FIFO entries (a power of two). MAX_WIDTH + 32 rounded up holds a virtual
+    // row's worth of camera pixels plus the FIFO's own latency and the beat register, so
+    // a camera at the frame rate never sees tready low; with a folded datapath (F clocks
+    // per beat) that holds while the camera's pixel clock is at most aclk / F: a virtual
+    // row then lasts F*W clocks, in which at most W camera pixels arrive (docs/streams.md,
+    // "Pacing").
+    parameter IN_DEPTH   = 1 << $clog2(MAX_WIDTH + 32)
 ) (
     input  wire            clk,
     input  wire            rst_n,
@@ -43,14 +50,13 @@ module sm_seq #(
     output reg  [7:0]      beat_right,
     // one-clock fault pulses, ERR_FLAGS bit order: short line, long line, missing sof,
     // extra sof, too few lines, too many lines
-    output reg  [5:0]      err_pulse
+    output reg  [5:0]      err_pulse,
+    output wire [LEVEL_W-1:0] in_level  // input FIFO entries (the camera's backlog)
 );
   localparam XW = $clog2(MAX_WIDTH + 1);
   localparam YW = $clog2(MAX_HEIGHT + 1);
   localparam FW = $clog2(FLUSH_ROWS + 1);
-  // Holds a virtual row's worth of camera pixels plus the FIFO's own latency and the
-  // beat register, so a camera at the frame rate never sees tready low.
-  localparam IN_DEPTH = 1 << $clog2(MAX_WIDTH + 32);
+  localparam LEVEL_W  = $clog2(IN_DEPTH) + 1;
   localparam [FW-1:0] FR = FLUSH_ROWS[FW-1:0];
 
   localparam E_SHORT = 0, E_LONG = 1, E_MISSING = 2, E_EXTRA = 3, E_FEW = 4, E_MANY = 5;
@@ -59,6 +65,9 @@ module sm_seq #(
   generate
     if (MAX_WIDTH < 16 || MAX_HEIGHT < 1) begin : g_bad_size
       initial $error("sm_seq: MAX_WIDTH (%0d) must be >= 16, MAX_HEIGHT >= 1", MAX_WIDTH);
+    end
+    if (IN_DEPTH < MAX_WIDTH + 32 || (1 << $clog2(IN_DEPTH)) != IN_DEPTH) begin : g_bad_depth
+      initial $error("sm_seq: IN_DEPTH (%0d) must be a power of two >= MAX_WIDTH + 32", IN_DEPTH);
     end
     if (FLUSH_ROWS < 1) begin : g_bad_flush
       initial $error("sm_seq: FLUSH_ROWS (%0d) must be >= 1", FLUSH_ROWS);
@@ -70,7 +79,6 @@ module sm_seq #(
   wire [17:0] h_word;
   wire        fifo_full;
   wire        pop;
-  wire [$clog2(IN_DEPTH):0] unused_fifo_level;
   sm_fifo #(
       .DATA_W(18),
       .DEPTH (IN_DEPTH)
@@ -83,7 +91,7 @@ module sm_seq #(
       .rd_en     (pop),
       .dout      (h_word),
       .dout_valid(h_valid),
-      .level     (unused_fifo_level)
+      .level     (in_level)
   );
   // Not ready while in reset: a pixel handed over then would be dropped by the FIFO's
   // reset, and a source that counts handshakes would count it. rst_n is a register in

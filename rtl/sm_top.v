@@ -18,7 +18,11 @@ module sm_top #(
     parameter COST_SHIFT  = 2,    // raw Hamming cost >> COST_SHIFT before aggregation
     parameter MAX_OBJECTS = 8,    // objects reported per frame
     parameter LABEL_SLOTS = 64,   // equivalence-table entries of the object labeller
-    parameter BAND_K      = 8     // look-ahead rows of the band filter F0 (1..16)
+    parameter BAND_K      = 8,    // look-ahead rows of the band filter F0 (1..16)
+    // Disparity levels computed per clock in cost, aggregation and DP (docs/algorithm.md,
+    // "Folded datapath"): 0 = DISP, one pixel per clock; an even divisor of DISP folds
+    // the datapath to DISP / PU clocks per pixel for DISP / PU times less of its logic.
+    parameter PU          = 0
 ) (
     input  wire        aclk,
     input  wire        aresetn,
@@ -71,6 +75,11 @@ module sm_top #(
   localparam GYB  = (GYB0 < 2) ? 2 : GYB0;
   localparam GAW  = 2 + GYB + GXB;
   localparam OIW  = $clog2(4 + 4 * MAX_OBJECTS);
+  localparam PUE  = (PU == 0) ? DISP : PU;  // levels per clock
+  localparam F    = DISP / PUE;             // clocks per pixel
+  localparam FCW  = (F > 1) ? $clog2(F) : 1;
+  localparam IN_DEPTH = 1 << $clog2(MAX_WIDTH + 32);  // input FIFO (sm_seq's depth rule)
+  localparam IN_LW    = $clog2(IN_DEPTH) + 1;         // its level, 0..IN_DEPTH + 1
   // Virtual rows that push a frame's tail out: the row delays of every stage
   // (rectify R+1, census, aggregation, DP 2, band filter BAND_K, medians 2+1+2) plus their
   // column delays (DP skew DISP/2 and the stage pipelines, < DISP/2 + 64 beats, and the
@@ -101,8 +110,10 @@ module sm_top #(
   wire [OIW-1:0] obj_rd_idx;
   reg  [31:0]   obj_rd_data_q;
 
+  wire [IN_LW-1:0] in_level;
   sm_axil_regs #(
-      .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS)
+      .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS), .PU(PUE),
+      .LEVEL_W(IN_LW)
   ) u_regs (
       .aclk(aclk), .aresetn(aresetn),
       .s_axil_awaddr(s_axil_awaddr), .s_axil_awvalid(s_axil_awvalid), .s_axil_awready(s_axil_awready),
@@ -111,7 +122,7 @@ module sm_top #(
       .s_axil_bready(s_axil_bready), .s_axil_araddr(s_axil_araddr), .s_axil_arvalid(s_axil_arvalid),
       .s_axil_arready(s_axil_arready), .s_axil_rdata(s_axil_rdata), .s_axil_rresp(s_axil_rresp),
       .s_axil_rvalid(s_axil_rvalid), .s_axil_rready(s_axil_rready),
-      .frame_start(frame_start), .err_pulse({out_overflow, seq_err}),
+      .frame_start(frame_start), .err_pulse({out_overflow, seq_err}), .in_level(in_level),
       .enable(core_enable), .soft_reset(soft_reset), .host_width(host_width), .host_height(host_height),
       .cfg_width(cfg_width), .cfg_height(cfg_height), .cfg_gain_l(cfg_gain_l), .cfg_gain_r(cfg_gain_r),
       .cfg_offset_l(cfg_offset_l), .cfg_offset_r(cfg_offset_r), .cfg_rect_enable(cfg_rect_enable),
@@ -138,16 +149,34 @@ module sm_top #(
   wire [4:0] beat_side;
   wire [7:0] beat_left, beat_right;
   wire       out_room;
-  wire       ce = beat_valid && out_room;
+  // Pacing: with F > 1 clocks per pixel a beat is taken at most every F clocks; the
+  // folded blocks compute a beat's F level groups on the clocks before its ce (their
+  // inputs are the previous stages' registers, which change only on ce). The camera is
+  // held by s_axis_tready only when the input FIFO is full (docs/streams.md, "Pacing").
+  wire       pace_ok;
+  wire       ce = beat_valid && out_room && pace_ok;
+  generate
+    if (F > 1) begin : g_pace
+      reg [FCW-1:0] pace_q;  // clocks until the next ce may come
+      always @(posedge aclk) begin
+        if (!rst_n) pace_q <= {FCW{1'b0}};
+        else if (ce) pace_q <= F[FCW-1:0] - 1'b1;
+        else if (pace_q != {FCW{1'b0}}) pace_q <= pace_q - 1'b1;
+      end
+      assign pace_ok = (pace_q == {FCW{1'b0}});
+    end else begin : g_nopace
+      assign pace_ok = 1'b1;
+    end
+  endgenerate
 
-  sm_seq #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .FLUSH_ROWS(FLUSH_ROWS)) u_seq (
+  sm_seq #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .FLUSH_ROWS(FLUSH_ROWS), .IN_DEPTH(IN_DEPTH)) u_seq (
       .clk(aclk), .rst_n(rst_n),
       .s_axis_tdata(s_axis_tdata), .s_axis_tuser(s_axis_tuser), .s_axis_tlast(s_axis_tlast),
       .s_axis_tvalid(s_axis_tvalid), .s_axis_tready(s_axis_tready),
       .enable(core_enable), .host_width(host_width), .host_height(host_height),
       .frame_start(frame_start), .ce(ce),
       .beat_valid(beat_valid), .beat_side(beat_side), .beat_left(beat_left), .beat_right(beat_right),
-      .err_pulse(seq_err)
+      .err_pulse(seq_err), .in_level(in_level)
   );
   // Shadow values change only at the sequencer's frame start, after the previous frame
   // at a different width has been flushed.
@@ -159,6 +188,9 @@ module sm_top #(
   // pipeline: FLUSH_ROWS rows of 16 beats bound its latency, four frames last at least
   // 4 x 16 rows.
   generate
+    if (PUE < 1 || PUE > DISP || DISP % PUE != 0 || (PUE != DISP && PUE % 2 != 0)) begin : g_bad_pu
+      initial $error("sm_top: PU (%0d) must be 0, DISP (%0d) or an even divisor of DISP", PU, DISP);
+    end
     if (FLUSH_ROWS >= 64) begin : g_bad_flush
       initial $error("sm_top: pipeline of %0d narrow rows outlasts the 4-frame parameter history", FLUSH_ROWS);
     end

@@ -56,7 +56,9 @@ function(sm_vtop lib)
   endif()
 endfunction()
 sm_vtop(vtop_paper ${SM_PAPER_PARAMS})
+sm_vtop(vtop_zynq ${SM_ZYNQ_PARAMS})
 sm_vtop(vtop_small ${SM_SMALL_PARAMS})
+sm_vtop(vtop_small_fold ${SM_SMALL_FOLD_PARAMS})
 
 # sm_add_sim(<target> <vtop library>)
 function(sm_add_sim target lib)
@@ -72,7 +74,9 @@ function(sm_add_sim target lib)
   add_dependencies(${target} sm_default_scene)
 endfunction()
 sm_add_sim(stereo_sim vtop_paper)
+sm_add_sim(stereo_sim_zynq vtop_zynq)
 sm_add_sim(stereo_sim_small vtop_small)
+sm_add_sim(stereo_sim_small_fold vtop_small_fold)
 
 # Wave builds (issue 22): sm_top traced at full depth, so that one block's internals can
 # be dumped at run time (stereo_sim --wave FILE.vcd|FILE.fst --wave-scope ... --wave-depth

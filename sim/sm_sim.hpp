@@ -4,6 +4,8 @@
 // system tests.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -29,8 +31,16 @@ struct CameraTiming {
   int vblank_lines = 22;      // idle lines (of width + hblank cycles) after each frame
   double pixel_clock_hz = 0;  // 0: derived as (W+hblank)*(H+vblank)*fps
   double fps = 30.0;
+  // aclk, the core clock, in Hz. 0: aclk is the camera's pixel clock (a camera pixel
+  // every aclk during a line, the blanking in aclk cycles). Otherwise the camera's
+  // pixels arrive on aclk at the camera's own cadence: camera clock k (counted over
+  // lines and blanking from the first pixel) is due at aclk cycle ceil(k * core_hz /
+  // clock_hz), and a stalled pixel does not delay the ones after it (a camera does not
+  // wait).
+  double core_hz = 0;
   int idle_percent = 0;          // random extra idle cycles on the input (tests)
   int backpressure_percent = 0;  // random tready=0 on the outputs (tests)
+  int clocks_per_pixel = 1;      // the IP's DISP / PU (bounds the run's cycle limit)
   uint32_t seed = 1;
   double clock_hz(int w, int h) const {
     if (pixel_clock_hz > 0) return pixel_clock_hz;
@@ -107,6 +117,13 @@ class SimEngine {
     const int hb = timing.continuous ? 0 : timing.hblank;
     const int vb = timing.continuous ? 0 : timing.vblank_lines;
     const uint64_t line_period = static_cast<uint64_t>(width + hb);
+    const double ratio = timing.core_hz > 0 ? timing.core_hz / timing.clock_hz(width, height) : 1.0;
+    if (timing.core_hz > 0 && ratio < 1.0)
+      throw std::invalid_argument(fmt::format("core clock {:.3f} MHz is below the camera's pixel clock {:.3f} MHz",
+                                              timing.core_hz / 1e6, timing.clock_hz(width, height) / 1e6));
+    const uint64_t frame_ticks = line_period * static_cast<uint64_t>(height + vb);
+    // aclk cycle of camera clock k (core_hz > 0)
+    auto tick_cycle = [&](uint64_t k) { return static_cast<uint64_t>(std::ceil(static_cast<double>(k) * ratio)); };
     // The camera: pixel n of frame f is due at a fixed cycle; it never waits for the IP
     // in reality, so a pixel presented late counts as a stall.
     size_t f = 0;
@@ -114,7 +131,10 @@ class SimEngine {
     uint64_t due = tb_.cycles();
     const uint64_t start = tb_.cycles();
     if (max_cycles == 0)
-      max_cycles = (frames.size() + 2) * line_period * static_cast<uint64_t>(height + vb + 64) * 4 + 100000;
+      max_cycles = static_cast<uint64_t>(static_cast<double>((frames.size() + 2) * line_period *
+                                                             static_cast<uint64_t>(height + vb + 64) * 4) *
+                                         std::max(ratio, static_cast<double>(timing.clocks_per_pixel))) +
+                   100000;
     // Output side.
     DispImage cur;
     int ox = 0, oy = 0;
@@ -179,7 +199,18 @@ class SimEngine {
       const uint64_t now = tb_.cycles();
       tb_.tick();
       host_done(host, hi, started, res);
-      if (in_hs) {
+      if (in_hs && timing.core_hz > 0) {
+        if (x == 0 && y == 0) res.stats[f].sof_in_cycle = now;
+        res.stats[f].last_in_cycle = now;
+        if (++x == width) {
+          x = 0;
+          if (++y == height) {
+            y = 0;
+            ++f;
+          }
+        }
+        due = start + tick_cycle(f * frame_ticks + y * line_period + x);
+      } else if (in_hs) {
         if (x == 0 && y == 0) res.stats[f].sof_in_cycle = now;
         res.stats[f].last_in_cycle = now;
         if (++x == width) {

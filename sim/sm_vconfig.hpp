@@ -29,6 +29,9 @@ inline HwConfig verilated_config() {
 #ifdef SM_P_BAND_K
   hw.band_k = SM_P_BAND_K;
 #endif
+#ifdef SM_P_PU
+  hw.pu = SM_P_PU;
+#endif
   return hw;
 }
 

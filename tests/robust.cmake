@@ -5,12 +5,15 @@ endif()
 # well-formed frames, stream faults and register faults through the Verilated sm_top at
 # the small configuration (docs/robustness.md). The Verilated library is built with
 # --assert, so the RTL's internal assertions are live.
-add_executable(tb_faults ${CMAKE_SOURCE_DIR}/tests/tb_faults.cpp)
-target_include_directories(tb_faults PRIVATE ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOURCE_DIR}/tests/common
-                                             ${SM_GEN_DIR})
-target_link_libraries(tb_faults PRIVATE vtop_small sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
 set_source_files_properties(${CMAKE_SOURCE_DIR}/tests/tb_faults.cpp
                             PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
+foreach(v "tb_faults;vtop_small" "tb_faults_fold;vtop_small_fold")
+  list(GET v 0 exe)
+  list(GET v 1 lib)
+  add_executable(${exe} ${CMAKE_SOURCE_DIR}/tests/tb_faults.cpp)
+  target_include_directories(${exe} PRIVATE ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOURCE_DIR}/tests/common ${SM_GEN_DIR})
+  target_link_libraries(${exe} PRIVATE ${lib} sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
+endforeach()
 # The main run: ~1000 input steps mixing every fault class (a few seconds).
 add_test(NAME robust_faults COMMAND tb_faults ${SM_SCENE_SMALL_DIR} 1000 20240611 nosoft)
 # A second seed: different fault positions.
@@ -19,5 +22,8 @@ add_test(NAME robust_faults_seed2 COMMAND tb_faults ${SM_SCENE_SMALL_DIR} 400 7 
 # twice (line 80 `wire rst_n = aresetn;` wins in Verilator, so the soft reset never
 # reaches the sequencer, the pipeline or the output formatter).
 add_test(NAME robust_faults_soft_reset COMMAND tb_faults ${SM_SCENE_SMALL_DIR} 400 11)
-set_tests_properties(robust_faults robust_faults_seed2 robust_faults_soft_reset
+# The folded small configuration (4 clocks per pixel): a fault or a soft reset while a
+# pixel is half-way through its clocks recovers like any other.
+add_test(NAME robust_faults_fold COMMAND tb_faults_fold ${SM_SCENE_SMALL_DIR} 400 5)
+set_tests_properties(robust_faults robust_faults_seed2 robust_faults_soft_reset robust_faults_fold
                      PROPERTIES LABELS "robust" TIMEOUT 900)

@@ -9,7 +9,9 @@ function(sm_top_test name lib)
   target_link_libraries(${name} PRIVATE ${lib} sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
 endfunction()
 sm_top_test(tb_top_small vtop_small)
+sm_top_test(tb_top_small_fold vtop_small_fold)
 sm_top_test(tb_top_paper vtop_paper)
+sm_top_test(tb_top_zynq vtop_zynq)
 
 set(_w ${CMAKE_BINARY_DIR}/waves)
 file(MAKE_DIRECTORY ${_w})
@@ -25,9 +27,17 @@ add_custom_command(OUTPUT ${_rot}/calib.json ${_rot}/left.png ${_rot}/right.png
 add_custom_target(sm_scene_small_rot ALL DEPENDS ${_rot}/calib.json)
 add_test(NAME system_small_calib COMMAND tb_top_small ${_rot} calib ${_rot}/calib.json)
 add_test(NAME system_paper_budget COMMAND tb_top_paper ${SM_SCENE_DIR} budget)
+# The folded datapath (PU < DISP): the small configuration at 4 clocks per pixel under
+# stress and at camera timing (plus a continuous camera faster than the core, held by
+# tready), and the zynq configuration's budget: the built-in scene at 30 frames/s camera
+# timing on a 100 MHz core clock.
+add_test(NAME system_small_fold_stress COMMAND tb_top_small_fold ${SM_SCENE_SMALL_DIR} stress)
+add_test(NAME system_small_fold_budget COMMAND tb_top_small_fold ${SM_SCENE_SMALL_DIR} budget)
+add_test(NAME system_zynq_budget COMMAND tb_top_zynq ${SM_SCENE_DIR} budget 100)
 set_tests_properties(system_small_stress system_small_vcd system_small_budget system_small_calib
+                     system_small_fold_stress system_small_fold_budget
                      PROPERTIES LABELS "system" TIMEOUT 600)
-set_tests_properties(system_paper_budget PROPERTIES LABELS "system;slow" TIMEOUT 1800)
+set_tests_properties(system_paper_budget system_zynq_budget PROPERTIES LABELS "system;slow" TIMEOUT 1800)
 
 # stereo_sim's input modes (--left/--right, --sequence, --video) and their errors, on the
 # small configuration (each run checks the RTL against the model itself).

@@ -295,7 +295,7 @@ class FaultTb {
     }
     // Progress: with input offered and the output ready, some stream must move.
     if ((present && ready && !in_hs && !out_hs) && !in_reset_) {
-      if (++stuck_ > kStuckBound) {
+      if (static_cast<uint64_t>(++stuck_) > kStuckBound * fold_) {
         check(false, fmt::format("no progress for {} cycles at cycle {} (input offered, output ready)", kStuckBound,
                                  tb_.cycles()));
         throw std::runtime_error("deadlock");
@@ -310,26 +310,27 @@ class FaultTb {
     const uint64_t start = tb_.cycles();
     while (!cam_.empty()) {
       cycle();
-      if (tb_.cycles() - start > 2000000) throw std::runtime_error("camera queue never drained");
+      if (tb_.cycles() - start > 2000000ull * fold_) throw std::runtime_error("camera queue never drained");
     }
   }
 
   // Camera idle and the output ready until nothing has moved for a while: every accepted
   // pixel has been through the sequencer (the counters are final) and whatever the
   // pipeline can push out is out.
+  // Bounds are in beats: a folded datapath takes F = DISP / PU clocks per beat.
   void drain(int min_cycles = 800) {
     paused_ = true;
     force_ready_ = true;
     const uint64_t start = tb_.cycles();
     uint64_t last_move = start;
     int seen = beats_;
-    while (tb_.cycles() - start < static_cast<uint64_t>(min_cycles) || tb_.cycles() - last_move < 400) {
+    while (tb_.cycles() - start < static_cast<uint64_t>(min_cycles) * fold_ || tb_.cycles() - last_move < 400ull * fold_) {
       cycle();
       if (beats_ != seen) {
         seen = beats_;
         last_move = tb_.cycles();
       }
-      if (tb_.cycles() - start > 100000) throw std::runtime_error("output never went quiet");
+      if (tb_.cycles() - start > 100000ull * fold_) throw std::runtime_error("output never went quiet");
     }
     paused_ = false;
     force_ready_ = false;
@@ -599,6 +600,7 @@ class FaultTb {
 
   static constexpr int kStuckBound = 6000;
   sm::HwConfig hw_;
+  uint64_t fold_ = static_cast<uint64_t>(hw_.clocks_per_beat());  // clocks per beat
   sm::Testbench<Top> tb_;
   sm::CoverageOnExit cov_{tb_->contextp()};  // after tb_: written first
   std::mt19937 rng_;

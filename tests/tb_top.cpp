@@ -5,12 +5,16 @@
 // Usage: tb_top <scene dir> [mode]
 //   mode "stress"   : random idle cycles and back-pressure, 3 frames, register change
 //                     between frames (default)
-//   mode "budget"   : 2 frames with the camera timing of 30 frames/s: no input stall,
-//                     frame period within the camera's
+//   mode "budget [MHz]": 2 frames with the camera timing of 30 frames/s on a core clock
+//                     of MHz (default: the camera's pixel clock times DISP / PU, the
+//                     slowest the pacing rule allows): no input stall, frame period
+//                     within the camera's; then a continuous camera, faster than the
+//                     core when DISP / PU > 1: held by tready, counted, nothing dropped
 //   mode "vcd FILE" : writes a windowed VCD and checks it holds the stream signals
 //   mode "calib FILE": loads the calibration JSON into the registers first
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -115,34 +119,55 @@ int main(int argc, char** argv) {
       frames = {{l, r}, {l, r}};
       per_frame = {regs, regs};
       timing.continuous = false;  // 30 frames/s camera timing, output always ready
+      const int fold = hw.clocks_per_beat();
+      timing.clocks_per_pixel = fold;
+      const double core_mhz = arg.empty() ? 0.0 : std::stod(arg);
+      if (core_mhz > 0)
+        timing.core_hz = core_mhz * 1e6;
+      else if (fold > 1)
+        timing.core_hz = fold * timing.clock_hz(l.w, l.h);
+      const double ratio = timing.core_hz > 0 ? timing.core_hz / timing.clock_hz(l.w, l.h) : 1.0;
       const auto res = sim.run(frames, l.w, l.h, timing);
       compare(res, frames, per_frame, hw);
       check(res.input_stall_cycles == 0, fmt::format("camera never stalled ({} stall cycles)", res.input_stall_cycles));
-      const uint64_t camera_period = static_cast<uint64_t>(l.w + timing.hblank) * (l.h + timing.vblank_lines);
+      const auto camera_period = static_cast<uint64_t>(
+          std::ceil(static_cast<double>((l.w + timing.hblank) * (l.h + timing.vblank_lines)) * ratio));
       const uint64_t period = res.stats[1].last_out_cycle - res.stats[0].last_out_cycle;
       check(period <= camera_period,
             fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
       const uint64_t frame_cycles = res.stats[0].last_out_cycle - res.stats[0].sof_in_cycle + 1;
-      const double seconds = frame_cycles / timing.clock_hz(l.w, l.h);
+      const double seconds = frame_cycles / (timing.clock_hz(l.w, l.h) * ratio);
       check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,
             fmt::format("{} cycles per frame fit the 30 fps budget", frame_cycles));
-      fmt::print("budget: {} cycles sof->last pixel, period {} (camera {}), stalls {}\n", frame_cycles, period,
-                 camera_period, res.input_stall_cycles);
+      fmt::print("budget: DISP / PU = {} clocks per pixel, core clock {:.3f} MHz: {} cycles sof->last pixel, period {} "
+                 "(camera {}), stalls {}\n",
+                 fold, timing.clock_hz(l.w, l.h) * ratio / 1e6, frame_cycles, period, camera_period,
+                 res.input_stall_cycles);
+      fmt::print("30 frames/s with this camera at this core clock: {}\n",
+                 res.input_stall_cycles == 0 && period <= camera_period ? "yes" : "NO");
       // Independent truth: the scene's exact ground truth (bad-1.0 over non-occluded pixels).
       if (!sc.gt.empty()) {
         const double bad = sm::tools::bad1(sm::tools::disp_to_float(res.frames[0]), sc.gt, sc.nonocc).bad_pct();
         fmt::print("bad-1.0 vs ground truth: {:.2f} %\n", bad);
         check(bad < max_bad_percent(hw), fmt::format("bad-1.0 {:.2f} % below {} %", bad, max_bad_percent(hw)));
       }
-      // Continuous stream: W*H cycles per frame in steady state.
+      // Continuous stream, a pixel every clock: F*W*H cycles per frame in steady state.
+      // At F = 1 the camera is never held; at F > 1 it is faster than the core, so
+      // tready must hold it (stalls counted) and every pixel still arrives (bit-exact).
       sm::CameraTiming cont;
       cont.continuous = true;
+      cont.clocks_per_pixel = fold;
       const auto rc = sim.run(frames, l.w, l.h, cont);
       compare(rc, frames, per_frame, hw);
       const uint64_t cperiod = rc.stats[1].last_out_cycle - rc.stats[0].last_out_cycle;
-      check(cperiod == static_cast<uint64_t>(l.w) * l.h,
-            fmt::format("continuous stream: frame period {} == W*H {}", cperiod, l.w * l.h));
-      check(rc.input_stall_cycles == 0, fmt::format("continuous stream never stalled ({})", rc.input_stall_cycles));
+      const uint64_t want = static_cast<uint64_t>(fold) * l.w * l.h;
+      check(cperiod == want, fmt::format("continuous stream: frame period {} == F*W*H {}", cperiod, want));
+      if (fold == 1)
+        check(rc.input_stall_cycles == 0, fmt::format("continuous stream never stalled ({})", rc.input_stall_cycles));
+      else
+        check(rc.input_stall_cycles >= static_cast<uint64_t>(fold - 1) * l.w * l.h,
+              fmt::format("continuous stream faster than the core held by tready ({} stall cycles, at least {})",
+                          rc.input_stall_cycles, static_cast<uint64_t>(fold - 1) * l.w * l.h));
     } else if (mode == "vcd") {
       frames = {{l, r}};
       per_frame = {regs};

@@ -274,6 +274,7 @@ struct Val {
     if (!std::strcmp(param, "DISP")) return hw.disp;
     if (!std::strcmp(param, "MAX_OBJECTS")) return hw.max_objects;
     if (!std::strcmp(param, "MIN_WIDTH")) return hw.min_width();
+    if (!std::strcmp(param, "PU")) return hw.levels_per_clock();
     throw std::invalid_argument(std::string("regmap: unknown parameter ") + param);
   }
 };

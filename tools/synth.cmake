@@ -13,6 +13,7 @@ set(SM_SYNTH_DIR ${CMAKE_BINARY_DIR}/synth)
 # read after this one, keep the two in step).
 set(SM_SYNTH_SMALL_PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 CENSUS=7 SW=3 RECT_RADIUS=4)
 set(SM_SYNTH_PAPER_PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 CENSUS=15 SW=5 RECT_RADIUS=18)
+set(SM_SYNTH_ZYNQ_PARAMS ${SM_SYNTH_PAPER_PARAMS} PU=${SM_ZYNQ_PU})
 set(SM_SYNTH_TIMEOUT 14400 CACHE STRING "time limit (s) of one Yosys run of the synth targets")
 option(SM_SYNTH_PAPER_BLOCKS
        "synth_paper maps each block of sm_top in its own Yosys run and sums them" ON)
@@ -47,6 +48,9 @@ sm_synth_command(c_paper_xc5v TOP sm_top CONFIG stereo_sim FAMILY xc5v
                  PARAMS ${SM_SYNTH_PAPER_PARAMS} ${blocks})
 sm_synth_command(c_paper_xc7 TOP sm_top CONFIG stereo_sim_xc7 FAMILY xc7
                  PARAMS ${SM_SYNTH_PAPER_PARAMS} ${blocks})
+# the Zynq-7000's family (xc7z020 budget: docs/synthesis.md)
+sm_synth_command(c_zynq_xc7 TOP sm_top CONFIG stereo_sim_zynq FAMILY xc7
+                 PARAMS ${SM_SYNTH_ZYNQ_PARAMS} ${blocks})
 set(all)
 if(SM_SYNTH_ON_BUILD)
   set(all ALL)
@@ -65,8 +69,13 @@ add_custom_target(synth_paper_xc7
   DEPENDS sm_synth_report USES_TERMINAL
   COMMENT "Yosys: sm_top at the paper configuration (xc7)")
 
+add_custom_target(synth_zynq
+  COMMAND ${c_zynq_xc7}
+  DEPENDS sm_synth_report USES_TERMINAL
+  COMMENT "Yosys: sm_top at the zynq configuration (xc7, PU ${SM_ZYNQ_PU})")
+
 # sm_axil_regs includes the generated register map.
-foreach(t synth_small synth_paper synth_paper_xc7)
+foreach(t synth_small synth_paper synth_paper_xc7 synth_zynq)
   add_dependencies(${t} sm_regmap_gen_files)
 endforeach()
 
