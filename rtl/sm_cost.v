@@ -5,11 +5,30 @@
 // beat d back in the same row is the right pixel x - d. A thermometer of the column
 // (reset by sol) marks the levels with x - d < 0, which get CB.
 //
-// Latency 3 ce: popcount leaves, popcount result, output (with the x - d < 0 rule).
+// Latency 3 ce at every PU: popcount leaves, popcount result, output (with the x - d < 0
+// rule) when PU = DISP; when folded, the beat's result is picked up on the second ce
+// after the one that sampled it, like the parallel pipeline's.
+//
+// Folded (F = DISP / PU > 1 clocks per beat, PU popcount lanes): lane j at sub-step g
+// computes level d = F*j + g + 1, except lane PU-1 at the last sub-step, which computes
+// level 0 (d = DISP would be the unused beat n - DISP). The delay line is PU chained
+// segments of F taps (sm_cost_srl, one SRL per census bit and lane): segment j holds
+// the beats n-1-F*j .. n-F*j-F, read at tap g on sub-step g, and shifts on ce with the
+// counter at F - 1, so it shifts in the oldest word of segment j - 1. Relies on sm_top's
+// rules (docs/algorithm.md, "Folded datapath"): ce at most once every F clocks, and the
+// inputs a ce samples stable from the clock after the previous ce. The F sub-steps of
+// beat n run on the F clocks after the ce that presented it (a counter restarted by
+// ce), before beat n's own ce; the popcount adds 2 clocks, its results are collected
+// group by group (one register of PU lanes per sub-step), copied to a full-width hold
+// register 3 clocks after beat n's ce (when sub-step 0 of beat n + 1 overwrites the
+// collect), shifted to a second hold register 3 clocks after the next ce and presented
+// from there on the ce after that. At F < 4 that ce can come before the second copy;
+// the output then takes the first hold register (the one multiplexer, F < 4 only).
 module sm_cost #(
     parameter MAX_WIDTH = 320,  // widest active line
     parameter DISP      = 128,  // disparity levels 0..DISP-1
-    parameter CENSUS    = 15    // census window side (odd, 3..15)
+    parameter CENSUS    = 15,   // census window side (odd, 3..15)
+    parameter PU        = DISP  // levels computed per clock (divides DISP; DISP: not folded)
 ) (
     input  wire               clk,
     input  wire               rst_n,
@@ -26,6 +45,8 @@ module sm_cost #(
   localparam XW = $clog2(MAX_WIDTH + 1);
   localparam CB = CENSUS * CENSUS - 1;
   localparam HW = $clog2(CB + 1);
+  localparam F  = DISP / PU;                  // clocks per beat
+  localparam GW = (F > 1) ? $clog2(F) : 1;    // sub-step counter
   // cost of a level whose right pixel is left of the image; CB fits HW bits by definition
   /* verilator lint_off WIDTH */
   localparam [HW-1:0] CB_V = CB;
@@ -38,44 +59,20 @@ module sm_cost #(
     if (DISP < 2 || DISP > 256) begin : g_bad_disp
       initial $error("sm_cost: DISP (%0d) must be 2..256", DISP);
     end
-  endgenerate
-  wire unused_width = &width;
-
-  // Right vectors in bit-plane order (one plane per census bit, one bit per level):
-  // cr_all[i*DISP + d] is bit i of the right vector of beat n - d, the one level d
-  // compares with. Beat n itself is s_cr; the older ones come from a delay line of
-  // the same order, crd_q[i*DISP + d] = bit i of beat n - 1 - d, shifted one level up
-  // per ce (its top bit of every plane, beat n - DISP, is never read). Bit-plane order
-  // lets the popcount below do all levels with the same long-vector operations. The
-  // planes are assembled in always blocks: as CB continuous assignments, Verilator
-  // 5.006 joins them into a chain of ever longer concatenations (quadratic in CB*DISP).
-  reg [CB*DISP-1:0] crd_q;
-  reg [CB*DISP-1:0] cr_all, cl_all;
-  genvar i;
-  generate
-    for (i = 0; i < CB; i = i + 1) begin : g_plane
-      always @* begin
-        cr_all[i*DISP +: DISP] = {crd_q[i*DISP +: DISP-1], s_cr[i]};
-        cl_all[i*DISP +: DISP] = {DISP{s_cl[i]}};  // the left vector, every level
-      end
-      wire unused_crd_top = crd_q[i*DISP + DISP - 1];  // beat n - DISP
+    if (PU < 1 || PU > DISP || DISP % PU != 0) begin : g_bad_pu
+      initial $error("sm_cost: PU (%0d) must divide DISP (%0d)", PU, DISP);
     end
   endgenerate
-  always @(posedge clk) if (ce) crd_q <= cr_all;
+  wire unused_width = &width;
 
   // ok[d] = (x >= d) for the entering beat: all ones shifted in since the row start.
   reg  [DISP-1:0] ok_q;
   wire [DISP-1:0] ok = s_side[2] ? {{(DISP - 1) {1'b0}}, 1'b1} : {ok_q[DISP-2:0], 1'b1};
   wire unused_ok_top = ok_q[DISP-1];  // shifted out
 
-  // Popcount of every level (one compressor tree per level), latency 2.
-  wire [HW*DISP-1:0] pc;  // bit-plane order: bit f of level d at [f*DISP + d]
-  sm_popcount #(.N(CB), .L(DISP)) u_pc (.clk(clk), .ce(ce), .a(cl_all), .b(cr_all), .cnt(pc));
-
-  // Control and pass-through data along the popcount's two stages.
-  reg [DISP-1:0] ok_q2, ok_q3;
-  reg [4:0]      side_q2, side_q3;
-  reg [7:0]      left_q2, left_q3;
+  // Control and pass-through data along the three ce stages.
+  reg [4:0] side_q2, side_q3;
+  reg [7:0] left_q2, left_q3;
   always @(posedge clk) begin
     if (!rst_n) begin
       ok_q    <= {DISP{1'b0}};
@@ -89,32 +86,178 @@ module sm_cost #(
       m_side  <= side_q3;
     end
   end
-
-  // Output costs: CB where x - d < 0, applied plane by plane (bit f: the count's where
-  // ok, CB's bit f elsewhere; the same 2:1 multiplexer per bit as a per-level select,
-  // as DISP-bit operations in Verilator). They leave in bit-plane order, the order
-  // sm_sw_aggregate sums them in: a transpose to level order and back would be wiring
-  // in hardware but two thousand bit moves a clock in Verilator.
-  wire [HW*DISP-1:0] cost_p;  // bit-plane order
-  genvar f;
-  generate
-    for (f = 0; f < HW; f = f + 1) begin : g_cb
-      if (CB_V[f]) begin : g_one
-        assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] | ~ok_q3;
-      end else begin : g_zero
-        assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] & ok_q3;
-      end
-    end
-  endgenerate
   always @(posedge clk) begin
     if (ce) begin
-      ok_q2   <= ok;
-      ok_q3   <= ok_q2;
       left_q2 <= s_left;
       left_q3 <= left_q2;
       m_left  <= left_q3;
-      m_cost  <= cost_p;
     end
   end
+
+  genvar i, f;
+  generate
+    if (F == 1) begin : g_par
+      // Right vectors in bit-plane order (one plane per census bit, one bit per level):
+      // cr_all[i*DISP + d] is bit i of the right vector of beat n - d, the one level d
+      // compares with. Beat n itself is s_cr; the older ones come from a delay line of
+      // the same order, crd_q[i*DISP + d] = bit i of beat n - 1 - d, shifted one level up
+      // per ce (its top bit of every plane, beat n - DISP, is never read). Bit-plane order
+      // lets the popcount below do all levels with the same long-vector operations. The
+      // planes are assembled in always blocks: as CB continuous assignments, Verilator
+      // 5.006 joins them into a chain of ever longer concatenations (quadratic in CB*DISP).
+      reg [CB*DISP-1:0] crd_q;
+      reg [CB*DISP-1:0] cr_all, cl_all;
+      for (i = 0; i < CB; i = i + 1) begin : g_plane
+        always @* begin
+          cr_all[i*DISP +: DISP] = {crd_q[i*DISP +: DISP-1], s_cr[i]};
+          cl_all[i*DISP +: DISP] = {DISP{s_cl[i]}};  // the left vector, every level
+        end
+        wire unused_crd_top = crd_q[i*DISP + DISP - 1];  // beat n - DISP
+      end
+      always @(posedge clk) if (ce) crd_q <= cr_all;
+
+      // Popcount of every level (one compressor tree per level), latency 2.
+      wire [HW*DISP-1:0] pc;  // bit-plane order: bit f of level d at [f*DISP + d]
+      sm_popcount #(.N(CB), .L(DISP)) u_pc (.clk(clk), .ce(ce), .a(cl_all), .b(cr_all), .cnt(pc));
+
+      // Output costs: CB where x - d < 0, applied plane by plane (bit f: the count's where
+      // ok, CB's bit f elsewhere; the same 2:1 multiplexer per bit as a per-level select,
+      // as DISP-bit operations in Verilator). They leave in bit-plane order, the order
+      // sm_sw_aggregate sums them in: a transpose to level order and back would be wiring
+      // in hardware but two thousand bit moves a clock in Verilator.
+      reg  [DISP-1:0]    ok_q2, ok_q3;
+      wire [HW*DISP-1:0] cost_p;  // bit-plane order
+      for (f = 0; f < HW; f = f + 1) begin : g_cb
+        if (CB_V[f]) begin : g_one
+          assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] | ~ok_q3;
+        end else begin : g_zero
+          assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] & ok_q3;
+        end
+      end
+      always @(posedge clk) begin
+        if (ce) begin
+          ok_q2  <= ok;
+          ok_q3  <= ok_q2;
+          m_cost <= cost_p;
+        end
+      end
+    end else begin : g_fold
+      /* verilator lint_off WIDTH */
+      localparam [GW-1:0] G_LAST = F - 1;
+      /* verilator lint_on WIDTH */
+
+      // Sub-step counter: 0..F-1 on the F clocks after a ce, then held at F - 1 until the
+      // next ce, so every ce (F or more clocks later) finds the segments at their last tap.
+      // The reset counts as a ce: the first beat after it is computed on the F clocks
+      // after the reset (a ce sooner gets a wrong first beat, which in sm_top is the
+      // reset value of the stage before, a virtual beat).
+      reg [GW-1:0] sub_q;
+      always @(posedge clk) begin
+        if (!rst_n || ce) sub_q <= {GW{1'b0}};
+        else if (sub_q != G_LAST) sub_q <= sub_q + 1'b1;
+      end
+`ifndef SYNTHESIS
+      reg seen_ce_q;  // a ce since the reset: the pacing rule applies
+      always @(posedge clk) begin
+        if (!rst_n) seen_ce_q <= 1'b0;
+        else if (ce) seen_ce_q <= 1'b1;
+        if (rst_n && ce && seen_ce_q && sub_q != G_LAST)
+          $error("sm_cost: ce %0d clocks after the previous one, PU %0d needs %0d", sub_q + 1, PU, F);
+      end
+`endif
+      // sub_q == F - 1, from a flip-flop: it selects level 0's input in front of the
+      // popcount leaves, on the longest path.
+      reg last;
+      always @(posedge clk) begin
+        if (!rst_n || ce) last <= 1'b0;
+        else if (sub_q == G_LAST - 1'b1) last <= 1'b1;
+      end
+
+      // The delay line in bit-plane order: seg_q[i*PU + j] = bit i of segment j's tap
+      // sub_q, beat n - 1 - F*j - sub_q.
+      wire [CB*PU-1:0] seg_q;
+      reg  [CB*PU-1:0] pa, pb;  // popcount inputs, bit-plane order (bit i of lane j at [i*PU + j])
+      genvar j, g;
+      for (i = 0; i < CB; i = i + 1) begin : g_plane
+        sm_cost_srl #(.L(PU), .DEPTH(F)) u_srl (
+            .clk(clk), .shift(ce), .addr(sub_q), .d(s_cr[i]), .q(seg_q[i*PU +: PU]));
+        // Lane PU-1's last sub-step is level 0, beat n itself (its segment's last tap,
+        // beat n - DISP, is never compared).
+        always @* begin
+          pb[i*PU +: PU] = seg_q[i*PU +: PU];
+          if (last) pb[i*PU + PU - 1] = s_cr[i];
+          pa[i*PU +: PU] = {PU{s_cl[i]}};
+        end
+      end
+
+      // x - d >= 0 of each lane's level at this sub-step (ok[0] = 1 covers level 0).
+      wire [PU-1:0] ok_l;
+      for (j = 0; j < PU; j = j + 1) begin : g_okl
+        wire [F-1:0] oks;
+        for (g = 0; g < F; g = g + 1) begin : g_sub
+          assign oks[g] = ok[(j == PU - 1 && g == F - 1) ? 0 : F * j + g + 1];
+        end
+        assign ok_l[j] = oks[sub_q];
+      end
+
+      // PU popcounts every clock, latency 2; the sub-step and ok bits follow them.
+      wire [HW*PU-1:0] pc;  // bit-plane order: bit f of lane j at [f*PU + j]
+      sm_popcount #(.N(CB), .L(PU)) u_pc (.clk(clk), .ce(1'b1), .a(pa), .b(pb), .cnt(pc));
+      reg [PU-1:0] ok_p1, ok_p2;
+      reg [GW-1:0] sub_p1, sub_p2;
+      always @(posedge clk) begin
+        ok_p1  <= ok_l;
+        ok_p2  <= ok_p1;
+        sub_p1 <= sub_q;
+        sub_p2 <= sub_p1;
+      end
+      wire [HW*PU-1:0] cost_l;  // bit-plane order
+      for (f = 0; f < HW; f = f + 1) begin : g_cb
+        if (CB_V[f]) begin : g_one
+          assign cost_l[f*PU +: PU] = pc[f*PU +: PU] | ~ok_p2;
+        end else begin : g_zero
+          assign cost_l[f*PU +: PU] = pc[f*PU +: PU] & ok_p2;
+        end
+      end
+
+      // Collect: sub-step g's lanes at [g*HW*PU +: HW*PU]. Sub-steps repeated while the
+      // counter waits at F - 1 rewrite the same values.
+      localparam GB = HW * PU;
+      reg [F*GB-1:0] col_q;
+      always @(posedge clk) begin : a_col
+        integer s;
+        for (s = 0; s < F; s = s + 1)
+          if (sub_p2 == s[GW-1:0]) col_q[s*GB +: GB] <= cost_l;
+      end
+
+      // ce 3 clocks ago: sub-step 0 of the next beat reaches the collect now, so the
+      // collect holds the whole previous beat for the last time.
+      reg [2:0] ce_p;
+      always @(posedge clk) begin
+        if (!rst_n) ce_p <= 3'd0;
+        else ce_p <= {ce_p[1:0], ce};
+      end
+      // The hold registers in the output's bit-plane order (fixed wiring from the collect:
+      // level d = F*j + g + 1 of sub-step g, lane j; level 0 of sub-step F-1, lane PU-1).
+      reg [HW*DISP-1:0] hold_q, hold2_q;
+      always @(posedge clk) begin : a_hold
+        integer d, b, s, l;
+        if (ce_p[2]) begin
+          for (d = 0; d < DISP; d = d + 1) begin
+            s = (d == 0) ? F - 1 : (d - 1) % F;
+            l = (d == 0) ? PU - 1 : (d - 1) / F;
+            for (b = 0; b < HW; b = b + 1) hold_q[b*DISP + d] <= col_q[s*GB + b*PU + l];
+          end
+          hold2_q <= hold_q;
+        end
+      end
+      if (F < 4) begin : g_early
+        // A ce within 3 clocks of the previous one comes before that one's hold copy.
+        always @(posedge clk) if (ce) m_cost <= (|ce_p) ? hold_q : hold2_q;
+      end else begin : g_late
+        always @(posedge clk) if (ce) m_cost <= hold2_q;
+      end
+    end
+  endgenerate
 endmodule
 `default_nettype wire

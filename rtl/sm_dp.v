@@ -17,6 +17,29 @@
 //   of line k is registered on the ce at x_in = S + 2 + x (mod W), two rows later.
 //   Latency: 2*W + S + P beats (sm_win_ctrl with D_ROWS = 2, D_COLS = S + P).
 //   Minimum active width: S + P + 1 (width must exceed D_COLS).
+//
+// Folded (PU < DISP, F = DISP/PU clocks per beat, branch g_fold): PU lanes (sm_dp_fpe)
+// serve the level groups g = levels [g*PU, g*PU+PU) one after the other. Relies on the
+// input-stability rule: from the clock after ce k up to the ce k+1 the inputs hold the
+// beat ce k+1 samples, so DP clock t of that beat runs as sub-steps g = 0..F-1 on the
+// F clocks after ce k (a counter the ce restarts; sub-step F-1 may fall on ce k+1
+// itself), and everything visible (m_side, m_disp) still changes only on ce, with the
+// same beat-level timing and latency as above (2*W + S + P beats). Sub-step g needs
+// from group g-1 the site-2t+1 value of its top (odd) level, computed one clock
+// earlier (kept in a register), and from group g+1 U(2t) of its bottom (even) level,
+// not yet updated (second read port of lane 0's state memory). State: per lane a
+// LUT-RAM of F words U(2t, g*PU+j). Cost skew: per lane a LUT-RAM ring of
+// (beat mod 2^KW, group) words, written at {wp, g} and read at
+// {wp - (S - g*PU/2 - ceil(j/2)), g}; skew 0 (level DISP-1) takes the input directly.
+// Decisions: one word of 2*PU+2 bits per sub-step at {bank, t, g}: the group's 2*PU
+// bits above the 2 bits of level g*PU-1, so the backward step of any level of group g
+// finds both levels it may need in one word (written one clock late through a
+// register so that the trace's read, on the clock after a ce, never meets the write of
+// the same word). The trace reads one word per beat, group of its current level.
+// Legal PU: DISP (today's array), or an even divisor of DISP below it (PU >= 2; an odd
+// PU would put an even level at the top of a group, breaking the group order above).
+// After reset the first beat's sub-steps start at once, so its ce must come at least
+// F clocks after rst_n rises (sm_top: the first beats are not real anyway).
 module sm_dp #(
     parameter MAX_WIDTH = 320,  // widest active line
     parameter DISP      = 128,  // disparity levels 0..DISP-1 (even, 4..254)
@@ -24,7 +47,10 @@ module sm_dp #(
     // Cost skews of at least RING_MIN beats live in LUT-RAM ring buffers, shorter ones
     // in shift registers (sm_dp_pe). The default puts every chain longer than a 64-bit
     // word in a ring (paper configuration: skews of 11..64 beats).
-    parameter RING_MIN  = 64 / CW + 1
+    parameter RING_MIN  = 64 / CW + 1,
+    // Disparity levels computed per clock: DISP (one beat per clock) or an even divisor
+    // of DISP (F = DISP/PU clocks per beat, ce at most every F clocks).
+    parameter PU        = DISP
 ) (
     input  wire               clk,
     input  wire               rst_n,
@@ -43,6 +69,10 @@ module sm_dp #(
   localparam P = 2;  // beats of the read-out beyond 2 lines + skew
   localparam ACC_W = $clog2(MAX_WIDTH * ((1 << CW) - 1) + 2 * MAX_WIDTH * 255 + 1) + 1;
   localparam KW = $clog2(S);  // ring pointers: the longest skew is S beats
+  localparam F = (PU > 0) ? DISP / PU : 1;  // clocks per beat
+  localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
+  localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word
+  localparam DEC_AW = (F > 1) ? AW + 1 + GW : AW + 1;  // decision address {bank, t[, g]}
 
   generate
     if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
@@ -56,6 +86,9 @@ module sm_dp #(
     end
     if (RING_MIN < 2) begin : g_bad_ring
       initial $error("sm_dp: RING_MIN (%0d) must be at least 2", RING_MIN);
+    end
+    if (PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0) begin : g_bad_pu
+      initial $error("sm_dp: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP);
     end
   endgenerate
 
@@ -132,94 +165,287 @@ module sm_dp #(
     end
   end
 
-  // ---- skew rings: one write pointer, one read pointer per skew length k ----------
-  // rp of length k is kept equal to wp - k (mod 2^KW) by counting alongside wp, so every
-  // ring address comes straight from flip-flops (no subtractor in front of the RAM).
-  // Both PEs of a length share its pointer. Every ring of depth 2^RW <= 2^KW uses the
-  // pointers' low RW bits.
-  reg  [KW-1:0]       wp_q;
-  wire [(S+1)*KW-1:0] rps;  // read pointer of skew length k at [k*KW +: KW]
+  // ---- shared by both branches --------------------------------------------------
+  // wp: skew ring write pointer, one slot per beat.
+  reg  [KW-1:0] wp_q;
   always @(posedge clk) begin
     if (!rst_n) wp_q <= {KW{1'b0}};
     else if (ce) wp_q <= wp_q + 1'b1;
   end
-  genvar k;
-  generate
-    for (k = 0; k <= S; k = k + 1) begin : g_rp
-      if (k >= RING_MIN) begin : g_ring
-        /* verilator lint_off WIDTH */  // -k modulo 2^KW
-        localparam [KW-1:0] RP0 = (1 << KW) - k;
-        /* verilator lint_on WIDTH */
-        reg [KW-1:0] rp_q;
-        always @(posedge clk) begin
-          if (!rst_n) rp_q <= RP0;
-          else if (ce) rp_q <= rp_q + 1'b1;
-        end
-        assign rps[k*KW +: KW] = rp_q;
-      end else begin : g_shift
-        assign rps[k*KW +: KW] = {KW{1'b0}};  // shift-register skew: unused
-      end
-    end
-  endgenerate
 
-  // ---- the array ---------------------------------------------------------------
-  wire [(DISP+2)*ACC_W-1:0] nbx;  // nb of level d at (d+1)*ACC_W, zero pads at both ends
-  wire [2*DISP-1:0]         dec;
-  assign nbx[ACC_W-1:0] = {ACC_W{1'b0}};
-  assign nbx[(DISP+1)*ACC_W +: ACC_W] = {ACC_W{1'b0}};
-  genvar d;
-  generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_pe
-      sm_dp_pe #(
-          .CW    (CW),
-          .ACC_W (ACC_W),
-          .ODD   (d % 2),
-          .HAS_LO(d > 0 ? 1 : 0),
-          .HAS_HI(d < DISP - 1 ? 1 : 0),
-          .IS_D0 (d == 0 ? 1 : 0),
-          .DELAY (S - (d + 1) / 2),
-          .RING  (S - (d + 1) / 2 >= RING_MIN ? 1 : 0),
-          .KW    (KW)
-      ) u_pe (
-          .clk  (clk),
-          .ce   (ce),
-          .init (line_end),
-          .occ  (occ_q),
-          .cost (s_cost[d*CW +: CW]),
-          .wp   (wp_q),
-          .ra   (rps[(S-(d+1)/2)*KW +: KW]),
-          .nb_lo(nbx[d*ACC_W +: ACC_W]),
-          .nb_hi(nbx[(d+2)*ACC_W +: ACC_W]),
-          .nb   (nbx[(d+1)*ACC_W +: ACC_W]),
-          .dec  (dec[2*d +: 2])
-      );
-    end
-  endgenerate
-
-  // ---- decisions: written by the forward pass, read back mirrored --------------
-  wire [2*DISP-1:0] dec_rd;
-  reg  [AW-1:0]     t_dec_q;  // t of dec_rd
-  sm_dp_ram #(
-      .DATA_W(2 * DISP),
-      .ADDR_W(AW + 1)
-  ) u_dec (
-      .clk  (clk),
-      .we   (ce),
-      .waddr({fbank_q, t_f[AW-1:0]}),
-      .wdata(dec),
-      .re   (ce),
-      .raddr({~fbank_q, t_rev[AW-1:0]}),
-      .rdata(dec_rd)
-  );
+  wire [DEC_W-1:0]  dec;        // decision word of this DP clock (g_par) / sub-step (g_fold)
+  wire              dec_we;
+  wire [DEC_AW-1:0] dec_waddr;
+  wire [DEC_W-1:0]  dec_wdata;
+  wire              dec_re;
+  wire [DEC_AW-1:0] dec_raddr;
+  wire [DEC_W-1:0]  dec_rd;
+  reg  [AW-1:0]     t_dec_q;    // t of dec_rd
+  wire [GW-1:0]     d_grp;      // group of the trace's current level (g_fold)
   always @(posedge clk) begin
     if (ce) t_dec_q <= t_rev[AW-1:0];
   end
+
+  generate
+    if (F == 1) begin : g_par
+      // ---- today's fully parallel array: DISP PEs, one DP clock per ce -----------
+      // Skew rings: one write pointer, one read pointer per skew length k.
+      // rp of length k is kept equal to wp - k (mod 2^KW) by counting alongside wp, so every
+      // ring address comes straight from flip-flops (no subtractor in front of the RAM).
+      // Both PEs of a length share its pointer. Every ring of depth 2^RW <= 2^KW uses the
+      // pointers' low RW bits.
+      wire [(S+1)*KW-1:0] rps;  // read pointer of skew length k at [k*KW +: KW]
+      genvar k;
+      for (k = 0; k <= S; k = k + 1) begin : g_rp
+        if (k >= RING_MIN) begin : g_ring
+          /* verilator lint_off WIDTH */  // -k modulo 2^KW
+          localparam [KW-1:0] RP0 = (1 << KW) - k;
+          /* verilator lint_on WIDTH */
+          reg [KW-1:0] rp_q;
+          always @(posedge clk) begin
+            if (!rst_n) rp_q <= RP0;
+            else if (ce) rp_q <= rp_q + 1'b1;
+          end
+          assign rps[k*KW +: KW] = rp_q;
+        end else begin : g_shift
+          assign rps[k*KW +: KW] = {KW{1'b0}};  // shift-register skew: unused
+        end
+      end
+
+      // ---- the array -------------------------------------------------------------
+      wire [(DISP+2)*ACC_W-1:0] nbx;  // nb of level d at (d+1)*ACC_W, zero pads at both ends
+      assign nbx[ACC_W-1:0] = {ACC_W{1'b0}};
+      assign nbx[(DISP+1)*ACC_W +: ACC_W] = {ACC_W{1'b0}};
+      genvar d;
+      for (d = 0; d < DISP; d = d + 1) begin : g_pe
+        sm_dp_pe #(
+            .CW    (CW),
+            .ACC_W (ACC_W),
+            .ODD   (d % 2),
+            .HAS_LO(d > 0 ? 1 : 0),
+            .HAS_HI(d < DISP - 1 ? 1 : 0),
+            .IS_D0 (d == 0 ? 1 : 0),
+            .DELAY (S - (d + 1) / 2),
+            .RING  (S - (d + 1) / 2 >= RING_MIN ? 1 : 0),
+            .KW    (KW)
+        ) u_pe (
+            .clk  (clk),
+            .ce   (ce),
+            .init (line_end),
+            .occ  (occ_q),
+            .cost (s_cost[d*CW +: CW]),
+            .wp   (wp_q),
+            .ra   (rps[(S-(d+1)/2)*KW +: KW]),
+            .nb_lo(nbx[d*ACC_W +: ACC_W]),
+            .nb_hi(nbx[(d+2)*ACC_W +: ACC_W]),
+            .nb   (nbx[(d+1)*ACC_W +: ACC_W]),
+            .dec  (dec[2*d +: 2])
+        );
+      end
+
+      // ---- decisions: written by the forward pass, read back mirrored ------------
+      assign dec_we    = ce;
+      assign dec_waddr = {fbank_q, t_f[AW-1:0]};
+      assign dec_wdata = dec;
+      assign dec_re    = ce;
+      assign dec_raddr = {~fbank_q, t_rev[AW-1:0]};
+      wire unused_grp = &d_grp;  // one group
+    end else begin : g_fold
+      // ---- folded array: PU lanes, sub-steps g = 0..F-1 per DP clock ---------------
+      localparam GD = 1 << GW;  // state words per lane
+      localparam RD = KW + GW;  // ring address {beat slot, group}
+      /* verilator lint_off WIDTH */  // constants truncated to the counter widths
+      localparam [GW-1:0] G_LAST = F - 1;
+      localparam [KW-1:0] SL_STEP = PU / 2;  // skew shrinks by PU/2 beats per group
+      /* verilator lint_on WIDTH */
+      localparam [ACC_W-1:0] BIG = {1'b1, {(ACC_W - 1) {1'b0}}};
+
+      // Sub-step counter: run_q = sub-step g_q executes on this clock edge. A ce
+      // restarts it for the beat entering next; reset starts it for the first beat.
+      reg [GW-1:0] g_q;
+      reg          run_q;
+      always @(posedge clk) begin
+        if (!rst_n) begin
+          g_q   <= {GW{1'b0}};
+          run_q <= 1'b1;
+        end else if (ce) begin
+          g_q   <= {GW{1'b0}};
+          run_q <= 1'b1;
+        end else if (run_q) begin
+          g_q   <= g_q + 1'b1;
+          run_q <= (g_q != G_LAST);
+        end
+      end
+`ifndef SYNTHESIS
+      // ce pacing (sm_top, F > 1): a ce ends the beat's sub-steps, never cuts them short.
+      reg chk_seen_q;  // a ce since reset (the first ce may come early: garbage beat)
+      always @(posedge clk) begin
+        if (!rst_n) chk_seen_q <= 1'b0;
+        else if (ce) chk_seen_q <= 1'b1;
+        if (rst_n && ce && chk_seen_q && run_q && g_q != G_LAST)
+          $error("sm_dp: ce after %0d of the F = %0d clocks of a beat", g_q + 1'b1, F);
+      end
+`endif
+
+      // The held beat's costs of group g_q (one F:1 selection of PU*CW bits).
+      wire [PU*CW-1:0] cost_g = s_cost[g_q*(PU*CW) +: PU*CW];
+
+      // Ring read slots, one per ceil(j/2) = k: wp - (S - g*PU/2 - k), counted so the
+      // ring addresses come straight from flip-flops (reset: wp = 0, sub-step 0).
+      wire [(PU/2+1)*KW-1:0] slots;
+      genvar k;
+      for (k = 0; k <= PU / 2; k = k + 1) begin : g_slot
+        /* verilator lint_off WIDTH */  // -S + k (+ 1) modulo 2^KW
+        localparam [KW-1:0] SL_RST = (1 << KW) + k - S;
+        localparam [KW-1:0] SL_CE = (1 << KW) + 1 + k - S;  // wp is wp_q + 1 after a ce
+        /* verilator lint_on WIDTH */
+        reg [KW-1:0] sl_q;
+        always @(posedge clk) begin
+          if (!rst_n) sl_q <= SL_RST;
+          else if (ce) sl_q <= wp_q + SL_CE;
+          else if (run_q) sl_q <= sl_q + SL_STEP;
+        end
+        assign slots[k*KW +: KW] = sl_q;
+      end
+
+      // ---- lanes -----------------------------------------------------------------
+      // fresh_q: this beat is DP clock 0 of a line; the beat before (the line-end ce,
+      // clock W-1 of the previous line) wrote U(2W, .), never needed, so its reads
+      // give U(0, .) instead.
+      reg fresh_q;
+      always @(posedge clk) begin
+        if (!rst_n) fresh_q <= 1'b0;
+        else if (ce) fresh_q <= line_end;
+      end
+      // The state words are prefetched one clock ahead into registers (u_q), so the
+      // longest path starts at a flip-flop instead of a LUT-RAM read and the line-start
+      // select sits in front of the register. Next sub-step: g_q + 1 while the beat's
+      // sub-steps run, else 0 (a ce restarts them; words 0 .. g_q were written by
+      // sub-steps already done, and the word read is never the one written on that edge).
+      wire          nx_run = run_q && !ce && (g_q != G_LAST);
+      wire [GW-1:0] g_nx = nx_run ? g_q + 1'b1 : {GW{1'b0}};
+      wire          fresh_nx = ce ? line_end : fresh_q;
+      // nb of lane j at [(j+1)*ACC_W +: ACC_W]; below lane 0 the top of group g-1, above
+      // lane PU-1 the bottom of group g+1
+      wire [(PU+2)*ACC_W-1:0] f_nb;
+      wire [2*PU-1:0]     f_dec;  // choice of lane j at [2j +: 2]
+      reg  [ACC_W-1:0]    top_q;  // site-2t+1 value of level g*PU-1 (lane PU-1, g-1)
+      reg  [1:0]          top_dec_q;
+      genvar j;
+      for (j = 0; j < PU; j = j + 1) begin : g_lane
+        wire [ACC_W-1:0] u_next;
+        wire [ACC_W-1:0] u;
+        wire [CW-1:0]    a;
+        // State: U(2t, g*PU+j) of every group; sub-step g reads and rewrites word g.
+        (* ram_style = "distributed" *)
+        reg  [ACC_W-1:0] um [0:GD-1];
+        // The line start substitutes U(0, .) on the read side (fresh_q): a select in
+        // front of the first adders/compares, not behind the last select before the
+        // LUT-RAM's data input (the longest path).
+        wire [ACC_W-1:0] u0 = (j == 0 && g_nx == {GW{1'b0}}) ? {ACC_W{1'b0}} : BIG;
+        reg  [ACC_W-1:0] u_q;  // U(2t, g*PU+j) of the sub-step executing next
+        always @(posedge clk) begin
+          if (run_q) um[g_q] <= u_next;
+          u_q <= fresh_nx ? u0 : um[g_nx];
+        end
+        assign u = u_q;
+        if (j == 0) begin : g_up
+          // (g = F-1: any word, unused: level DISP does not exist)
+          // F = 2: the ce that ends sub-step 1 prefetches word 0 + 1, written on
+          // that same edge: take the value being written.
+          wire            up_byp = (F == 2) && run_q && (g_q == g_nx + 1'b1);
+          reg [ACC_W-1:0] up_q;
+          always @(posedge clk) begin
+            up_q <= fresh_nx ? BIG : up_byp ? u_next : um[g_nx+1'b1];
+          end
+          assign f_nb[(PU+1)*ACC_W +: ACC_W] = up_q;
+        end
+        // Cost skew: ring of CW-bit words {beat slot, group}.
+        (* ram_style = "distributed" *)
+        reg  [CW-1:0] ring [0:(1<<RD)-1];
+        always @(posedge clk) begin
+          if (run_q) ring[{wp_q, g_q}] <= cost_g[j*CW +: CW];
+        end
+        wire [CW-1:0] a_ring = ring[{slots[((j+1)/2)*KW +: KW], g_q}];
+        if (j == PU - 1) begin : g_top
+          // level DISP-1 (g = F-1) has skew 0: the held input itself
+          assign a = (g_q == G_LAST) ? cost_g[j*CW +: CW] : a_ring;
+        end else begin : g_mid
+          assign a = a_ring;
+        end
+        sm_dp_fpe #(
+            .CW   (CW),
+            .ACC_W(ACC_W),
+            .ODD  (j % 2)
+        ) u_fpe (
+            .u     (u),
+            .a     (a),
+            .occ   (occ_q),
+            .has_lo(j > 0 ? 1'b1 : (g_q != {GW{1'b0}})),
+            .has_hi(j < PU - 1 ? 1'b1 : (g_q != G_LAST)),
+            .nb_lo (f_nb[j*ACC_W +: ACC_W]),
+            .nb_hi (f_nb[(j+2)*ACC_W +: ACC_W]),
+            .nb    (f_nb[(j+1)*ACC_W +: ACC_W]),
+            .u_next(u_next),
+            .dec   (f_dec[2*j +: 2])
+        );
+      end
+      assign f_nb[ACC_W-1:0] = top_q;
+      always @(posedge clk) begin
+        if (run_q) begin
+          top_q     <= f_nb[PU*ACC_W +: ACC_W];
+          top_dec_q <= f_dec[2*PU-1 -: 2];
+        end
+      end
+
+      // ---- decisions: {group, level g*PU-1} per sub-step, written a clock late ----
+      // The trace reads its word on the clock after a ce; after the line-end ce that is
+      // word (t = 0) of the bank the next line starts writing on the same clock.
+      assign dec = {f_dec, top_dec_q};
+      reg              dw_we_q;
+      reg [DEC_AW-1:0] dw_addr_q;
+      reg [DEC_W-1:0]  dw_data_q;
+      reg              rd_pend_q;  // the clock after a ce: fetch the trace's word
+      reg              rbank_q;    // bank the trace reads
+      always @(posedge clk) begin
+        if (!rst_n) begin
+          dw_we_q   <= 1'b0;
+          rd_pend_q <= 1'b0;
+        end else begin
+          dw_we_q   <= run_q;
+          rd_pend_q <= ce;
+        end
+        dw_addr_q <= {fbank_q, t_f[AW-1:0], g_q};
+        dw_data_q <= dec;
+        if (ce) rbank_q <= ~fbank_q;
+      end
+      assign dec_we    = dw_we_q;
+      assign dec_waddr = dw_addr_q;
+      assign dec_wdata = dw_data_q;
+      assign dec_re    = rd_pend_q;
+      assign dec_raddr = {rbank_q, t_dec_q, d_grp};
+    end
+  endgenerate
+
+  sm_dp_ram #(
+      .DATA_W(DEC_W),
+      .ADDR_W(DEC_AW)
+  ) u_dec (
+      .clk  (clk),
+      .we   (dec_we),
+      .waddr(dec_waddr),
+      .wdata(dec_wdata),
+      .re   (dec_re),
+      .raddr(dec_raddr),
+      .rdata(dec_rd)
+  );
 
   // ---- backward pass, fill, read-out --------------------------------------------
   wire [DW-1:0] disp_q;
   sm_dp_trace #(
       .MAX_WIDTH(MAX_WIDTH),
-      .DISP     (DISP)
+      .DISP     (DISP),
+      .PU       (PU)
   ) u_trace (
       .clk      (clk),
       .rst_n    (rst_n),
@@ -229,6 +455,7 @@ module sm_dp #(
       .step_last(step_last),
       .rd_start (rd_start),
       .x_out    (x_out),
+      .d_grp    (d_grp),
       .disp_q   (disp_q)
   );
   assign m_disp = {1'b1, {(15 - DW) {1'b0}}, disp_q};

@@ -9,28 +9,45 @@
 // head's x gets the head's d; any other pixel gets the fill of the last match to its
 // left, or the leftmost match's d (the head) before the first match, or 0 when the
 // line had no match. The stack is double buffered (push line k+1, pop line k).
+//
+// Folded (PU < DISP, sm_dp g_fold): dec_word is the word of one level group g,
+// {dec of levels g*PU .. g*PU+PU-1, dec of level g*PU-1}, read on the clock after a
+// ce at the group d_grp of the level this block then holds. A backward step from level
+// d of group g needs the choices of d and at most one neighbour, d - 1 (possibly
+// g*PU-1, the word's low bits) or d + 1 (inside the group, PU even), so one word a
+// beat suffices; the level is also kept as (group, index in the group) so that the
+// word's bit select and the next group come from small registers without a modulo.
 module sm_dp_trace #(
     parameter MAX_WIDTH = 320,  // widest active line
-    parameter DISP      = 128   // disparity levels
+    parameter DISP      = 128,  // disparity levels
+    parameter PU        = DISP  // levels per clock of the forward pass (sm_dp)
 ) (
     input  wire              clk,
     input  wire              rst_n,
     input  wire              ce,
-    input  wire [2*DISP-1:0] dec_word,   // decisions of site pair t_dec (dec[t][d] at 2d)
+    input  wire [DEC_W-1:0]  dec_word,   // decisions of site pair t_dec (dec[t][d] at 2d)
     input  wire [AW-1:0]     t_dec,      // t of dec_word
     input  wire              step_last,  // this ce is the last backward step of a line
     input  wire              rd_start,   // this ce fetches the head of the finished line
     input  wire [XW-1:0]     x_out,      // pixel emitted (registered) by this ce
+    output wire [GW-1:0]     d_grp,      // group of the current level (folded)
     output reg  [DW-1:0]     disp_q      // disparity of pixel x_out, after the ce
 );
   localparam XW = $clog2(MAX_WIDTH + 1);
   localparam AW = $clog2(MAX_WIDTH);
   localparam DW = $clog2(DISP);
   localparam SW = AW + 2 * DW;  // stack word {x, d, fill}
+  localparam F = (PU > 0) ? DISP / PU : 1;  // forward clocks per beat
+  localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
+  localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word (sm_dp)
+  localparam LW = (PU > 1) ? $clog2(PU) : 1;  // index inside a group
 
   generate
     if (DISP < 4 || DISP % 2 != 0) begin : g_bad_disp
       initial $error("sm_dp_trace: DISP (%0d) must be even and >= 4", DISP);
+    end
+    if (PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0) begin : g_bad_pu
+      initial $error("sm_dp_trace: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP);
     end
   endgenerate
 
@@ -42,15 +59,96 @@ module sm_dp_trace #(
     follow = (c == 2'd1) ? d - 1'b1 : (c == 2'd2) ? d + 1'b1 : d;
   endfunction
 
+  // Folded: index n (-2 .. PU+1) of the next level relative to the current group ->
+  // {into group g-1, into group g+1, index inside the new group}.
+  function [LW+1:0] step(input integer n);
+    reg [LW-1:0] v;
+    begin
+      /* verilator lint_off WIDTH */  // n is in 0..PU-1 after the wrap
+      if (n < 0) v = n + PU;
+      else if (n >= PU) v = n - PU;
+      else v = n;
+      /* verilator lint_on WIDTH */
+      step = {n < 0, n >= PU, v};
+    end
+  endfunction
+
   // Site 2t+2 is an occlusion node for even d, site 2t+1 for odd d; both take their
   // choice from the same word. A match happens at 2t+2 (odd d) or, after choice 0, at
   // 2t+1 (even d); either way its x is t + ceil(d/2) and at most one per clock.
-  wire [1:0]    ch_a  = dec_word[2*d_q +: 2];
-  wire          odd   = d_q[0];
-  wire          match = odd || (ch_a == 2'd0);
-  wire [DW-1:0] d1    = odd ? d_q : follow(d_q, ch_a);
-  wire [1:0]    ch_b  = dec_word[2*d1 +: 2];
-  wire [DW-1:0] d2    = match && !odd ? d1 : follow(d1, ch_b);
+  wire          match;
+  wire [DW-1:0] d2;
+  generate
+    if (F == 1) begin : g_par
+      wire          odd  = d_q[0];
+      wire [1:0]    ch_a = dec_word[2*d_q +: 2];
+      wire [DW-1:0] d1   = odd ? d_q : follow(d_q, ch_a);
+      wire [1:0]    ch_b = dec_word[2*d1 +: 2];
+      assign match = odd || (ch_a == 2'd0);
+      assign d2    = match && !odd ? d1 : follow(d1, ch_b);
+      assign d_grp = 1'b0;
+    end else begin : g_fold
+      // l_q: index of d_q in its group g_q; word entry i (bits 2i+1:2i) is level
+      // g*PU + i - 1. For every index l the whole step -- match, level change -2..+2,
+      // next index, group change -- is a function of the entries l .. l+2 only (the
+      // parity of l is fixed): one LUT level. The current index selects one result
+      // (PU:1), and the next level / group are picked from d_q - 2 .. d_q + 2 and
+      // g_q - 1 .. g_q + 1, counted from the registers: no adder after the RAM.
+      localparam RW = 6 + LW;  // {match, dsel[2:0], dn, up, l_next}
+      reg  [LW-1:0]    l_q;
+      reg  [GW-1:0]    g_q;
+      // the word with one zero entry above it (entry PU+1, never a traced choice)
+      wire [DEC_W+1:0] wx = {2'b00, dec_word};
+      wire [PU*RW-1:0] res;
+      genvar l;
+      for (l = 0; l < PU; l = l + 1) begin : g_idx
+        wire [1:0] cm = wx[2*l +: 2];      // level d - 1
+        wire [1:0] c0 = wx[2*(l+1) +: 2];  // level d
+        wire [1:0] cp = wx[2*(l+2) +: 2];  // level d + 1
+        wire       ev = (l % 2 == 0);      // d even: site 2t+2 is its occlusion node
+        wire       mt = !ev || (c0 == 2'd0);
+        wire [1:0] cb = !ev ? c0 : (c0 == 2'd1) ? cm : cp;  // choice at site 2t+1
+        // dsel = level change + 2: the first step (even d) -1 / 0 / +1, then cb's
+        wire [2:0] d_a = (!ev || c0 == 2'd0) ? 3'd2 : (c0 == 2'd1) ? 3'd1 : 3'd3;
+        wire [2:0] dsel = (ev && c0 == 2'd0) ? 3'd2 :
+                          (cb == 2'd1) ? d_a - 1'b1 : (cb == 2'd2) ? d_a + 1'b1 : d_a;
+        reg  [LW+1:0] nxt;  // {dn, up, l_next}
+        always @(*) begin
+          case (dsel)
+            3'd0:    nxt = step(l - 2);
+            3'd1:    nxt = step(l - 1);
+            3'd3:    nxt = step(l + 1);
+            3'd4:    nxt = step(l + 2);
+            default: nxt = step(l);
+          endcase
+        end
+        assign res[l*RW +: RW] = {mt, dsel, nxt};
+      end
+      wire [RW-1:0] r = res[l_q*RW +: RW];
+      wire [2:0]    sel = r[LW+4:LW+2];
+      wire          dn = r[LW+1];
+      wire          up = r[LW];
+      assign match = r[RW-1];
+      localparam [DW-1:0] TWO = 2;
+      assign d2 = (sel == 3'd0) ? d_q - TWO : (sel == 3'd1) ? d_q - 1'b1 :
+                  (sel == 3'd3) ? d_q + 1'b1 : (sel == 3'd4) ? d_q + TWO : d_q;
+      always @(posedge clk) begin
+        if (!rst_n) begin
+          l_q <= {LW{1'b0}};
+          g_q <= {GW{1'b0}};
+        end else if (ce) begin
+          if (step_last) begin
+            l_q <= {LW{1'b0}};  // level 0
+            g_q <= {GW{1'b0}};
+          end else begin
+            l_q <= r[LW-1:0];
+            g_q <= dn ? g_q - 1'b1 : up ? g_q + 1'b1 : g_q;
+          end
+        end
+      end
+      assign d_grp = g_q;
+    end
+  endgenerate
   wire [DW:0]   ceil_d = ({1'b0, d_q} + 1'b1) >> 1;
   /* verilator lint_off WIDTH */  // x = t + ceil(d/2) < MAX_WIDTH on a traced path: AW bits
   wire [AW-1:0] mx    = t_dec + ceil_d;

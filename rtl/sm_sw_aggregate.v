@@ -28,12 +28,37 @@
 // in LUT-RAM (sm_colwin), written once per beat and read at SW addresses, instead of
 // SW x SW x DISP x CW shifting flip-flops. A_raw is the only per-level register before
 // the multiplier.
+//
+// Folded datapath (PU < DISP, F = DISP / PU clocks per beat; PU = DISP is the parallel
+// datapath above, unchanged): the aggregation of a level does not depend on the other
+// levels, so the window, bit heap and levels exist for PU levels and run over the F
+// level groups of a beat in F consecutive steps (group g = levels g*PU .. g*PU+PU-1).
+// It relies on sm_top's ce pacing (after a ce, ce stays low for F - 1 clocks; checked
+// in simulation) and on the "register at ce, compute on the following clocks" rule:
+// everything registered on a ce (the live costs and pixel, the line buffer of pixels,
+// the masks, the sideband) is as above, and the F steps of the beat entering on ce 0
+// run on the F clocks after it, with those registers, whatever comes next. The pixel
+// part (codes, weight sum, RECIP) stays once per beat; the codes are registered on the
+// clock after ce 0 and RECIP on the one after that, and both hold for the F steps.
+// Step g of the beat of ce 0 (clock c0 + 1 + g):
+//   clock c0+1+g  line-buffer read of word {column, g} (sm_sw_foldlb: one word per
+//                 column and group, SW-1 rows of PU levels); group g of the live costs
+//   clock c0+2+g  the group's column (live row + SW-1 rows) written back to the line
+//                 buffer and into the window (sm_sw_foldwin: LUT-RAM at {slot, g});
+//                 the window's SW-1 previous columns of group g read from it; bit
+//                 heap of PU lanes; per level A_raw
+//   c0+3+g .. c0+6+g  sm_sw_level (multiply, round, saturate, output register)
+//   end of c0+6+g the group's results into the output ring (sm_sw_foldout), read on
+//                 ce 5 into m_agg (the last group is written by clock c0 + F + 5, at
+//                 most 5 * F clocks after ce 0)
+// So the latency is the same as above: pixel (x, y) on m_side/m_agg after ce 5.
 module sm_sw_aggregate #(
     parameter MAX_WIDTH  = 320,  // widest active line
     parameter DISP       = 128,  // disparity levels
     parameter CENSUS     = 15,   // census window side: sets the raw cost width
     parameter SW         = 5,    // support-weight window side (odd, 3..7)
-    parameter COST_SHIFT = 2     // raw Hamming cost >> COST_SHIFT before aggregation
+    parameter COST_SHIFT = 2,    // raw Hamming cost >> COST_SHIFT before aggregation
+    parameter PU         = DISP  // levels computed per clock: a divisor of DISP
 ) (
     input  wire                 clk,
     input  wire                 rst_n,
@@ -59,6 +84,11 @@ module sm_sw_aggregate #(
   localparam LVW   = DISP * CW;                     // shifted costs of one pixel
   localparam LBW   = LVW + 8;                       // line-buffer word per row: costs, pixel
   localparam COLW  = SW * LVW;                      // costs of one window column
+  localparam F     = (PU >= 1) ? DISP / PU : 1;     // clocks (steps) per beat
+  localparam FGW   = (F > 1) ? $clog2(F) : 1;       // step / group index
+  localparam GW    = PU * CW;                       // shifted costs of one group
+  localparam COLG  = SW * GW;                       // one group of one window column
+  localparam LAW   = $clog2(MAX_WIDTH);             // column address (columns < MAX_WIDTH)
 
   generate
     if (SW < 3 || SW > 7 || (SW % 2) == 0) begin : g_bad_sw
@@ -72,6 +102,9 @@ module sm_sw_aggregate #(
     end
     if (DISP < 1) begin : g_bad_disp
       initial $error("sm_sw_aggregate: DISP (%0d) must be at least 1", DISP);
+    end
+    if (PU < 1 || PU > DISP || DISP % PU != 0) begin : g_bad_pu
+      initial $error("sm_sw_aggregate: PU (%0d) must divide DISP (%0d)", PU, DISP);
     end
   endgenerate
 
@@ -100,12 +133,7 @@ module sm_sw_aggregate #(
   endgenerate
   genvar d, k, c, g;
 
-  wire [(SW-1)*LBW-1:0] lb_dout;  // rows live-1 .. live-(SW-1) of the entering column
-  sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(LBW), .ROWS(SW - 1)) u_lb (
-      .clk(clk), .ce(ce), .col(s_x), .din({s_left, cost_in}), .dout(lb_dout)
-  );
-
-  reg [LVW-1:0] live_cost_q;  // live row of the entering column, beside lb_dout
+  reg [LVW-1:0] live_cost_q;  // live row of the entering column, beside the line buffer
   reg [7:0]     live_pix_q;
   reg [2*R:0]   row_ok_q, col_ok_q;
   reg [63:0]    table_q;      // weight codes of the frame whose pixels are centred now
@@ -124,17 +152,11 @@ module sm_sw_aggregate #(
 
   // ---------------------------------------------------------------- ce 1: window
   // Column c of the window is offset i = R - c from the centre (column 0 entered last),
-  // row k is offset j = R - k (row 0 is the live row).
-  wire [COLW-1:0]   col_cost;
-  wire [SW*8-1:0]   col_pix;
-  assign col_cost[0 +: LVW] = live_cost_q;
-  assign col_pix[0 +: 8]    = live_pix_q;
-  generate
-    for (k = 1; k < SW; k = k + 1) begin : g_col
-      assign col_cost[k*LVW +: LVW] = lb_dout[(k-1)*LBW +: LVW];
-      assign col_pix[k*8 +: 8]      = lb_dout[(k-1)*LBW + LVW +: 8];
-    end
-  endgenerate
+  // row k is offset j = R - k (row 0 is the live row). The left pixels of the entering
+  // column come from the line buffer of the datapath (g_par: pixels beside the costs;
+  // g_fold: a line buffer of pixels alone).
+  wire [SW*8-1:0] col_pix;
+  assign col_pix[0 +: 8] = live_pix_q;
 
   // Left pixels of columns 0..SW-2 only: the oldest column is needed just once, for the
   // weights computed while the window forms.
@@ -159,20 +181,15 @@ module sm_sw_aggregate #(
     end
   endgenerate
 
+  // The codes and RECIP are registered on ce (g_par) or on the first and second clock
+  // after it (g_fold: they hold for the F steps, which start on the clock after ce).
+  wire           code_en, recip_en;
   reg [NQ*2-1:0] code_q;
   reg [4:0]      side2_q;
   always @(posedge clk) begin
-    if (ce) begin
-      pwin_q <= pform[(SW-1)*SW*8-1:0];
-      code_q <= code;
-    end
+    if (ce) pwin_q <= pform[(SW-1)*SW*8-1:0];
+    if (code_en) code_q <= code;
   end
-
-  // Cost window: column c entered c + 1 ce ago, all SW columns in LUT-RAM (sm_colwin).
-  wire [SW*COLW-1:0] cwin;  // column c at [c*COLW +: COLW]
-  sm_colwin #(.W(COLW), .N(SW)) u_cwin (
-      .clk(clk), .rst_n(rst_n), .ce(ce), .col(col_cost), .win(cwin)
-  );
 
   // ---------------------------------------------------------------- ce 2..5: levels
   // Weight sum and its reciprocal, once per pixel (ce 2).
@@ -204,7 +221,7 @@ module sm_sw_aggregate #(
 
   reg [RW-1:0] recip_q;
   always @(posedge clk) begin
-    if (ce) recip_q <= recip_rom[wsum];
+    if (recip_en) recip_q <= recip_rom[wsum];
   end
 
   // A_raw of every level as one bit heap (sm_bitheap), all levels side by side: the
@@ -226,55 +243,238 @@ module sm_sw_aggregate #(
   endfunction
   localparam [32*AW-1:0] H0 = term_heights(NQ);
 
-  // Bit g of position q's weighted cost at [(g*NQ + q)*DISP +: DISP]: cost plane g, g-1
-  // or g-2 of the position (weight 1, 2, 4), or 0, chosen by its code.
-  wire [TP*NQ*DISP-1:0] terms;
+  genvar gi, pl;
   generate
-    for (k = 0; k < SW; k = k + 1) begin : g_trow
-      for (c = 0; c < SW; c = c + 1) begin : g_tcol
-        localparam Q = k*SW + c;  // window position, as the codes
-        wire [1:0] cd = code_q[Q*2 +: 2];
-        wire [DISP-1:0] m1 = {DISP{cd == 2'd1}};
-        wire [DISP-1:0] m2 = {DISP{cd == 2'd2}};
-        wire [DISP-1:0] m4 = {DISP{cd == 2'd3}};
-        wire [LVW-1:0] cp = cwin[c*COLW + k*LVW +: LVW];  // its CW cost planes
-        for (g = 0; g < TP; g = g + 1) begin : g_bit
-          wire [DISP-1:0] b1, b2, b4;
-          if (g < CW) begin : g_s0
-            assign b1 = cp[g*DISP +: DISP] & m1;
-          end else begin : g_n0
-            assign b1 = {DISP{1'b0}};
+    if (F == 1) begin : g_par
+      // ------------------------------------------------ all DISP levels in one clock
+      assign code_en  = ce;
+      assign recip_en = ce;
+
+      wire [(SW-1)*LBW-1:0] lb_dout;  // rows live-1 .. live-(SW-1) of the entering column
+      sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(LBW), .ROWS(SW - 1)) u_lb (
+          .clk(clk), .ce(ce), .col(s_x), .din({s_left, cost_in}), .dout(lb_dout)
+      );
+
+      wire [COLW-1:0] col_cost;
+      assign col_cost[0 +: LVW] = live_cost_q;
+      for (k = 1; k < SW; k = k + 1) begin : g_col
+        assign col_cost[k*LVW +: LVW] = lb_dout[(k-1)*LBW +: LVW];
+        assign col_pix[k*8 +: 8]      = lb_dout[(k-1)*LBW + LVW +: 8];
+      end
+
+      // Cost window: column c entered c + 1 ce ago, all SW columns in LUT-RAM (sm_colwin).
+      wire [SW*COLW-1:0] cwin;  // column c at [c*COLW +: COLW]
+      sm_colwin #(.W(COLW), .N(SW)) u_cwin (
+          .clk(clk), .rst_n(rst_n), .ce(ce), .col(col_cost), .win(cwin)
+      );
+
+      // Bit g of position q's weighted cost at [(g*NQ + q)*DISP +: DISP]: cost plane g, g-1
+      // or g-2 of the position (weight 1, 2, 4), or 0, chosen by its code.
+      wire [TP*NQ*DISP-1:0] terms;
+      for (k = 0; k < SW; k = k + 1) begin : g_trow
+        for (c = 0; c < SW; c = c + 1) begin : g_tcol
+          localparam Q = k*SW + c;  // window position, as the codes
+          wire [1:0] cd = code_q[Q*2 +: 2];
+          wire [DISP-1:0] m1 = {DISP{cd == 2'd1}};
+          wire [DISP-1:0] m2 = {DISP{cd == 2'd2}};
+          wire [DISP-1:0] m4 = {DISP{cd == 2'd3}};
+          wire [LVW-1:0] cp = cwin[c*COLW + k*LVW +: LVW];  // its CW cost planes
+          for (g = 0; g < TP; g = g + 1) begin : g_bit
+            wire [DISP-1:0] b1, b2, b4;
+            if (g < CW) begin : g_s0
+              assign b1 = cp[g*DISP +: DISP] & m1;
+            end else begin : g_n0
+              assign b1 = {DISP{1'b0}};
+            end
+            if (g >= 1 && g <= CW) begin : g_s1
+              assign b2 = cp[(g-1)*DISP +: DISP] & m2;
+            end else begin : g_n1
+              assign b2 = {DISP{1'b0}};
+            end
+            if (g >= 2) begin : g_s2
+              assign b4 = cp[(g-2)*DISP +: DISP] & m4;
+            end else begin : g_n2
+              assign b4 = {DISP{1'b0}};
+            end
+            assign terms[(g*NQ + Q)*DISP +: DISP] = b1 | b2 | b4;
           end
-          if (g >= 1 && g <= CW) begin : g_s1
-            assign b2 = cp[(g-1)*DISP +: DISP] & m2;
-          end else begin : g_n1
-            assign b2 = {DISP{1'b0}};
-          end
-          if (g >= 2) begin : g_s2
-            assign b4 = cp[(g-2)*DISP +: DISP] & m4;
-          end else begin : g_n2
-            assign b4 = {DISP{1'b0}};
-          end
-          assign terms[(g*NQ + Q)*DISP +: DISP] = b1 | b2 | b4;
         end
       end
-    end
-  endgenerate
 
-  wire [AW*DISP-1:0] row_a, row_b;  // bit-plane order
-  sm_bitheap #(.NC(AW), .H0(H0), .L(DISP), .REG(0)) u_heap (
-      .clk(clk), .ce(ce), .bits(terms), .row_a(row_a), .row_b(row_b));
-  // split_var: each level reads its own variables, not a slice of one long vector
-  wire [DISP*AW-1:0] lane_a  /*verilator split_var*/;  // level order
-  wire [DISP*AW-1:0] lane_b  /*verilator split_var*/;
-  sm_plane2lane #(.P(AW), .L(DISP)) u_ta (.planes(row_a), .lanes(lane_a));
-  sm_plane2lane #(.P(AW), .L(DISP)) u_tb (.planes(row_b), .lanes(lane_b));
+      wire [AW*DISP-1:0] row_a, row_b;  // bit-plane order
+      sm_bitheap #(.NC(AW), .H0(H0), .L(DISP), .REG(0)) u_heap (
+          .clk(clk), .ce(ce), .bits(terms), .row_a(row_a), .row_b(row_b));
+      // split_var: each level reads its own variables, not a slice of one long vector
+      wire [DISP*AW-1:0] lane_a  /*verilator split_var*/;  // level order
+      wire [DISP*AW-1:0] lane_b  /*verilator split_var*/;
+      sm_plane2lane #(.P(AW), .L(DISP)) u_ta (.planes(row_a), .lanes(lane_a));
+      sm_plane2lane #(.P(AW), .L(DISP)) u_tb (.planes(row_b), .lanes(lane_b));
 
-  generate
-    for (d = 0; d < DISP; d = d + 1) begin : g_lvl
-      sm_sw_level #(.CW(CW), .SW(SW), .RW(RW)) u_lvl (
-          .clk(clk), .ce(ce), .row_a(lane_a[d*AW +: AW]), .row_b(lane_b[d*AW +: AW]),
-          .recip(recip_q), .agg(m_agg[d*CW +: CW]));
+      for (d = 0; d < DISP; d = d + 1) begin : g_lvl
+        sm_sw_level #(.CW(CW), .SW(SW), .RW(RW)) u_lvl (
+            .clk(clk), .ce(ce), .row_a(lane_a[d*AW +: AW]), .row_b(lane_b[d*AW +: AW]),
+            .recip(recip_q), .agg(m_agg[d*CW +: CW]));
+      end
+    end else begin : g_fold
+      // ------------------------------------------------ PU levels per clock, F steps
+      // Step control: a ce starts the F steps of its beat on the next F clocks.
+      /* verilator lint_off WIDTH */  // small constant truncated to the index width
+      localparam [FGW-1:0] GLAST = F - 1;
+      /* verilator lint_on WIDTH */
+      reg           act0_q;   // a step: group grp0_q of the beat of the last ce
+      reg [FGW-1:0] grp0_q;
+      reg           ce1_q, ce2_q;  // the first / second clock after a ce
+      always @(posedge clk) begin
+        if (!rst_n) begin
+          act0_q <= 1'b0;
+          grp0_q <= {FGW{1'b0}};
+          ce1_q  <= 1'b0;
+          ce2_q  <= 1'b0;
+        end else begin
+          ce1_q <= ce;
+          ce2_q <= ce1_q;
+          if (ce) begin
+            act0_q <= 1'b1;
+            grp0_q <= {FGW{1'b0}};
+          end else if (act0_q) begin
+            act0_q <= grp0_q != GLAST;
+            grp0_q <= (grp0_q == GLAST) ? {FGW{1'b0}} : grp0_q + 1'b1;
+          end
+        end
+      end
+      assign code_en  = ce1_q;
+      assign recip_en = ce2_q;
+
+`ifndef SYNTHESIS
+      // sm_top's pacing: after a ce, the next F - 1 clocks have ce low.
+      always @(posedge clk) begin
+        if (rst_n && ce && act0_q && grp0_q != GLAST)
+          $error("sm_sw_aggregate: ce during step %0d of %0d (PU %0d)", grp0_q, F, PU);
+      end
+`endif
+
+      // Left pixels: a line buffer of their own, on ce as in g_par.
+      wire [(SW-1)*8-1:0] lbp_dout;
+      sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(8), .ROWS(SW - 1)) u_lbp (
+          .clk(clk), .ce(ce), .col(s_x), .din(s_left), .dout(lbp_dout)
+      );
+      for (k = 1; k < SW; k = k + 1) begin : g_colp
+        assign col_pix[k*8 +: 8] = lbp_dout[(k-1)*8 +: 8];
+      end
+
+      reg [LAW-1:0] x_q;  // column of the beat whose steps run
+      always @(posedge clk) begin
+        if (ce) x_q <= s_x[LAW-1:0];
+      end
+      if (XW > LAW) begin : g_unused_xmsb
+        wire unused_xmsb = s_x[XW-1];  // columns are below MAX_WIDTH
+      end
+
+      // Group g of the live costs (planes of its PU levels) at [g*GW +: GW]: an F:1
+      // choice of PU * CW bits, cheaper than rotating all DISP * CW of them.
+      wire [LVW-1:0] live_gm;
+      for (gi = 0; gi < F; gi = gi + 1) begin : g_lgrp
+        for (pl = 0; pl < CW; pl = pl + 1) begin : g_lpl
+          assign live_gm[gi*GW + pl*PU +: PU] = live_cost_q[pl*DISP + gi*PU +: PU];
+        end
+      end
+      reg [GW-1:0] live_sel;
+      integer si;
+      always @* begin
+        live_sel = live_gm[0 +: GW];
+        for (si = 1; si < F; si = si + 1)
+          if (grp0_q == si[FGW-1:0]) live_sel = live_gm[si*GW +: GW];
+      end
+
+      // Cost rows: one block-RAM word per (column, group), at {column, group}. The depth
+      // is a power of two: at 320 columns and 8 groups, 2,560 words would map to five
+      // 512-deep slices behind a 5:1 multiplexer of every output bit (about 1,500
+      // LUTs); 4,096 words are 4K x 9 block RAMs side by side (as many as one word per
+      // column took) and no multiplexer.
+      wire [COLG-1:0] col_g;  // the step's group of the entering column, row k at [k*GW]
+      sm_sw_foldlb #(.DEPTH(1 << (LAW + FGW)), .DATA_W(GW), .ROWS(SW - 1)) u_lbc (
+          .clk(clk), .rst_n(rst_n), .en(act0_q), .addr({x_q, grp0_q}), .din(live_sel),
+          .col(col_g)
+      );
+
+      // Steps through the datapath: 1 window and heap, 2..5 sm_sw_level, 5 result.
+      reg [5:1]     act_q;
+      reg [FGW-1:0] grp_q [1:5];
+      always @(posedge clk) begin
+        if (!rst_n) act_q <= 5'd0;
+        else act_q <= {act_q[4:1], act0_q};
+      end
+      always @(posedge clk) begin
+        grp_q[1] <= grp0_q;
+        grp_q[2] <= grp_q[1];
+        grp_q[3] <= grp_q[2];
+        grp_q[4] <= grp_q[3];
+        grp_q[5] <= grp_q[4];
+      end
+
+      // Window: the entering column's group from the line buffer, the SW-1 previous
+      // columns' from LUT-RAM at {slot, group}.
+      wire [(SW-1)*COLG-1:0] owin;
+      sm_sw_foldwin #(.W(COLG), .N(SW - 1), .F(F)) u_fwin (
+          .clk(clk), .rst_n(rst_n), .en(act_q[1]), .col(col_g), .win(owin)
+      );
+      wire [SW*COLG-1:0] cwin = {owin, col_g};  // column c at [c*COLG +: COLG]
+
+      // The terms of g_par for the PU levels of the step's group.
+      wire [TP*NQ*PU-1:0] terms;
+      for (k = 0; k < SW; k = k + 1) begin : g_trow
+        for (c = 0; c < SW; c = c + 1) begin : g_tcol
+          localparam Q = k*SW + c;  // window position, as the codes
+          wire [1:0] cd = code_q[Q*2 +: 2];
+          wire [PU-1:0] m1 = {PU{cd == 2'd1}};
+          wire [PU-1:0] m2 = {PU{cd == 2'd2}};
+          wire [PU-1:0] m4 = {PU{cd == 2'd3}};
+          wire [GW-1:0] cp = cwin[c*COLG + k*GW +: GW];  // its CW cost planes
+          for (g = 0; g < TP; g = g + 1) begin : g_bit
+            wire [PU-1:0] b1, b2, b4;
+            if (g < CW) begin : g_s0
+              assign b1 = cp[g*PU +: PU] & m1;
+            end else begin : g_n0
+              assign b1 = {PU{1'b0}};
+            end
+            if (g >= 1 && g <= CW) begin : g_s1
+              assign b2 = cp[(g-1)*PU +: PU] & m2;
+            end else begin : g_n1
+              assign b2 = {PU{1'b0}};
+            end
+            if (g >= 2) begin : g_s2
+              assign b4 = cp[(g-2)*PU +: PU] & m4;
+            end else begin : g_n2
+              assign b4 = {PU{1'b0}};
+            end
+            assign terms[(g*NQ + Q)*PU +: PU] = b1 | b2 | b4;
+          end
+        end
+      end
+
+      wire [AW*PU-1:0] row_a, row_b;  // bit-plane order
+      sm_bitheap #(.NC(AW), .H0(H0), .L(PU), .REG(0)) u_heap (
+          .clk(clk), .ce(ce), .bits(terms), .row_a(row_a), .row_b(row_b));
+      wire [PU*AW-1:0] lane_a  /*verilator split_var*/;  // level order
+      wire [PU*AW-1:0] lane_b  /*verilator split_var*/;
+      sm_plane2lane #(.P(AW), .L(PU)) u_ta (.planes(row_a), .lanes(lane_a));
+      sm_plane2lane #(.P(AW), .L(PU)) u_tb (.planes(row_b), .lanes(lane_b));
+
+      // The levels run every clock (a pipeline of four registers); RECIP holds for the
+      // F steps of its beat.
+      wire [GW-1:0] agg_g;  // level l of the group at [l*CW +: CW]
+      for (d = 0; d < PU; d = d + 1) begin : g_lvl
+        sm_sw_level #(.CW(CW), .SW(SW), .RW(RW)) u_lvl (
+            .clk(clk), .ce(1'b1), .row_a(lane_a[d*AW +: AW]), .row_b(lane_b[d*AW +: AW]),
+            .recip(recip_q), .agg(agg_g[d*CW +: CW]));
+      end
+
+      // Results: group g of the beat of ce 0 leaves sm_sw_level on clock c0 + 6 + g;
+      // ring slots until ce 5 presents the beat.
+      sm_sw_foldout #(.W(GW), .F(F), .DELAY(5)) u_out (
+          .clk(clk), .rst_n(rst_n), .ce(ce), .en(act_q[5]), .grp(grp_q[5]), .din(agg_g),
+          .dout(m_agg)
+      );
     end
   endgenerate
 

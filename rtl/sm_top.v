@@ -159,7 +159,8 @@ module sm_top #(
     if (F > 1) begin : g_pace
       reg [FCW-1:0] pace_q;  // clocks until the next ce may come
       always @(posedge aclk) begin
-        if (!rst_n) pace_q <= {FCW{1'b0}};
+        // the folded blocks start their first beat's groups at reset: its ce waits F - 1
+        if (!rst_n) pace_q <= F[FCW-1:0] - 1'b1;
         else if (ce) pace_q <= F[FCW-1:0] - 1'b1;
         else if (pace_q != {FCW{1'b0}}) pace_q <= pace_q - 1'b1;
       end
@@ -253,7 +254,7 @@ module sm_top #(
   wire [4:0]         ct_side;
   wire [HW*DISP-1:0] ct_cost;  // bit-plane order: bit f of level d at [f*DISP + d]
   wire [7:0]         ct_left;
-  sm_cost #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS)) u_cost (
+  sm_cost #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .PU(PUE)) u_cost (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
       .s_side(cs_side), .s_cl(cs_cl), .s_cr(cs_cr), .s_left(cs_left),
       .m_side(ct_side), .m_cost(ct_cost), .m_left(ct_left)
@@ -266,7 +267,7 @@ module sm_top #(
       .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ag_side), .hist(fr_hist), .par(par_swt)
   );
   sm_sw_aggregate #(
-      .MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .SW(SW), .COST_SHIFT(COST_SHIFT)
+      .MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .SW(SW), .COST_SHIFT(COST_SHIFT), .PU(PUE)
   ) u_agg (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .sw_table(par_swt),
       .s_side(ct_side), .s_cost(ct_cost), .s_left(ct_left),
@@ -279,7 +280,7 @@ module sm_top #(
   sm_frame_sel #(.PW(PW), .LSB(P_OCC), .W(8), .NEXT(1)) u_fsel_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(dp_side), .hist(fr_hist), .par(par_occ)
   );
-  sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW)) u_dp (
+  sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW), .PU(PUE)) u_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .occ(par_occ),
       .s_side(ag_side), .s_cost(ag_cost), .m_side(dp_side), .m_disp(dp_disp)
   );

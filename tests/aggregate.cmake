@@ -16,7 +16,38 @@ sm_rtl_test(NAME tb_sw_aggregate_sw5 TOP sm_sw_aggregate SOURCES ${_agg_tb}
 sm_rtl_test(NAME tb_sw_aggregate_paper TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 SW=5 COST_SHIFT=2
             ARGS --width 317 --heights 6 5 --seed 3 LABELS "rtl;slow")
-foreach(_t tb_sw_aggregate_sw3 tb_sw_aggregate_sw5 tb_sw_aggregate_paper)
+# Folded datapath (PU < DISP, F = DISP / PU clocks per beat, issue 20): DISP 16 at
+# PU 16 (F 1, the parallel branch named explicitly), 8, 4, 2 and 1, a non-power-of-two
+# F (DISP 12, PU 4), SW 3, 5 and 7, odd widths, random ce gaps on top of the pacing.
+set(_agg_fold)
+foreach(_p "sw5_pu16;5;16;16;1;37;2" "sw5_pu8;5;16;8;1;37;5" "sw3_pu4;3;16;4;2;37;6"
+           "sw5_pu2;5;16;2;1;23;7" "sw3_pu1;3;16;1;2;19;8" "sw7_pu4;7;16;4;1;29;9"
+           "sw5_d12_pu4;5;12;4;2;31;10")
+  list(GET _p 0 _n)
+  list(GET _p 1 _sw)
+  list(GET _p 2 _d)
+  list(GET _p 3 _pu)
+  list(GET _p 4 _cs)
+  list(GET _p 5 _w)
+  list(GET _p 6 _seed)
+  sm_rtl_test(NAME tb_sw_aggregate_${_n} TOP sm_sw_aggregate SOURCES ${_agg_tb}
+              PARAMS MAX_WIDTH=64 DISP=${_d} CENSUS=7 SW=${_sw} COST_SHIFT=${_cs} PU=${_pu}
+              ARGS --width ${_w} --heights 9 4 11 --seed ${_seed})
+  list(APPEND _agg_fold tb_sw_aggregate_${_n})
+endforeach()
+# The zynq point (320 wide, DISP 128, CENSUS 15, SW 5) at PU 16 and 8, the full line
+# with 50 % idle on the PU 16 binary.
+sm_rtl_test(NAME tb_sw_aggregate_zynq_pu16 TOP sm_sw_aggregate SOURCES ${_agg_tb}
+            PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 SW=5 COST_SHIFT=2 PU=16
+            ARGS --width 317 --heights 6 5 --seed 11 LABELS "rtl;slow")
+sm_rtl_test(NAME tb_sw_aggregate_zynq_pu8 TOP sm_sw_aggregate SOURCES ${_agg_tb}
+            PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 SW=5 COST_SHIFT=2 PU=8
+            ARGS --width 317 --heights 6 5 --seed 12 LABELS "rtl;slow")
+add_test(NAME tb_sw_aggregate_zynq_pu16_w320
+         COMMAND tb_sw_aggregate_zynq_pu16 --width 320 --heights 7 6 --seed 13 --idle 50)
+set_tests_properties(tb_sw_aggregate_zynq_pu16_w320 PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
+foreach(_t tb_sw_aggregate_sw3 tb_sw_aggregate_sw5 tb_sw_aggregate_paper ${_agg_fold}
+           tb_sw_aggregate_zynq_pu16 tb_sw_aggregate_zynq_pu8)
   target_link_libraries(${_t} PRIVATE CLI11::CLI11)
 endforeach()
 # Full MAX_WIDTH line (last column of the line buffer) with the paper-point binary.

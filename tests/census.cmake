@@ -29,6 +29,24 @@ sm_rtl_test(NAME tb_cost_paper TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 LABELS rtl slow)
 target_compile_definitions(tb_cost_paper PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
 
+# Folded sm_cost (F = DISP / PU clocks per beat, ce at most every F clocks, inputs held):
+# PU = DISP explicitly (the parallel branch), F = 2 (the early-ce hold multiplexer), 4, 8
+# and 16 (PU 1); F = 3 and F = 13 (segments whose depth is not a power of two, odd width
+# and level count); the zynq point at PU 16 and 8.
+foreach(pu 16 8 4 2 1)
+  sm_rtl_test(NAME tb_cost_pu${pu} TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+              PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 PU=${pu})
+endforeach()
+sm_rtl_test(NAME tb_cost_odd_pu4 TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=48 DISP=12 CENSUS=5 PU=4)
+sm_rtl_test(NAME tb_cost_odd_pu1 TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5 PU=1)
+foreach(pu 16 8)
+  sm_rtl_test(NAME tb_cost_zynq_pu${pu} TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+              PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 PU=${pu} LABELS rtl slow)
+  target_compile_definitions(tb_cost_zynq_pu${pu} PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
+endforeach()
+
 # Model unit tests.
 add_executable(test_census_model ${CMAKE_CURRENT_LIST_DIR}/test_census_model.cpp)
 target_link_libraries(test_census_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})

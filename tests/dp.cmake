@@ -6,7 +6,7 @@ catch_discover_tests(test_dp_model PROPERTIES LABELS unit)
 
 # Small point (CW = 4 is CENSUS 7 >> COST_SHIFT 2): odd width and full width.
 sm_rtl_test(NAME tb_dp TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
-            PARAMS MAX_WIDTH=64 DISP=16 CW=4 ARGS --width 37 --rows 9 --frames 3)
+            PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=16 ARGS --width 37 --rows 9 --frames 3)
 add_test(NAME tb_dp_w64 COMMAND tb_dp --width 64 --rows 7 --frames 2 --seed 7)
 set_tests_properties(tb_dp_w64 PROPERTIES LABELS rtl TIMEOUT 600)
 # Minimum active width S + P + 1 = 11.
@@ -28,3 +28,30 @@ sm_rtl_test(NAME tb_dp_paper TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.c
             LABELS "rtl;slow")
 add_test(NAME tb_dp_paper_wmin COMMAND tb_dp_paper --width 67 --rows 6 --frames 3 --seed 4)
 set_tests_properties(tb_dp_paper_wmin PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
+
+# Folded (PU < DISP, F = DISP/PU clocks per beat, ce at most every F clocks, input held
+# between ces): DISP 16 at PU 8, 4, 2 (F 2, 4, 8), odd and minimum widths, random ce
+# gaps; F not a power of two (DISP 10, PU 2: F 5) and PU not a power of two (DISP 12,
+# PU 6); the zynq point (DISP 128, CW 6 = CENSUS 15, PU 16 and 8).
+sm_rtl_test(NAME tb_dp_pu8 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=8 ARGS --width 37 --rows 9 --frames 3)
+add_test(NAME tb_dp_pu8_w64 COMMAND tb_dp_pu8 --width 64 --rows 6 --frames 3 --seed 5 --idle 60)
+set_tests_properties(tb_dp_pu8_w64 PROPERTIES LABELS rtl TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_pu4 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=4 ARGS --width 41 --rows 8 --frames 3 --seed 2)
+sm_rtl_test(NAME tb_dp_pu2 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=2 ARGS --width 37 --rows 8 --frames 3 --seed 9)
+add_test(NAME tb_dp_pu2_wmin COMMAND tb_dp_pu2 --width 11 --rows 6 --frames 3 --seed 13 --idle 0)
+set_tests_properties(tb_dp_pu2_wmin PROPERTIES LABELS rtl TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_odd_pu2 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=50 DISP=10 CW=3 PU=2 ARGS --width 23 --rows 8 --frames 3 --seed 6)
+sm_rtl_test(NAME tb_dp_pu6 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=50 DISP=12 CW=3 PU=6 ARGS --width 31 --rows 8 --frames 3 --seed 8)
+sm_rtl_test(NAME tb_dp_zynq16 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 CW=6 PU=16 ARGS --width 320 --rows 5 --frames 3
+            LABELS "rtl;slow")
+add_test(NAME tb_dp_zynq16_wmin COMMAND tb_dp_zynq16 --width 67 --rows 6 --frames 3 --seed 4)
+set_tests_properties(tb_dp_zynq16_wmin PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_zynq8 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 CW=6 PU=8 ARGS --width 251 --rows 4 --frames 3 --seed 12
+            LABELS "rtl;slow")

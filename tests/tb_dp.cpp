@@ -2,6 +2,10 @@
 // volumes (structured disparity steps, random full-range costs, tie-heavy costs) with
 // a random occlusion penalty per frame, streamed with random ce gaps and garbage on
 // virtual beats and idle cycles; every real output pixel is compared with trellis_dp.
+// Folded (SM_P_PU < SM_P_DISP, F = DISP/PU clocks per beat): ce at most every F clocks
+// (CeGen's minimum gap) and, as sm_top guarantees, the next beat's input held from the
+// clock after a ce up to its ce (no garbage on idle clocks), also for the F clocks
+// after reset before the first ce.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -24,6 +28,11 @@ constexpr int kDisp = SM_P_DISP;
 constexpr int kCw = SM_P_CW;
 constexpr int kS = kDisp / 2;
 constexpr int kP = 2;
+#ifdef SM_P_PU
+constexpr int kF = SM_P_DISP / SM_P_PU;  // clocks per beat
+#else
+constexpr int kF = 1;
+#endif
 
 // Pack DISP CW-bit costs, level d at bit d*CW.
 std::vector<uint32_t> pack(const uint8_t* c) {
@@ -112,7 +121,7 @@ int main(int argc, char** argv) {
   const std::vector<int> heights(frames, rows);
   const auto sched = sm::test::make_schedule(width, heights, 3);
   sm::test::OutputOrder order(width, heights);
-  sm::test::CeGen ce_gen(seed * 7919u + 1, idle);
+  sm::test::CeGen ce_gen(seed * 7919u + 1, idle, kF);
   auto& grng = ce_gen.rng();
 
   sm::Testbench<SM_VTOP> tb;
@@ -130,28 +139,57 @@ int main(int argc, char** argv) {
   for (int i = 0; i < 4; ++i) tb.tick();
   tb->rst_n = 1;
 
+  // The input of one beat, fixed when the beat is first driven (held at F > 1).
+  struct Drive {
+    uint8_t side = 0, occ = 0;
+    std::vector<uint32_t> cost;
+  };
+  auto beat_input = [&](const sm::test::BeatInfo& b) {
+    Drive d;
+    d.side = b.side;
+    if (b.frame >= 0) {
+      d.cost = pack(vol[b.frame].pix(b.x, b.y));
+      // the frame's penalty is only guaranteed where sm_dp latches it
+      d.occ = (b.y == 0 && b.x < kS) ? occ[b.frame] : static_cast<uint8_t>(grng() & 255);
+    } else {
+      d.cost = random_cost();
+      d.occ = static_cast<uint8_t>(grng() & 255);
+    }
+    return d;
+  };
+  auto drive = [&](const Drive& d) {
+    tb->s_side = d.side;
+    tb->occ = d.occ;
+    sm::test::set_port_words(tb->s_cost, d.cost, kDisp * kCw);
+  };
+  Drive first;  // F > 1: beat 0's input, driven from reset on
+  if (kF > 1 && !sched.empty()) {  // the first beat's sub-steps run on the F clocks after reset
+    first = beat_input(sched.front());
+    tb->ce = 0;
+    drive(first);
+    for (int i = 0; i < kF; ++i) tb.tick();
+  }
+
   long passed = 0, failed = 0;
   bool order_error = false;
-  for (const auto& b : sched) {
+  for (size_t bi = 0; bi < sched.size(); ++bi) {
+    const auto& b = sched[bi];
+    const Drive in = (kF > 1 && bi == 0) ? first : beat_input(b);
     for (;;) {
       const bool ce = ce_gen.next();
       tb->ce = ce;
-      if (!ce) {  // idle cycle: everything random
-        tb->s_side = grng() & 31;
-        tb->occ = grng() & 255;
-        sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
+      if (!ce) {
+        if (kF > 1) {  // folded: the beat is held until its ce
+          drive(in);
+        } else {  // idle cycle: everything random
+          tb->s_side = grng() & 31;
+          tb->occ = grng() & 255;
+          sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
+        }
         tb.tick();
         continue;
       }
-      tb->s_side = b.side;
-      if (b.frame >= 0) {
-        sm::test::set_port_words(tb->s_cost, pack(vol[b.frame].pix(b.x, b.y)), kDisp * kCw);
-        // the frame's penalty is only guaranteed where sm_dp latches it
-        tb->occ = (b.y == 0 && b.x < kS) ? occ[b.frame] : grng() & 255;
-      } else {
-        sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
-        tb->occ = grng() & 255;
-      }
+      drive(in);
       tb.tick();
       const uint8_t side = tb->m_side;
       if ((side & sm::test::kReal) && !order_error) {
@@ -182,7 +220,7 @@ int main(int argc, char** argv) {
     fmt::print("FAIL: not every pixel came out\n");
     ++failed;
   }
-  fmt::print("tb_dp MAX_WIDTH={} DISP={} CW={} width={}: {} passed, {} failed\n", kMaxWidth, kDisp, kCw, width, passed,
-             failed);
+  fmt::print("tb_dp MAX_WIDTH={} DISP={} CW={} F={} width={}: {} passed, {} failed\n", kMaxWidth, kDisp, kCw, kF, width,
+             passed, failed);
   return failed == 0 ? 0 : 1;
 }

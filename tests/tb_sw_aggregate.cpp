@@ -2,7 +2,10 @@
 // section 5): frames of random raw costs and partly smooth, partly noisy left images,
 // a different weight table per frame (checks the latch at the stage's sof), random ce
 // gaps, garbage on virtual beats and idle cycles. Every real output pixel is compared
-// bit for bit, and its beat must leave exactly at the documented latency.
+// bit for bit, and its beat must leave exactly at the documented latency. Folded
+// (SM_P_PU < SM_P_DISP, F = DISP / PU clocks per beat): ce is low on the F - 1 clocks
+// after every high one (sm_top's pacing) and the next beat's input is held from the
+// clock after a ce up to its own ce, as the previous stage's output register would be.
 #include SM_VTOP_H
 
 #include <CLI/CLI.hpp>
@@ -30,6 +33,11 @@ constexpr int kCensus = SM_P_CENSUS;
 constexpr int kSw = SM_P_SW;
 constexpr int kCostShift = SM_P_COST_SHIFT;
 constexpr int kR = (kSw - 1) / 2;
+#ifdef SM_P_PU
+constexpr int kFold = SM_P_DISP / SM_P_PU;  // clocks per beat
+#else
+constexpr int kFold = 1;
+#endif
 constexpr int kPipe = 6;  // beats from the window's entering beat to the output, inclusive
 
 int clog2(int v) {
@@ -160,7 +168,7 @@ int main(int argc, char** argv) {
   sm::Testbench<SM_VTOP> tb;
   sm::CoverageOnExit cov{tb->contextp()};
   if (!trace.empty() && !tb.open_trace(trace)) fmt::print("note: model built without tracing, --trace ignored\n");
-  sm::test::CeGen ceg(seed * 7919u + 1u, idle);
+  sm::test::CeGen ceg(seed * 7919u + 1u, idle, kFold);
   std::mt19937& grng = ceg.rng();
   const int cost_bits = kDisp * hwid, agg_bits = kDisp * cw;
   Bits cost_in = make_bits(cost_bits);
@@ -186,14 +194,9 @@ int main(int argc, char** argv) {
   long passed = 0, failed = 0;
   bool reported = false;
   uint64_t table_now = pack_table(frames[0].table);  // the shadow register's value
-  for (size_t t = 0; t < sched.size(); ++t) {
-    while (!ceg.next()) {
-      tb->ce = 0;
-      garbage();
-      tb.tick();
-    }
+  // The inputs of beat t (random costs and pixel on virtual beats).
+  auto drive = [&](size_t t) {
     const auto& b = sched[t];
-    tb->ce = 1;
     tb->s_side = b.side;
     if (b.frame >= 0) {
       const Frame& f = frames[static_cast<size_t>(b.frame)];
@@ -209,6 +212,24 @@ int main(int argc, char** argv) {
       tb->s_left = static_cast<uint8_t>(grng());
     }
     tb->sw_table = table_now;
+  };
+  for (size_t t = 0; t < sched.size(); ++t) {
+    if (kFold > 1) {
+      // held from the clock after the previous ce up to this beat's ce
+      drive(t);
+      while (!ceg.next()) {
+        tb->ce = 0;
+        tb.tick();
+      }
+    } else {
+      while (!ceg.next()) {
+        tb->ce = 0;
+        garbage();
+        tb.tick();
+      }
+      drive(t);
+    }
+    tb->ce = 1;
     tb.tick();
 
     const uint8_t side = tb->m_side;
@@ -248,8 +269,8 @@ int main(int argc, char** argv) {
     ++failed;
   }
   fmt::print(
-      "sm_sw_aggregate MAX_WIDTH={} DISP={} CENSUS={} SW={} COST_SHIFT={} width={}: "
+      "sm_sw_aggregate MAX_WIDTH={} DISP={} CENSUS={} SW={} COST_SHIFT={} PU={} width={}: "
       "{} passed, {} failed\n",
-      kMaxWidth, kDisp, kCensus, kSw, kCostShift, width, passed, failed);
+      kMaxWidth, kDisp, kCensus, kSw, kCostShift, kDisp / kFold, width, passed, failed);
   return failed == 0 ? 0 : 1;
 }

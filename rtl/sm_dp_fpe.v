@@ -1,0 +1,59 @@
+`default_nettype none
+// One lane of the folded trellis array (sm_dp with F = DISP/PU > 1; docs/algorithm.md,
+// section 6): the arithmetic of sm_dp_pe without its state and cost skew, which live in
+// sm_dp's per-lane memories because the lane serves a different level on each of the F
+// sub-steps of a DP clock. Per sub-step it advances U(., d) of its level d by the sites
+// 2t+1 and 2t+2, in the order the parity of d dictates (PU is even, so the parity is
+// the lane's):
+//   odd d : site 2t+1 is an occlusion node (min3 over U(2t, d-1..d+1)), 2t+2 matched;
+//   even d: site 2t+1 is matched, 2t+2 an occlusion node (min3 over U(2t+1, d-1..d+1)).
+// Whether level d-1 / d+1 exists depends on the group at the array's two ends, so it is
+// an input here (a parameter in sm_dp_pe). Purely combinational.
+module sm_dp_fpe #(
+    parameter CW    = 6,   // aggregated cost width
+    parameter ACC_W = 19,  // accumulator width (algorithm.md: BIG = 2^(ACC_W-1))
+    parameter ODD   = 0    // 1: the lane's levels are odd
+) (
+    input  wire [ACC_W-1:0] u,       // U(2t, d), read from the lane's state memory
+    input  wire [CW-1:0]    a,       // skewed cost A(t + ceil(d/2), d)
+    input  wire [7:0]       occ,
+    input  wire             has_lo,  // level d-1 exists (d >= 1)
+    input  wire             has_hi,  // level d+1 exists (d <= DISP-2)
+    input  wire [ACC_W-1:0] nb_lo,   // nb of level d-1
+    input  wire [ACC_W-1:0] nb_hi,   // nb of level d+1
+    output wire [ACC_W-1:0] nb,      // what levels d-1 and d+1 need this sub-step
+    output wire [ACC_W-1:0] u_next,  // U(2t+2, d)
+    output wire [1:0]       dec      // choice of this sub-step's occlusion node
+);
+  generate
+    if (ACC_W <= 8 || CW < 1 || CW >= ACC_W) begin : g_bad_w
+      initial $error("sm_dp_fpe: need 8 < ACC_W (%0d) and 1 <= CW (%0d) < ACC_W", ACC_W, CW);
+    end
+  endgenerate
+
+  wire [ACC_W-1:0] self_in;  // choice 0 of the occlusion node
+  wire [ACC_W-1:0] c1 = nb_lo + {{(ACC_W - 8) {1'b0}}, occ};
+  wire [ACC_W-1:0] c2 = nb_hi + {{(ACC_W - 8) {1'b0}}, occ};
+  // min3 as in sm_dp_pe: three comparisons in parallel, one 3:1 select, tie order 0, 1,
+  // 2; c2 < c1 is nb_hi < nb_lo because nothing wraps.
+  wire             lt10 = c1 < self_in;
+  wire             lt20 = c2 < self_in;
+  wire             lt21 = nb_hi < nb_lo;
+  wire             take1 = has_lo && lt10;
+  wire             take2 = has_hi && (take1 ? lt21 : lt20);
+  wire [ACC_W-1:0] occ_u = take2 ? c2 : take1 ? c1 : self_in;
+  assign dec = take2 ? 2'd2 : take1 ? 2'd1 : 2'd0;
+
+  generate
+    if (ODD != 0) begin : g_odd
+      assign self_in = u;                                   // site 2t+1: occlusion
+      assign u_next  = occ_u + {{(ACC_W - CW) {1'b0}}, a};  // site 2t+2: matched
+      assign nb      = occ_u;                               // U(2t+1, d)
+    end else begin : g_even
+      assign self_in = u + {{(ACC_W - CW) {1'b0}}, a};      // site 2t+1: matched
+      assign u_next  = occ_u;                               // site 2t+2: occlusion
+      assign nb      = u;                                   // U(2t, d)
+    end
+  endgenerate
+endmodule
+`default_nettype wire
