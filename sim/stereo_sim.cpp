@@ -814,19 +814,21 @@ int main(int argc, char** argv) {
     fmt::print("stereo_sim: {} frame(s) of {}x{}, DISP {}, census {}x{}, SW {}x{}\n", nframes, width, height, hw.disp,
                hw.census, hw.census, hw.sw, hw.sw);
     fmt::print(
-        "  cycles per frame (sof in -> last pixel out): {} = {} input (W*H = {} pixels + {} camera blanking) + {} "
+        "  cycles per frame (sof in -> last pixel out): {} = {} input (W*H = {} pixels + {} {}) + {} "
         "last pixel in -> out\n",
-        frame_cycles, input_cycles, pixels, input_cycles - std::min(input_cycles, pixels), tail_cycles);
+        frame_cycles, input_cycles, pixels, input_cycles - std::min(input_cycles, pixels),
+        timing.core_hz > 0 ? "cycles between them: camera cadence and blanking" : "camera blanking", tail_cycles);
     if (period) fmt::print("  steady-state frame period: {} cycles\n", period);
     fmt::print("  latency (sof in -> first pixel out): {} cycles = {:.2f} lines\n", latency,
                static_cast<double>(latency) / line_period);
-    fmt::print("  clocks per pixel: {} (DISP {} / PU {}); core clock {:.3f} MHz, camera pixel clock {:.3f} MHz\n",
-               fold, hw.disp, hw.levels_per_clock(), core_hz / 1e6, camera_clock / 1e6);
+    fmt::print("  clocks per pixel: {} (DISP {} / PU {}); core clock {:.3f} MHz, camera pixel clock {:.3f} MHz\n", fold,
+               hw.disp, hw.levels_per_clock(), core_hz / 1e6, camera_clock / 1e6);
     fmt::print("  input stalls: {} cycles; input FIFO high-water mark: {} pixels\n", res.input_stall_cycles, fifo_max);
-    fmt::print("  minimum core clock for 30 frames/s: {:.3f} MHz (F x W x H x 30); with this camera {:.3f} MHz (F x its "
-               "pixel clock); at {} MHz: {:.1f} frames/s\n",
-               min_clock_30 / 1e6, min_core_camera / 1e6, clock_mhz,
-               clock_mhz * 1e6 / static_cast<double>(ip_cycles_per_frame));
+    fmt::print(
+        "  minimum core clock for 30 frames/s: {:.3f} MHz (F x W x H x 30); with this camera {:.3f} MHz (F x its "
+        "pixel clock); at {} MHz: {:.1f} frames/s\n",
+        min_clock_30 / 1e6, min_core_camera / 1e6, clock_mhz,
+        clock_mhz * 1e6 / static_cast<double>(ip_cycles_per_frame));
     fmt::print("  30 frames/s with this camera at this core clock ({:.3f} MHz): {}\n", core_hz / 1e6,
                fps_ok ? "yes" : "NO");
     fmt::print("  framing: {}\n", res.framing_error.empty() ? "ok" : res.framing_error);

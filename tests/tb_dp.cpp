@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
     tb->occ = d.occ;
     sm::test::set_port_words(tb->s_cost, d.cost, kDisp * kCw);
   };
-  Drive first;  // F > 1: beat 0's input, driven from reset on
+  Drive first;                     // F > 1: beat 0's input, driven from reset on
   if (kF > 1 && !sched.empty()) {  // the first beat's sub-steps run on the F clocks after reset
     first = beat_input(sched.front());
     tb->ce = 0;

@@ -324,7 +324,8 @@ class FaultTb {
     const uint64_t start = tb_.cycles();
     uint64_t last_move = start;
     int seen = beats_;
-    while (tb_.cycles() - start < static_cast<uint64_t>(min_cycles) * fold_ || tb_.cycles() - last_move < 400ull * fold_) {
+    while (tb_.cycles() - start < static_cast<uint64_t>(min_cycles) * fold_ ||
+           tb_.cycles() - last_move < 400ull * fold_) {
       cycle();
       if (beats_ != seen) {
         seen = beats_;

@@ -139,10 +139,10 @@ int main(int argc, char** argv) {
       const double seconds = frame_cycles / (timing.clock_hz(l.w, l.h) * ratio);
       check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,
             fmt::format("{} cycles per frame fit the 30 fps budget", frame_cycles));
-      fmt::print("budget: DISP / PU = {} clocks per pixel, core clock {:.3f} MHz: {} cycles sof->last pixel, period {} "
-                 "(camera {}), stalls {}\n",
-                 fold, timing.clock_hz(l.w, l.h) * ratio / 1e6, frame_cycles, period, camera_period,
-                 res.input_stall_cycles);
+      fmt::print(
+          "budget: DISP / PU = {} clocks per pixel, core clock {:.3f} MHz: {} cycles sof->last pixel, period {} "
+          "(camera {}), stalls {}\n",
+          fold, timing.clock_hz(l.w, l.h) * ratio / 1e6, frame_cycles, period, camera_period, res.input_stall_cycles);
       fmt::print("30 frames/s with this camera at this core clock: {}\n",
                  res.input_stall_cycles == 0 && period <= camera_period ? "yes" : "NO");
       // Independent truth: the scene's exact ground truth (bad-1.0 over non-occluded pixels).
