@@ -37,3 +37,18 @@ foreach(f ${synth_rtl})
   # only when told (the whole-IP synthesis, ~150 s, last would be the suite's tail)
   set_tests_properties(synth_${m} PROPERTIES LABELS "${labels}" TIMEOUT 1900 COST ${cost})
 endforeach()
+
+# The folded datapath at the small configuration (PU 4: 4 clocks per pixel): the three
+# folded blocks map too, and the aggregation's line buffer is still block RAM.
+foreach(m sm_cost sm_sw_aggregate sm_dp)
+  set(args -t ${m} -f xc7 -x $<TARGET_FILE:sm_synth_report> -L ${SM_GEN_DIR} -T 1800 -c ci_fold
+      -o ${CMAKE_BINARY_DIR}/synth/ci)
+  foreach(p ${SM_SYNTH_CI_PARAMS} PU=4)
+    list(APPEND args -p ${p})
+  endforeach()
+  if(m IN_LIST SM_SYNTH_EXPECT_BRAM)
+    list(APPEND args -n -b)
+  endif()
+  add_test(NAME synth_${m}_fold COMMAND ${CMAKE_SOURCE_DIR}/tools/synth/sm_synth.sh ${args})
+  set_tests_properties(synth_${m}_fold PROPERTIES LABELS synth TIMEOUT 1900 COST 10)
+endforeach()
