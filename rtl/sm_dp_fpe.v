@@ -1,8 +1,9 @@
 `default_nettype none
-// One lane of the folded trellis array (sm_dp with F = DISP/PU > 1; docs/algorithm.md,
-// section 6): the arithmetic of sm_dp_pe without its state and cost skew, which live in
-// sm_dp's per-lane memories because the lane serves a different level on each of the F
-// sub-steps of a DP clock. Per sub-step it advances U(., d) of its level d by the sites
+// The arithmetic of one trellis level (docs/algorithm.md, section 6), without state and
+// cost skew: sm_dp_pe wraps it with its register and skew (one PE per level), and the
+// folded array (sm_dp with F = DISP/PU > 1) uses it as a lane whose state and skew live
+// in sm_dp's per-lane memories, because the lane serves a different level on each of
+// the F sub-steps of a DP clock. Per sub-step it advances U(., d) of its level d by the sites
 // 2t+1 and 2t+2, in the order the parity of d dictates (PU is even, so the parity is
 // the lane's):
 //   odd d : site 2t+1 is an occlusion node (min3 over U(2t, d-1..d+1)), 2t+2 matched;
@@ -34,8 +35,12 @@ module sm_dp_fpe #(
   wire [ACC_W-1:0] self_in;  // choice 0 of the occlusion node
   wire [ACC_W-1:0] c1 = nb_lo + {{(ACC_W - 8) {1'b0}}, occ};
   wire [ACC_W-1:0] c2 = nb_hi + {{(ACC_W - 8) {1'b0}}, occ};
-  // min3 as in sm_dp_pe: three comparisons in parallel, one 3:1 select, tie order 0, 1,
-  // 2; c2 < c1 is nb_hi < nb_lo because nothing wraps.
+  // min3 with the spec's tie order: 0, then 1, then 2 (later ones must be strictly
+  // less). The three comparisons run in parallel and one 3:1 multiplexer picks the
+  // result, instead of compare-select-compare-select: two compare/select levels per
+  // site would put ten LUTs between registers across the two sites of a clock. Nothing
+  // wraps (algorithm.md: every sum stays below 2*BIG), so c2 < c1 is nb_hi < nb_lo and
+  // needs no adder in front.
   wire             lt10 = c1 < self_in;
   wire             lt20 = c2 < self_in;
   wire             lt21 = nb_hi < nb_lo;

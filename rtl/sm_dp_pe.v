@@ -92,37 +92,13 @@ module sm_dp_pe #(
     end
   endgenerate
 
-  // ---- the two sites -----------------------------------------------------------
+  // ---- the two sites (sm_dp_fpe: the same arithmetic as the folded array's lanes) ----
   reg  [ACC_W-1:0] u_q;  // U(2t, d)
-  wire [ACC_W-1:0] self_in;  // choice 0 of the occlusion node
-  wire [ACC_W-1:0] c1 = nb_lo + {{(ACC_W - 8) {1'b0}}, occ};
-  wire [ACC_W-1:0] c2 = nb_hi + {{(ACC_W - 8) {1'b0}}, occ};
-  // min3 with the spec's tie order: 0, then 1, then 2 (later ones must be strictly
-  // less). The three comparisons run in parallel and one 3:1 multiplexer picks the
-  // result, instead of compare-select-compare-select: two compare/select levels per
-  // site would put ten LUTs between registers across the two sites of a clock. Nothing
-  // wraps (algorithm.md: every sum stays below 2*BIG), so c2 < c1 is nb_hi < nb_lo and
-  // needs no adder in front.
-  wire             lt10 = c1 < self_in;
-  wire             lt20 = c2 < self_in;
-  wire             lt21 = nb_hi < nb_lo;
-  wire             take1 = (HAS_LO != 0) && lt10;
-  wire             take2 = (HAS_HI != 0) && (take1 ? lt21 : lt20);
-  wire [ACC_W-1:0] occ_u = take2 ? c2 : take1 ? c1 : self_in;
-  assign dec = take2 ? 2'd2 : take1 ? 2'd1 : 2'd0;
-
   wire [ACC_W-1:0] u_next;
-  generate
-    if (ODD != 0) begin : g_odd
-      assign self_in = u_q;                                  // site 2t+1: occlusion
-      assign u_next  = occ_u + {{(ACC_W - CW) {1'b0}}, a};   // site 2t+2: matched
-      assign nb      = occ_u;                                // U(2t+1, d)
-    end else begin : g_even
-      assign self_in = u_q + {{(ACC_W - CW) {1'b0}}, a};     // site 2t+1: matched
-      assign u_next  = occ_u;                                // site 2t+2: occlusion
-      assign nb      = u_q;                                  // U(2t, d)
-    end
-  endgenerate
+  sm_dp_fpe #(.CW(CW), .ACC_W(ACC_W), .ODD(ODD)) u_fpe (
+      .u(u_q), .a(a), .occ(occ), .has_lo(HAS_LO != 0), .has_hi(HAS_HI != 0), .nb_lo(nb_lo), .nb_hi(nb_hi),
+      .nb(nb), .u_next(u_next), .dec(dec)
+  );
 
   // Datapath register: no reset; the line start loads U(0, d) every line.
   always @(posedge clk) begin

@@ -131,7 +131,7 @@ module sm_sw_aggregate #(
       wire [COST_SHIFT*DISP-1:0] unused_low = s_cost[0 +: COST_SHIFT*DISP];
     end
   endgenerate
-  genvar d, k, c, g;
+  genvar d, k, c;
 
   reg [LVW-1:0] live_cost_q;  // live row of the entering column, beside the line buffer
   reg [7:0]     live_pix_q;
@@ -268,38 +268,9 @@ module sm_sw_aggregate #(
           .clk(clk), .rst_n(rst_n), .ce(ce), .col(col_cost), .win(cwin)
       );
 
-      // Bit g of position q's weighted cost at [(g*NQ + q)*DISP +: DISP]: cost plane g, g-1
-      // or g-2 of the position (weight 1, 2, 4), or 0, chosen by its code.
+      // Bit g of position q's weighted cost at [(g*NQ + q)*DISP +: DISP] (sm_sw_terms).
       wire [TP*NQ*DISP-1:0] terms;
-      for (k = 0; k < SW; k = k + 1) begin : g_trow
-        for (c = 0; c < SW; c = c + 1) begin : g_tcol
-          localparam Q = k*SW + c;  // window position, as the codes
-          wire [1:0] cd = code_q[Q*2 +: 2];
-          wire [DISP-1:0] m1 = {DISP{cd == 2'd1}};
-          wire [DISP-1:0] m2 = {DISP{cd == 2'd2}};
-          wire [DISP-1:0] m4 = {DISP{cd == 2'd3}};
-          wire [LVW-1:0] cp = cwin[c*COLW + k*LVW +: LVW];  // its CW cost planes
-          for (g = 0; g < TP; g = g + 1) begin : g_bit
-            wire [DISP-1:0] b1, b2, b4;
-            if (g < CW) begin : g_s0
-              assign b1 = cp[g*DISP +: DISP] & m1;
-            end else begin : g_n0
-              assign b1 = {DISP{1'b0}};
-            end
-            if (g >= 1 && g <= CW) begin : g_s1
-              assign b2 = cp[(g-1)*DISP +: DISP] & m2;
-            end else begin : g_n1
-              assign b2 = {DISP{1'b0}};
-            end
-            if (g >= 2) begin : g_s2
-              assign b4 = cp[(g-2)*DISP +: DISP] & m4;
-            end else begin : g_n2
-              assign b4 = {DISP{1'b0}};
-            end
-            assign terms[(g*NQ + Q)*DISP +: DISP] = b1 | b2 | b4;
-          end
-        end
-      end
+      sm_sw_terms #(.L(DISP), .CW(CW), .SW(SW)) u_terms (.code(code_q), .win(cwin), .terms(terms));
 
       wire [AW*DISP-1:0] row_a, row_b;  // bit-plane order
       sm_bitheap #(.NC(AW), .H0(H0), .L(DISP), .REG(0)) u_heap (
@@ -420,37 +391,9 @@ module sm_sw_aggregate #(
       );
       wire [SW*COLG-1:0] cwin = {owin, col_g};  // column c at [c*COLG +: COLG]
 
-      // The terms of g_par for the PU levels of the step's group.
+      // The weighted cost bits of the PU levels of the step's group (sm_sw_terms, as g_par).
       wire [TP*NQ*PU-1:0] terms;
-      for (k = 0; k < SW; k = k + 1) begin : g_trow
-        for (c = 0; c < SW; c = c + 1) begin : g_tcol
-          localparam Q = k*SW + c;  // window position, as the codes
-          wire [1:0] cd = code_q[Q*2 +: 2];
-          wire [PU-1:0] m1 = {PU{cd == 2'd1}};
-          wire [PU-1:0] m2 = {PU{cd == 2'd2}};
-          wire [PU-1:0] m4 = {PU{cd == 2'd3}};
-          wire [GW-1:0] cp = cwin[c*COLG + k*GW +: GW];  // its CW cost planes
-          for (g = 0; g < TP; g = g + 1) begin : g_bit
-            wire [PU-1:0] b1, b2, b4;
-            if (g < CW) begin : g_s0
-              assign b1 = cp[g*PU +: PU] & m1;
-            end else begin : g_n0
-              assign b1 = {PU{1'b0}};
-            end
-            if (g >= 1 && g <= CW) begin : g_s1
-              assign b2 = cp[(g-1)*PU +: PU] & m2;
-            end else begin : g_n1
-              assign b2 = {PU{1'b0}};
-            end
-            if (g >= 2) begin : g_s2
-              assign b4 = cp[(g-2)*PU +: PU] & m4;
-            end else begin : g_n2
-              assign b4 = {PU{1'b0}};
-            end
-            assign terms[(g*NQ + Q)*PU +: PU] = b1 | b2 | b4;
-          end
-        end
-      end
+      sm_sw_terms #(.L(PU), .CW(CW), .SW(SW)) u_terms (.code(code_q), .win(cwin), .terms(terms));
 
       wire [AW*PU-1:0] row_a, row_b;  // bit-plane order
       sm_bitheap #(.NC(AW), .H0(H0), .L(PU), .REG(0)) u_heap (
