@@ -15,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 #include <exception>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -100,10 +101,21 @@ int run(int argc, char** argv) {
                {"CAPS0", rm::kCAPS0},
                {"CAPS1", rm::kCAPS1},
                {"OBJ_HEADER", rm::obj_header_addr()}};
-  // read-only registers with a fixed value at this configuration (docs/registers.md)
-  j["expect"] = {{"ID", 0x534D4331u},
-                 {"CAPS0", static_cast<uint32_t>(hw.max_height) << 16 | static_cast<uint32_t>(hw.max_width)},
-                 {"CAPS1", static_cast<uint32_t>(hw.max_objects) << 8 | static_cast<uint32_t>(hw.disp)}};
+  // read-only registers with a fixed value at this configuration: their fields' reset
+  // values from the register map (rtl/regmap.json, parameters evaluated for hw)
+  const auto fixed_word = [&](const char* name) {
+    for (const auto& reg : rm::registers()) {
+      if (std::string(reg.name) != name) continue;
+      uint32_t word = 0;
+      for (int i = 0; i < reg.num_fields; ++i) {
+        const auto& f = rm::fields()[static_cast<size_t>(reg.first_field + i)];
+        word |= (static_cast<uint32_t>(f.reset.eval(hw)) << f.lsb) & f.mask();
+      }
+      return word;
+    }
+    throw std::logic_error(std::string("register map has no ") + name);
+  };
+  j["expect"] = {{"ID", fixed_word("ID")}, {"CAPS0", fixed_word("CAPS0")}, {"CAPS1", fixed_word("CAPS1")}};
   // the host's writes, in stereo_sim's order (sm::write_registers, grids into bank 0)
   json writes = json::array();
   for (const sm::RegWord& w : sm::register_words(r))
