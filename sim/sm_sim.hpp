@@ -46,6 +46,16 @@ struct CameraTiming {
     if (pixel_clock_hz > 0) return pixel_clock_hz;
     return continuous ? double(w) * h * fps : double(w + hblank) * (h + vblank_lines) * fps;
   }
+  // The IP's side of the timing: fold = DISP / PU clocks per pixel and the core clock
+  // core_mhz (0: at fold 1 aclk is the camera's pixel clock, at fold > 1 it is fold times
+  // the pixel clock, the slowest aclk the input FIFO rule of docs/streams.md allows).
+  void set_core(int fold, double core_mhz, int w, int h) {
+    clocks_per_pixel = fold;
+    core_hz = core_mhz > 0 ? core_mhz * 1e6 : fold > 1 ? fold * clock_hz(w, h) : 0.0;
+  }
+  // aclk cycles per camera clock (1 when aclk is the camera's pixel clock)
+  double aclk_per_camera_clock(int w, int h) const { return core_hz > 0 ? core_hz / clock_hz(w, h) : 1.0; }
+  double aclk_hz(int w, int h) const { return core_hz > 0 ? core_hz : clock_hz(w, h); }
 };
 
 // One object as it leaves the object stream (docs/algorithm.md section 8).
@@ -117,7 +127,7 @@ class SimEngine {
     const int hb = timing.continuous ? 0 : timing.hblank;
     const int vb = timing.continuous ? 0 : timing.vblank_lines;
     const uint64_t line_period = static_cast<uint64_t>(width + hb);
-    const double ratio = timing.core_hz > 0 ? timing.core_hz / timing.clock_hz(width, height) : 1.0;
+    const double ratio = timing.aclk_per_camera_clock(width, height);
     if (timing.core_hz > 0 && ratio < 1.0)
       throw std::invalid_argument(fmt::format("core clock {:.3f} MHz is below the camera's pixel clock {:.3f} MHz",
                                               timing.core_hz / 1e6, timing.clock_hz(width, height) / 1e6));

@@ -500,15 +500,10 @@ int main(int argc, char** argv) {
     timing.vblank_lines = vblank;
     timing.pixel_clock_hz = pixel_clock;
     const int fold = hw.clocks_per_beat();  // clocks per pixel of the datapath
-    timing.clocks_per_pixel = fold;
-    if (core_mhz > 0) {
-      timing.core_hz = core_mhz * 1e6;
-      if (timing.core_hz < timing.clock_hz(width, height))
-        fail(fmt::format("--core-mhz {}: below the camera's pixel clock {:.3f} MHz", core_mhz,
-                         timing.clock_hz(width, height) / 1e6));
-    } else if (fold > 1) {
-      timing.core_hz = fold * timing.clock_hz(width, height);
-    }
+    timing.set_core(fold, core_mhz, width, height);
+    if (core_mhz > 0 && timing.core_hz < timing.clock_hz(width, height))
+      fail(fmt::format("--core-mhz {}: below the camera's pixel clock {:.3f} MHz", core_mhz,
+                       timing.clock_hz(width, height) / 1e6));
     sm::SimResult res;
     json status;
     std::vector<std::string> status_lines;
@@ -656,9 +651,8 @@ int main(int argc, char** argv) {
     const uint64_t tail_cycles = s0.last_out_cycle - s0.last_in_cycle;
     const uint64_t latency = s0.first_out_cycle - s0.sof_in_cycle;
     const double camera_clock = timing.clock_hz(width, height);
-    // aclk cycles per camera clock (1 when aclk is the camera's pixel clock)
-    const double aclk_per_cam = timing.core_hz > 0 ? timing.core_hz / camera_clock : 1.0;
-    const double core_hz = timing.core_hz > 0 ? timing.core_hz : camera_clock;
+    const double aclk_per_cam = timing.aclk_per_camera_clock(width, height);
+    const double core_hz = timing.aclk_hz(width, height);
     const double line_period = (width + (continuous ? 0 : hblank)) * aclk_per_cam;  // aclk cycles
     uint64_t period = 0;
     if (res.stats.size() >= 2)

@@ -12,6 +12,7 @@ sm_top_test(tb_top_small vtop_small)
 sm_top_test(tb_top_small_fold vtop_small_fold)
 sm_top_test(tb_top_paper vtop_paper)
 sm_top_test(tb_top_zynq vtop_zynq)
+sm_top_test(tb_top_vga vtop_vga)
 
 set(_w ${CMAKE_BINARY_DIR}/waves)
 file(MAKE_DIRECTORY ${_w})
@@ -34,10 +35,15 @@ add_test(NAME system_paper_budget COMMAND tb_top_paper ${SM_SCENE_DIR} budget)
 add_test(NAME system_small_fold_stress COMMAND tb_top_small_fold ${SM_SCENE_SMALL_DIR} stress)
 add_test(NAME system_small_fold_budget COMMAND tb_top_small_fold ${SM_SCENE_SMALL_DIR} budget)
 add_test(NAME system_zynq_budget COMMAND tb_top_zynq ${SM_SCENE_DIR} budget 100)
+# The vga configuration (the zynq one at 640x480): one frame of a 640x480 scene at 30
+# frames/s camera timing, on the slowest core clock the pacing rule allows (16 x the
+# camera's pixel clock).
+add_test(NAME system_vga_frame COMMAND tb_top_vga ${SM_SCENE_VGA_DIR} frame)
 set_tests_properties(system_small_stress system_small_vcd system_small_budget system_small_calib
                      system_small_fold_stress system_small_fold_budget
                      PROPERTIES LABELS "system" TIMEOUT 600)
-set_tests_properties(system_paper_budget system_zynq_budget PROPERTIES LABELS "system;slow" TIMEOUT 1800)
+set_tests_properties(system_paper_budget system_zynq_budget system_vga_frame PROPERTIES LABELS "system;slow"
+                     TIMEOUT 1800)
 
 # stereo_sim's input modes (--left/--right, --sequence, --video) and their errors, on the
 # small configuration (each run checks the RTL against the model itself).

@@ -10,6 +10,8 @@
 //                     slowest the pacing rule allows): no input stall, frame period
 //                     within the camera's; then a continuous camera, faster than the
 //                     core when DISP / PU > 1: held by tready, counted, nothing dropped
+//   mode "frame [MHz]": one frame with the camera timing of 30 frames/s, as budget's
+//                     first part (the one-frame check of a large configuration)
 //   mode "vcd FILE" : writes a windowed VCD and checks it holds the stream signals
 //   mode "calib FILE": loads the calibration JSON into the registers first
 #include <fmt/format.h>
@@ -72,7 +74,7 @@ int compare(const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: tb_top <scene dir> [stress|budget|vcd FILE|calib FILE]\n");
+    fmt::print(stderr, "usage: tb_top <scene dir> [stress|budget [MHz]|frame [MHz]|vcd FILE|calib FILE]\n");
     return 2;
   }
   const std::string mode = argc > 2 ? argv[2] : "stress";
@@ -115,34 +117,38 @@ int main(int argc, char** argv) {
       timing.seed = 12345;
       const auto res = sim.run(frames, l.w, l.h, timing);
       compare(res, frames, per_frame, hw);
-    } else if (mode == "budget") {
-      frames = {{l, r}, {l, r}};
-      per_frame = {regs, regs};
+    } else if (mode == "budget" || mode == "frame") {
+      // budget: two frames, so that the period between them is measured; frame: one
+      // (the one-frame check of a large configuration)
+      const size_t n = mode == "budget" ? 2 : 1;
+      frames.assign(n, {l, r});
+      per_frame.assign(n, regs);
       timing.continuous = false;  // 30 frames/s camera timing, output always ready
       const int fold = hw.clocks_per_beat();
-      timing.clocks_per_pixel = fold;
-      const double core_mhz = arg.empty() ? 0.0 : std::stod(arg);
-      if (core_mhz > 0)
-        timing.core_hz = core_mhz * 1e6;
-      else if (fold > 1)
-        timing.core_hz = fold * timing.clock_hz(l.w, l.h);
-      const double ratio = timing.core_hz > 0 ? timing.core_hz / timing.clock_hz(l.w, l.h) : 1.0;
+      timing.set_core(fold, arg.empty() ? 0.0 : std::stod(arg), l.w, l.h);
+      const double ratio = timing.aclk_per_camera_clock(l.w, l.h);
       const auto res = sim.run(frames, l.w, l.h, timing);
       compare(res, frames, per_frame, hw);
       check(res.input_stall_cycles == 0, fmt::format("camera never stalled ({} stall cycles)", res.input_stall_cycles));
       const auto camera_period = static_cast<uint64_t>(
           std::ceil(static_cast<double>((l.w + timing.hblank) * (l.h + timing.vblank_lines)) * ratio));
-      const uint64_t period = res.stats[1].last_out_cycle - res.stats[0].last_out_cycle;
-      check(period <= camera_period,
-            fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
       const uint64_t frame_cycles = res.stats[0].last_out_cycle - res.stats[0].sof_in_cycle + 1;
-      const double seconds = frame_cycles / (timing.clock_hz(l.w, l.h) * ratio);
-      check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,
-            fmt::format("{} cycles per frame fit the 30 fps budget", frame_cycles));
+      uint64_t period = 0;
+      if (n == 2) {
+        period = res.stats[1].last_out_cycle - res.stats[0].last_out_cycle;
+        check(period <= camera_period,
+              fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
+        const double seconds = frame_cycles / timing.aclk_hz(l.w, l.h);
+        check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,
+              fmt::format("{} cycles per frame fit the 30 fps budget", frame_cycles));
+      }
       fmt::print(
-          "budget: DISP / PU = {} clocks per pixel, core clock {:.3f} MHz: {} cycles sof->last pixel, period {} "
-          "(camera {}), stalls {}\n",
-          fold, timing.clock_hz(l.w, l.h) * ratio / 1e6, frame_cycles, period, camera_period, res.input_stall_cycles);
+          "{}: DISP / PU = {} clocks per pixel, core clock {:.3f} MHz: {} cycles sof->last pixel, period {} "
+          "(camera {}), stalls {}, input FIFO high-water mark {}\n",
+          mode, fold, timing.aclk_hz(l.w, l.h) / 1e6, frame_cycles, n == 2 ? fmt::format("{}", period) : "-",
+          camera_period, res.input_stall_cycles,
+          (sim.axil().read(sm::regmap::kIN_FIFO) >> sm::regmap::kIN_FIFO_LEVEL_MAX_LSB) &
+              ((1u << sm::regmap::kIN_FIFO_LEVEL_MAX_W) - 1u));
       fmt::print("30 frames/s with this camera at this core clock: {}\n",
                  res.input_stall_cycles == 0 && period <= camera_period ? "yes" : "NO");
       // Independent truth: the scene's exact ground truth (bad-1.0 over non-occluded pixels).
@@ -151,23 +157,25 @@ int main(int argc, char** argv) {
         fmt::print("bad-1.0 vs ground truth: {:.2f} %\n", bad);
         check(bad < max_bad_percent(hw), fmt::format("bad-1.0 {:.2f} % below {} %", bad, max_bad_percent(hw)));
       }
-      // Continuous stream, a pixel every clock: F*W*H cycles per frame in steady state.
-      // At F = 1 the camera is never held; at F > 1 it is faster than the core, so
-      // tready must hold it (stalls counted) and every pixel still arrives (bit-exact).
-      sm::CameraTiming cont;
-      cont.continuous = true;
-      cont.clocks_per_pixel = fold;
-      const auto rc = sim.run(frames, l.w, l.h, cont);
-      compare(rc, frames, per_frame, hw);
-      const uint64_t cperiod = rc.stats[1].last_out_cycle - rc.stats[0].last_out_cycle;
-      const uint64_t want = static_cast<uint64_t>(fold) * l.w * l.h;
-      check(cperiod == want, fmt::format("continuous stream: frame period {} == F*W*H {}", cperiod, want));
-      if (fold == 1)
-        check(rc.input_stall_cycles == 0, fmt::format("continuous stream never stalled ({})", rc.input_stall_cycles));
-      else
-        check(rc.input_stall_cycles >= static_cast<uint64_t>(fold - 1) * l.w * l.h,
-              fmt::format("continuous stream faster than the core held by tready ({} stall cycles, at least {})",
-                          rc.input_stall_cycles, static_cast<uint64_t>(fold - 1) * l.w * l.h));
+      if (mode == "budget") {
+        // Continuous stream, a pixel every clock: F*W*H cycles per frame in steady state.
+        // At F = 1 the camera is never held; at F > 1 it is faster than the core, so
+        // tready must hold it (stalls counted) and every pixel still arrives (bit-exact).
+        sm::CameraTiming cont;
+        cont.continuous = true;
+        cont.clocks_per_pixel = fold;
+        const auto rc = sim.run(frames, l.w, l.h, cont);
+        compare(rc, frames, per_frame, hw);
+        const uint64_t cperiod = rc.stats[1].last_out_cycle - rc.stats[0].last_out_cycle;
+        const uint64_t want = static_cast<uint64_t>(fold) * l.w * l.h;
+        check(cperiod == want, fmt::format("continuous stream: frame period {} == F*W*H {}", cperiod, want));
+        if (fold == 1)
+          check(rc.input_stall_cycles == 0, fmt::format("continuous stream never stalled ({})", rc.input_stall_cycles));
+        else
+          check(rc.input_stall_cycles >= static_cast<uint64_t>(fold - 1) * l.w * l.h,
+                fmt::format("continuous stream faster than the core held by tready ({} stall cycles, at least {})",
+                            rc.input_stall_cycles, static_cast<uint64_t>(fold - 1) * l.w * l.h));
+      }
     } else if (mode == "vcd") {
       frames = {{l, r}};
       per_frame = {regs};

@@ -9,11 +9,10 @@ target_compile_options(sm_synth_report PRIVATE ${SM_WARNINGS})
 
 set(SM_SYNTH_DRIVER ${CMAKE_CURRENT_SOURCE_DIR}/synth/sm_synth.sh)
 set(SM_SYNTH_DIR ${CMAKE_BINARY_DIR}/synth)
-# The configurations of sim/sim.cmake (SM_SMALL_PARAMS / SM_PAPER_PARAMS; that file is
-# read after this one, keep the two in step).
-set(SM_SYNTH_SMALL_PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 CENSUS=7 SW=3 RECT_RADIUS=4)
-set(SM_SYNTH_PAPER_PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 CENSUS=15 SW=5 RECT_RADIUS=18)
-set(SM_SYNTH_ZYNQ_PARAMS ${SM_SYNTH_PAPER_PARAMS} PU=${SM_ZYNQ_PU})
+# The configurations of the top-level CMakeLists.txt.
+set(SM_SYNTH_SMALL_PARAMS ${SM_SMALL_PARAMS})
+set(SM_SYNTH_PAPER_PARAMS ${SM_PAPER_PARAMS})
+set(SM_SYNTH_ZYNQ_PARAMS ${SM_ZYNQ_PARAMS})
 set(SM_SYNTH_TIMEOUT 14400 CACHE STRING "time limit (s) of one Yosys run of the synth targets")
 option(SM_SYNTH_PAPER_BLOCKS
        "synth_paper maps each block of sm_top in its own Yosys run and sums them" ON)
@@ -51,6 +50,7 @@ sm_synth_command(c_paper_xc7 TOP sm_top CONFIG stereo_sim_xc7 FAMILY xc7
 # the Zynq-7000's family (xc7z020 budget: docs/synthesis.md)
 sm_synth_command(c_zynq_xc7 TOP sm_top CONFIG stereo_sim_zynq FAMILY xc7
                  PARAMS ${SM_SYNTH_ZYNQ_PARAMS} ${blocks})
+sm_synth_command(c_vga_xc7 TOP sm_top CONFIG stereo_sim_vga FAMILY xc7 PARAMS ${SM_VGA_PARAMS} ${blocks})
 set(all)
 if(SM_SYNTH_ON_BUILD)
   set(all ALL)
@@ -74,8 +74,13 @@ add_custom_target(synth_zynq
   DEPENDS sm_synth_report USES_TERMINAL
   COMMENT "Yosys: sm_top at the zynq configuration (xc7, PU ${SM_ZYNQ_PU})")
 
+add_custom_target(synth_vga
+  COMMAND ${c_vga_xc7}
+  DEPENDS sm_synth_report USES_TERMINAL
+  COMMENT "Yosys: sm_top at the vga configuration (640x480, xc7, PU ${SM_ZYNQ_PU})")
+
 # sm_axil_regs includes the generated register map.
-foreach(t synth_small synth_paper synth_paper_xc7 synth_zynq)
+foreach(t synth_small synth_paper synth_paper_xc7 synth_zynq synth_vga)
   add_dependencies(${t} sm_regmap_gen_files)
 endforeach()
 

