@@ -58,6 +58,8 @@ module sm_seq #(
   localparam FW = $clog2(FLUSH_ROWS + 1);
   localparam LEVEL_W  = $clog2(IN_DEPTH) + 1;
   localparam [FW-1:0] FR = FLUSH_ROWS[FW-1:0];
+  localparam integer MAX_WIDTH1  = MAX_WIDTH - 1;
+  localparam integer MAX_HEIGHT1 = MAX_HEIGHT - 1;
 
   localparam E_SHORT = 0, E_LONG = 1, E_MISSING = 2, E_EXTRA = 3, E_FEW = 4, E_MANY = 5;
   localparam [1:0] M_IDLE = 2'd0, M_FRAME = 2'd1, M_VROW = 2'd2;
@@ -106,7 +108,11 @@ module sm_seq #(
   reg [XW-1:0] x_q;
   reg [YW-1:0] y_q;
   reg [XW-1:0] w_q;          // width of the current / last frame (virtual rows use it)
-  reg [YW-1:0] h_q;
+  // w_q - 1 and the frame's height - 1, loaded at the frame start: the last-column /
+  // last-row tests are then plain compares, not a subtract followed by a compare (at
+  // 640 columns that chain was the sequencer's one path above 8 LUT levels)
+  reg [XW-1:0] wm1_q;
+  reg [YW-1:0] hm1_q;
   reg [1:0]    ftag_q;
   reg [FW-1:0] flushed_q;    // virtual rows since the last frame, saturating at FLUSH_ROWS
   reg          pad_row_q;    // short line: rest of the row is zeros
@@ -139,15 +145,14 @@ module sm_seq #(
   wire          real_beat = take_pix || pad || sof_break;
   wire [XW-1:0] ex   = idle_start ? {XW{1'b0}} : x_q;
   wire [YW-1:0] ey   = idle_start ? {YW{1'b0}} : y_q;
-  wire [XW-1:0] ew   = idle_start ? host_width : w_q;
-  wire [YW-1:0] eh   = idle_start ? host_height : h_q;
   wire [1:0]    etag = idle_start ? ftag_q + 2'd1 : ftag_q;
-  wire          last_col = (ex == ew - 1'b1);
-  wire          last_row = (ey == eh - 1'b1);
+  // (ex == width - 1): a frame start has ex = 0, so then the test is width == 1
+  wire          last_col = idle_start ? (host_width == {{(XW-1){1'b0}}, 1'b1}) : (x_q == wm1_q);
+  wire          last_row = idle_start ? (host_height == {{(YW-1){1'b0}}, 1'b1}) : (y_q == hm1_q);
 
   wire          vbeat = idle_vrow || (mode_q == M_VROW);
   wire [XW-1:0] vx    = idle_vrow ? {XW{1'b0}} : x_q;
-  wire          vlast = (vx == w_q - 1'b1);
+  wire          vlast = idle_vrow ? (w_q == {{(XW-1){1'b0}}, 1'b1}) : (x_q == wm1_q);
 
   assign pop = (take_pix && adv) || drop_pop || idle_off || idle_junk;
   assign frame_start = idle_start && adv;
@@ -165,7 +170,8 @@ module sm_seq #(
       x_q           <= {XW{1'b0}};
       y_q           <= {YW{1'b0}};
       w_q           <= MAX_WIDTH[XW-1:0];
-      h_q           <= MAX_HEIGHT[YW-1:0];
+      wm1_q         <= MAX_WIDTH1[XW-1:0];
+      hm1_q         <= MAX_HEIGHT1[YW-1:0];
       ftag_q        <= 2'd3;  // the first frame gets ftag 0
       flushed_q     <= FR;    // nothing to flush after reset
       pad_row_q     <= 1'b0;
@@ -194,7 +200,8 @@ module sm_seq #(
           if (idle_start) begin
             mode_q     <= M_FRAME;
             w_q        <= host_width;
-            h_q        <= host_height;
+            wm1_q      <= host_width - 1'b1;
+            hm1_q      <= host_height - 1'b1;
             ftag_q     <= ftag_q + 2'd1;
             dropping_q <= 1'b0;
           end

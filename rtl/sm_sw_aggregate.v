@@ -357,13 +357,12 @@ module sm_sw_aggregate #(
           if (grp0_q == si[FGW-1:0]) live_sel = live_gm[si*GW +: GW];
       end
 
-      // Cost rows: one block-RAM word per (column, group), at {column, group}. The depth
-      // is a power of two: at 320 columns and 8 groups, 2,560 words would map to five
-      // 512-deep slices behind a 5:1 multiplexer of every output bit (about 1,500
-      // LUTs); 4,096 words are 4K x 9 block RAMs side by side (as many as one word per
-      // column took) and no multiplexer.
+      // Cost rows: one block-RAM word per (column, group), at {column, group}, so the
+      // addresses run to MAX_WIDTH x 2^FGW (exactly MAX_WIDTH x F when F is a power of
+      // two); sm_sw_foldlb keeps that depth in two power-of-two banks (5,120 words at
+      // 320 columns and 16 groups: 4,096 + 1,024, not 8,192).
       wire [COLG-1:0] col_g;  // the step's group of the entering column, row k at [k*GW]
-      sm_sw_foldlb #(.DEPTH(1 << (LAW + FGW)), .DATA_W(GW), .ROWS(SW - 1)) u_lbc (
+      sm_sw_foldlb #(.DEPTH(MAX_WIDTH << FGW), .DATA_W(GW), .ROWS(SW - 1)) u_lbc (
           .clk(clk), .rst_n(rst_n), .en(act0_q), .addr({x_q, grp0_q}), .din(live_sel),
           .col(col_g)
       );

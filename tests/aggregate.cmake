@@ -18,11 +18,14 @@ sm_rtl_test(NAME tb_sw_aggregate_paper TOP sm_sw_aggregate SOURCES ${_agg_tb}
             ARGS --width 317 --heights 6 5 --seed 3 LABELS "rtl;slow")
 # Folded datapath (PU < DISP, F = DISP / PU clocks per beat, issue 20): DISP 16 at
 # PU 16 (F 1, the parallel branch named explicitly), 8, 4, 2 and 1, a non-power-of-two
-# F (DISP 12, PU 4), SW 3, 5 and 7, odd widths, random ce gaps on top of the pacing.
+# F (DISP 12, PU 4), SW 3, 5 and 7, odd widths, random ce gaps on top of the pacing;
+# MAX_WIDTH 50 (not a power of two: the cost line buffer in two banks, sm_sw_foldlb
+# g_two, at a power-of-two F and at F 3).
+# Fields: name; SW; DISP; PU; COST_SHIFT; active width; seed; MAX_WIDTH.
 set(_agg_fold)
-foreach(_p "sw5_pu16;5;16;16;1;37;2" "sw5_pu8;5;16;8;1;37;5" "sw3_pu4;3;16;4;2;37;6"
-           "sw5_pu2;5;16;2;1;23;7" "sw3_pu1;3;16;1;2;19;8" "sw7_pu4;7;16;4;1;29;9"
-           "sw5_d12_pu4;5;12;4;2;31;10")
+foreach(_p "sw5_pu16;5;16;16;1;37;2;64" "sw5_pu8;5;16;8;1;37;5;64" "sw3_pu4;3;16;4;2;37;6;64"
+           "sw5_pu2;5;16;2;1;23;7;64" "sw3_pu1;3;16;1;2;19;8;64" "sw7_pu4;7;16;4;1;29;9;64"
+           "sw5_d12_pu4;5;12;4;2;31;10;64" "w50_pu4;5;16;4;1;50;14;50" "w50_d12_pu4;5;12;4;2;47;15;50")
   list(GET _p 0 _n)
   list(GET _p 1 _sw)
   list(GET _p 2 _d)
@@ -30,8 +33,9 @@ foreach(_p "sw5_pu16;5;16;16;1;37;2" "sw5_pu8;5;16;8;1;37;5" "sw3_pu4;3;16;4;2;3
   list(GET _p 4 _cs)
   list(GET _p 5 _w)
   list(GET _p 6 _seed)
+  list(GET _p 7 _mw)
   sm_rtl_test(NAME tb_sw_aggregate_${_n} TOP sm_sw_aggregate SOURCES ${_agg_tb}
-              PARAMS MAX_WIDTH=64 DISP=${_d} CENSUS=7 SW=${_sw} COST_SHIFT=${_cs} PU=${_pu}
+              PARAMS MAX_WIDTH=${_mw} DISP=${_d} CENSUS=7 SW=${_sw} COST_SHIFT=${_cs} PU=${_pu}
               ARGS --width ${_w} --heights 9 4 11 --seed ${_seed})
   list(APPEND _agg_fold tb_sw_aggregate_${_n})
 endforeach()
