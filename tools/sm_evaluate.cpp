@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_regs_json.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
 
@@ -99,14 +100,15 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
   return from_fixed16(d);
 }
 
-std::vector<Method> all_methods(int occ, const std::string& results_dir, double results_scale) {
+std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs_file, const std::string& results_dir,
+                                double results_scale) {
   std::vector<Method> m;
   // The model with every post-processing filter enabled (the default registers), scored
   // after each step: the DP output, F0 (band filter), F0+F1 (5x1 vertical median), F0+F1+F2
   // (3x3), F0+F1+F2+F3 (5x3) = the model's output.
   m.push_back({"model",
                {"model_dp", "model_f0", "model_f1", "model_f1f2", "model"},
-               [occ](const sm::tools::Scene& s, int levels) {
+               [occ, occ_given, regs_file](const sm::tools::Scene& s, int levels) {
                  sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
                  hw.disp = levels;
                  hw.max_width = s.left.cols;
@@ -114,6 +116,18 @@ std::vector<Method> all_methods(int occ, const std::string& results_dir, double 
                  sm::Regs regs = sm::Regs::defaults(hw);
                  regs.occ = static_cast<uint8_t>(occ);
                  regs.filter_enable = 15;
+                 if (!regs_file.empty()) {
+                   // --regs: registers and compile-time parameters on top of the defaults;
+                   // the sizes stay the scene's, --occ (when given) wins over the file.
+                   sm::tools::apply_regs_json(regs_file, hw, regs);
+                   hw.disp = levels;
+                   hw.max_width = s.left.cols;
+                   hw.max_height = s.left.rows;
+                   regs.width = hw.max_width;
+                   regs.height = hw.max_height;
+                   if (occ_given) regs.occ = static_cast<uint8_t>(occ);
+                   hw.validate();
+                 }
                  const auto res =
                      sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false);
                  if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
@@ -182,7 +196,8 @@ int run(int argc, char** argv) {
   std::vector<std::string> scenes_opt,
       methods_opt{"model",         "bm",      "bm-dense",     "sgbm", "sgbm-dense", "sgbm-hh",
                   "sgbm-hh-dense", "binsgbm", "binsgbm-dense"};
-  std::string synth_size = fmt::format("{}x{}", sm::HwConfig{}.max_width, sm::HwConfig{}.max_height), results_dir;
+  std::string synth_size = fmt::format("{}x{}", sm::HwConfig{}.max_width, sm::HwConfig{}.max_height), results_dir,
+              regs_file;
   double results_scale = 16;
   int levels = sm::HwConfig{}.disp, peer_levels = 0, synthetic = 0, occ = sm::Regs{}.occ;
   std::vector<int> streak_rows{1, 5};
@@ -218,6 +233,10 @@ int run(int argc, char** argv) {
   app.add_option("--occ", occ, "model: DP occlusion penalty register")
       ->check(CLI::Range(0, 255))
       ->capture_default_str();
+  app.add_option("--regs", regs_file,
+                 "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
+                 "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
+                 "the scene's, --occ wins when given");
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   try {
     app.parse(argc, argv);
@@ -237,7 +256,9 @@ int run(int argc, char** argv) {
 
   std::vector<Method> methods;
   {
-    const auto all = all_methods(occ, results_dir, results_scale);
+    const bool occ_given = app.count("--occ") > 0;
+    if (!regs_file.empty() && !fs::is_regular_file(regs_file)) throw ToolError(fmt::format("{}: no such file", regs_file));
+    const auto all = all_methods(occ, occ_given, regs_file, results_dir, results_scale);
     auto names_opt = methods_opt;
     names_opt.erase(std::remove(names_opt.begin(), names_opt.end(), ""), names_opt.end());
     if (!results_dir.empty() && std::find(names_opt.begin(), names_opt.end(), "results") == names_opt.end())

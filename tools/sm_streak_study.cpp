@@ -369,6 +369,8 @@ int main(int argc, char** argv) {
   app.add_option("--detail", detail, "print per-scene tables for these candidates (exact names)")->delimiter(',');
   app.add_option("--dump", dump_dir,
                  "write <scene>__<candidate>.png colour maps of the two base and --detail candidates");
+  int occ = -1;
+  app.add_option("--occ", occ, "DP occlusion penalty register (default: Regs::defaults)")->check(CLI::Range(0, 255));
   CLI11_PARSE(app, argc, argv);
   quiet_opencv();
 
@@ -396,7 +398,9 @@ int main(int argc, char** argv) {
       HwConfig hw;  // paper defaults: CENSUS 15, SW 5, 128 levels, as sm_evaluate
       hw.max_width = s.left.cols;
       hw.max_height = s.left.rows;
-      const Regs regs = Regs::defaults(hw);
+      Regs regs = Regs::defaults(hw);
+      if (occ >= 0) regs.occ = static_cast<uint8_t>(occ);
+      regs.filter_enable = 7;  // the chain F1..F3 without F0: the study's "chain" candidate is checked against it
       const PipelineResult r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, true);
       // The study's own DP and chain reproduce the model's (same functions, same bits).
       if (dp_vert(r.agg, regs.occ, hw, DpSpec{}) != r.dp)
