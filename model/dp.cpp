@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -35,6 +36,7 @@ namespace {
 struct Fwd {
   int n, ne, no, stride;
   uint32_t occ, mask;
+  const uint8_t* pen;  // nullptr: occ everywhere; else the penalty of DP clock t, level pair m at pen[t + m + 1]
   const uint16_t* cm;
   uint32_t* ue;
   uint32_t* uo;
@@ -52,22 +54,29 @@ void forward_scalar(const Fwd& f) {
     u = t2 ? c2 : b1;
     ch = t2 ? 2 : (t1 ? 1 : 0);
   };
-  const uint32_t none = 0xffffffffu, occ = f.occ, mask = f.mask;
+  const uint32_t none = 0xffffffffu, mask = f.mask;
   uint32_t* ue = f.ue;
   uint32_t* uo = f.uo;
   for (int t = 0; t < f.n; ++t) {
+    // Penalty of the occlusion nodes of level pair m (d = 2m+1 at site 2t+1, d = 2m at
+    // site 2t+2): both have xl = t + m + 1.
+    auto occ_at = [&f, t](int m) { return f.pen ? uint32_t{f.pen[t + m + 1]} : f.occ; };
     // Site 2t+1: occlusion nodes d = 2m+1 (d - 1 = 2m always exists, d + 1 = 2m+2
     // while m + 1 < ne) from the site-2t values, then the matched nodes d = 2m.
     uint32_t* dec = f.dec + static_cast<size_t>(2 * t + 1) * f.stride;
-    for (int m = 0; m < f.no; ++m)
+    for (int m = 0; m < f.no; ++m) {
+      const uint32_t occ = occ_at(m);
       occ_node(uo[m], (ue[m] + occ) & mask, m + 1 < f.ne ? (ue[m + 1] + occ) & mask : none, dec[m]);
+    }
     const uint16_t* c = f.cm + static_cast<size_t>(t) * f.stride;
     for (int m = 0; m < f.ne; ++m) ue[m] = (ue[m] + (c[m] & 0xffu)) & mask;
     // Site 2t+2: occlusion nodes d = 2m (d - 1 = 2m-1 for m >= 1, d + 1 = 2m+1 while
     // m < no) from the site-2t+1 values, then the matched nodes d = 2m+1.
     dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
-    for (int m = 0; m < f.ne; ++m)
+    for (int m = 0; m < f.ne; ++m) {
+      const uint32_t occ = occ_at(m);
       occ_node(ue[m], m >= 1 ? (uo[m - 1] + occ) & mask : none, m < f.no ? (uo[m] + occ) & mask : none, dec[m]);
+    }
     c += f.stride;
     for (int m = 0; m < f.no; ++m) uo[m] = (uo[m] + (c[m] >> 8)) & mask;
   }
@@ -89,7 +98,7 @@ inline void store(uint32_t* p, const VI& v) { std::memcpy(p, &v, sizeof v); }
 
 // Occlusion nodes from m, one vector: u = the first of choice 0 (u), 1 (lo + occ) and 2 (hi +
 // occ) that reaches the minimum; lanes set in lo_absent / hi_absent lack that choice.
-inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, int32_t occ, int32_t mask,
+inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, const VI& occ, int32_t mask,
                       const VI& lo_absent, const VI& hi_absent, uint32_t* dec) {
   VI b0, c1, c2;
   load(b0, u);
@@ -121,18 +130,26 @@ SM_HOT void forward_vector(const Fwd& f) {
   for (int k = 0; k < kLanes; ++k) lane[k] = k;
   const VI no_lane = {};
   const VI first = lane == 0;
-  const auto occ = static_cast<int32_t>(f.occ), mask = static_cast<int32_t>(f.mask);
+  const auto mask = static_cast<int32_t>(f.mask);
+  const VI occ_all = no_lane + static_cast<int32_t>(f.occ);
+  // The penalties of lanes m..m+kLanes-1 at DP clock t (see forward_scalar).
+  VI ov = occ_all;
+  auto occ_v = [&f, &ov](int t, int m) -> const VI& {
+    if (f.pen)
+      for (int k = 0; k < kLanes; ++k) ov[k] = f.pen[t + m + 1 + k];
+    return ov;
+  };
   uint32_t* ue = f.ue;
   uint32_t* uo = f.uo;
   for (int t = 0; t < f.n; ++t) {
     uint32_t* dec = f.dec + static_cast<size_t>(2 * t + 1) * f.stride;
     for (int m = 0; m < f.no; m += kLanes)
-      occ_block(uo + m, ue + m, ue + m + 1, occ, mask, no_lane, lane + (m + 1) >= f.ne, dec + m);
+      occ_block(uo + m, ue + m, ue + m + 1, occ_v(t, m), mask, no_lane, lane + (m + 1) >= f.ne, dec + m);
     const uint16_t* c = f.cm + static_cast<size_t>(t) * f.stride;
     for (int m = 0; m < f.ne; m += kLanes) add_block(ue + m, c + m, false, mask);
     dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
     for (int m = 0; m < f.ne; m += kLanes)
-      occ_block(ue + m, uo + m - 1, uo + m, occ, mask, m == 0 ? first : no_lane, lane + m >= f.no, dec + m);
+      occ_block(ue + m, uo + m - 1, uo + m, occ_v(t, m), mask, m == 0 ? first : no_lane, lane + m >= f.no, dec + m);
     c += f.stride;
     for (int m = 0; m < f.no; m += kLanes) add_block(uo + m, c + m, true, mask);
   }
@@ -167,7 +184,9 @@ void gather_costs(const uint8_t* agg, int n, int nd, int ne, int no, int stride,
 // occlusion at even d). The levels are split by parity and the matched costs are
 // gathered into site order first, so the loops over levels run over consecutive
 // entries and vectorize.
-void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s, DpLine& out) {
+namespace {
+void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pen, const HwConfig& hw, DpScratch& s,
+                       DpLine& out) {
   const int nd = hw.disp;
   const int acc_w = dp_acc_bits(hw);
   const uint32_t mask = (acc_w >= 32) ? 0xffffffffu : ((1u << acc_w) - 1);
@@ -185,7 +204,15 @@ void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, Dp
   s.u0.assign(static_cast<size_t>(stride) + 2 * 8, big);
   s.u1.assign(static_cast<size_t>(stride) + 2 * 8, big);
   s.dec.resize(static_cast<size_t>(sites + 1) * stride);
-  const Fwd f{n, ne, no, stride, occ, mask, s.cm.data(), s.u0.data() + 8, s.u1.data() + 8, s.dec.data()};
+  // Per-pixel penalties padded to every lane the vector pass reads (t + m + 1 < n + stride + 8);
+  // nodes with xl > n never reach the end node, so the padding value does not matter.
+  const uint8_t* penp = nullptr;
+  if (pen) {
+    s.pen.assign(static_cast<size_t>(n) + stride + 16, pen[n]);
+    std::copy(pen, pen + n + 1, s.pen.begin());
+    penp = s.pen.data();
+  }
+  const Fwd f{n, ne, no, stride, occ, mask, penp, s.cm.data(), s.u0.data() + 8, s.u1.data() + 8, s.dec.data()};
   f.ue[0] = 0;
 #if defined(__GNUC__)
   if (acc_w <= 30)
@@ -210,6 +237,38 @@ void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, Dp
   }
   out.path[0] = d;
   dp_fill(out.match, out.disp);
+}
+}  // namespace
+
+void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s, DpLine& out) {
+  trellis_line_impl(agg, n, occ, nullptr, hw, s, out);
+}
+
+void trellis_line_pen(const uint8_t* agg, int n, const uint8_t* pen, const HwConfig& hw, DpScratch& s, DpLine& out) {
+  trellis_line_impl(agg, n, 0, pen, hw, s, out);
+}
+
+void edge_penalties(const uint8_t* left, int n, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
+                    std::vector<uint8_t>& pen) {
+  pen.assign(static_cast<size_t>(n) + 1, occ);
+  for (int x = 1; x < n; ++x)
+    if (std::abs(static_cast<int>(left[x]) - static_cast<int>(left[x - 1])) > edge_t) pen[x] = occ_edge;
+}
+
+DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
+                          const HwConfig& hw) {
+  if (agg.d != hw.disp || left.w != agg.w || left.h != agg.h)
+    throw std::invalid_argument("trellis_dp_edge: cost volume, DISP and left image disagree");
+  DispImage out(agg.w, agg.h);
+  DpScratch s;
+  DpLine line;
+  std::vector<uint8_t> pen;
+  for (int y = 0; y < agg.h; ++y) {
+    edge_penalties(&left.px[static_cast<size_t>(y) * left.w], agg.w, occ, occ_edge, edge_t, pen);
+    trellis_line_pen(agg.pix(0, y), agg.w, pen.data(), hw, s, line);
+    std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
+  }
+  return out;
 }
 
 void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp) {

@@ -28,6 +28,7 @@ struct DpScratch {
   std::vector<uint32_t> dec;     // choice of occlusion node (i, d) at i * S + d / 2,
                                  // (2N+1) * S entries
   std::vector<uint16_t> cm;      // matched costs in site order, (N+1) * S pairs (dp.cpp)
+  std::vector<uint8_t> pen;      // per-pixel penalties, padded (trellis_line_pen)
 };
 
 // One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=
@@ -35,11 +36,27 @@ struct DpScratch {
 // line there; such nodes never reach the end node, see algorithm.md).
 void trellis_line(const uint8_t* agg, int n, uint8_t occ, const HwConfig& hw, DpScratch& s, DpLine& out);
 
+// trellis_line with a penalty per left pixel instead of one occ (issue 21 study, not in the
+// RTL): the occlusion node (i, d) (i + d even) costs pen[(i + d) / 2] on both of its diagonal
+// choices; pen has n + 1 entries (xl = 0..n; nodes with xl > n never reach the end node).
+// pen[x] == occ for every x gives trellis_line(agg, n, occ, ...) bit for bit.
+void trellis_line_pen(const uint8_t* agg, int n, const uint8_t* pen, const HwConfig& hw, DpScratch& s, DpLine& out);
+
+// Edge-dependent penalties of one line of the left image (docs/evaluation.md, "Edge-dependent
+// occlusion penalty"): pen[x] = occ_edge where 1 <= x < n and |left[x] - left[x-1]| > edge_t,
+// else occ (n + 1 entries).
+void edge_penalties(const uint8_t* left, int n, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
+                    std::vector<uint8_t>& pen);
+
 // Left-occlusion fill of one line (match[x] = -1 for unmatched pixels), valid bit set.
 void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp);
 
 // The whole stage: every line of the aggregated cost volume (agg.d == hw.disp) with
 // one occlusion penalty. Throws std::invalid_argument on a size mismatch.
 DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw);
+// Every line with the edge-dependent penalties of the left image's row (left: the image the
+// weights came from, agg.w x agg.h).
+DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
+                          const HwConfig& hw);
 
 }  // namespace sm

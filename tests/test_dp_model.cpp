@@ -32,7 +32,8 @@ struct Brute {
   std::vector<int> path, best_path;
   std::vector<int> key, best_key;  // choice per site, i = 2N first
   long best = -1;
-  long n_best = 0;  // paths reaching the best cost
+  long n_best = 0;                        // paths reaching the best cost
+  const std::vector<int>* pen = nullptr;  // per-pixel penalty of the occlusion nodes, by xl = (i + d) / 2
 
   void run() {
     path.assign(2 * n + 1, 0);
@@ -64,7 +65,7 @@ struct Brute {
         if (xl >= n || (i - 1 - d) < 0) continue;  // beyond the line: cannot end at 0
         c += a[static_cast<size_t>(xl) * disp + d];
       } else if (d != dprev) {
-        c += occ;
+        c += pen ? (*pen)[static_cast<size_t>(std::min((i + d) / 2, n))] : occ;
       }
       path[i] = d;
       go(i + 1, d, c);
@@ -236,4 +237,116 @@ TEST_CASE("trellis_dp: fill rule on hand-made match lists", "[dp]") {
 TEST_CASE("trellis_dp: rejects a volume of the wrong depth", "[dp]") {
   const sm::HwConfig hw = tiny_hw(16);
   CHECK_THROWS_AS(sm::trellis_dp(sm::CostVolume(8, 2, 8), 5, hw), std::invalid_argument);
+}
+
+// ---- per-pixel penalties (trellis_line with pen, the edge-dependent penalty study) ----
+
+namespace {
+
+// The recurrence of docs/algorithm.md section 6 site by site, with the penalty of the
+// occlusion node (i, d) taken from pen[(i + d) / 2]: an independent (scalar, level by
+// level) reference for lines too long to enumerate.
+std::vector<int> ref_dp_pen(const std::vector<uint8_t>& a, int n, int disp, const std::vector<int>& pen,
+                            long* end_cost) {
+  const long big = 1L << 40;
+  std::vector<long> u(disp, big), v(disp);
+  u[0] = 0;
+  std::vector<std::vector<int>> ch(2 * n + 1, std::vector<int>(disp, 0));
+  for (int i = 1; i <= 2 * n; ++i) {
+    for (int d = 0; d < disp; ++d) {
+      if ((i + d) & 1) {
+        const int xl = (i - 1 + d) / 2;
+        v[d] = u[d] + (xl < n ? a[static_cast<size_t>(xl) * disp + d] : 0);
+      } else {
+        const long p = pen[static_cast<size_t>(std::min((i + d) / 2, n))];
+        long best = u[d];
+        int c = 0;
+        if (d >= 1 && u[d - 1] + p < best) best = u[d - 1] + p, c = 1;
+        if (d + 1 < disp && u[d + 1] + p < best) best = u[d + 1] + p, c = 2;
+        v[d] = best;
+        ch[i][d] = c;
+      }
+    }
+    std::swap(u, v);
+  }
+  *end_cost = u[0];
+  std::vector<int> path(2 * n + 1, 0);
+  int d = 0;
+  for (int i = 2 * n; i >= 1; --i) {
+    path[i] = d;
+    if (!((i + d) & 1)) d += ch[i][d] == 1 ? -1 : ch[i][d] == 2 ? 1 : 0;
+  }
+  path[0] = d;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("trellis_dp: per-pixel penalties equal exhaustive enumeration", "[dp]") {
+  std::mt19937 rng(777);
+  int cases = 0;
+  for (int disp : {2, 4}) {
+    const sm::HwConfig hw = tiny_hw(disp);
+    sm::DpScratch s;
+    sm::DpLine line;
+    for (int n = 1; n <= 5; ++n)
+      for (int rep = 0; rep < 40; ++rep) {
+        const int top = rep % 2 ? 15 : 3;
+        std::vector<uint8_t> a(static_cast<size_t>(n) * disp);
+        for (auto& v : a) v = static_cast<uint8_t>(rng() % (top + 1));
+        std::vector<int> pen(static_cast<size_t>(n) + 1);
+        for (auto& p : pen) p = static_cast<int>(rng() % (rep % 3 ? 6 : 20));
+        std::vector<uint8_t> pen8(pen.begin(), pen.end());
+        Brute b{a, n, disp, 0, {}, {}, {}, {}, -1, 0, &pen};
+        b.run();
+        sm::trellis_line_pen(a.data(), n, pen8.data(), hw, s, line);
+        INFO("disp " << disp << " n " << n << " rep " << rep);
+        REQUIRE(b.best >= 0);
+        CHECK(static_cast<long>(line.end_cost) == b.best);
+        CHECK(line.path == b.best_path);
+        ++cases;
+      }
+  }
+  CHECK(cases == 400);
+}
+
+TEST_CASE("trellis_dp: per-pixel penalties on long lines (vector lanes) equal the recurrence", "[dp]") {
+  std::mt19937 rng(4242);
+  for (int disp : {16, 37, 64}) {
+    sm::HwConfig hw;
+    hw.max_width = 96;
+    hw.disp = disp;
+    sm::DpScratch s;
+    sm::DpLine line, uni;
+    for (int rep = 0; rep < 6; ++rep) {
+      const int n = 40 + static_cast<int>(rng() % 57);
+      std::vector<uint8_t> a(static_cast<size_t>(n) * disp);
+      for (auto& v : a) v = static_cast<uint8_t>(rng() % 64);
+      std::vector<int> pen(static_cast<size_t>(n) + 1);
+      for (auto& p : pen) p = rng() % 2 ? 3 : 11;
+      std::vector<uint8_t> pen8(pen.begin(), pen.end());
+      long end = 0;
+      const std::vector<int> path = ref_dp_pen(a, n, disp, pen, &end);
+      sm::trellis_line_pen(a.data(), n, pen8.data(), hw, s, line);
+      INFO("disp " << disp << " n " << n << " rep " << rep);
+      CHECK(static_cast<long>(line.end_cost) == end);
+      CHECK(line.path == path);
+      // One penalty everywhere: the per-pixel form is the uniform trellis bit for bit.
+      std::vector<uint8_t> flat(static_cast<size_t>(n) + 1, 9);
+      sm::trellis_line_pen(a.data(), n, flat.data(), hw, s, line);
+      sm::trellis_line(a.data(), n, static_cast<uint8_t>(9), hw, s, uni);
+      CHECK(line.path == uni.path);
+      CHECK(line.disp == uni.disp);
+    }
+  }
+}
+
+TEST_CASE("edge_penalties: occ_edge where the left image steps by more than edge_t", "[dp]") {
+  // |dI| of x = 1..5: 16, 17, 0, 40, 15; edge_t 16 -> edges at x = 2 and 4; x = 0 and x = n never.
+  const std::vector<uint8_t> left = {100, 116, 133, 133, 93, 108};
+  std::vector<uint8_t> pen;
+  sm::edge_penalties(left.data(), 6, 11, 7, 16, pen);
+  CHECK(pen == std::vector<uint8_t>{11, 11, 7, 11, 7, 11, 11});
+  sm::edge_penalties(left.data(), 6, 11, 7, 0, pen);
+  CHECK(pen == std::vector<uint8_t>{11, 7, 7, 11, 7, 7, 11});
 }

@@ -257,7 +257,8 @@ int run(int argc, char** argv) {
   std::vector<Method> methods;
   {
     const bool occ_given = app.count("--occ") > 0;
-    if (!regs_file.empty() && !fs::is_regular_file(regs_file)) throw ToolError(fmt::format("{}: no such file", regs_file));
+    if (!regs_file.empty() && !fs::is_regular_file(regs_file))
+      throw ToolError(fmt::format("{}: no such file", regs_file));
     const auto all = all_methods(occ, occ_given, regs_file, results_dir, results_scale);
     auto names_opt = methods_opt;
     names_opt.erase(std::remove(names_opt.begin(), names_opt.end(), ""), names_opt.end());

@@ -212,14 +212,22 @@ Filter rband(int kmax, int l, int tau, bool whole_run = false, double frac = 0.5
 // DP with an inter-scanline term (see the header); lambda 0 = the model's trellis_dp.
 struct DpSpec {
   int lambda = 0, t = 0, dz = 0, back = 0, scale = 1;
+  // Edge-dependent occlusion penalty (model trellis_dp_edge, no inter-scanline term): occ
+  // `eflat` away from intensity edges of the left image, `eedge` where |dI| > `ethr`;
+  // eflat < 0: off.
+  int eflat = -1, eedge = 0, ethr = 0;
   std::string key() const {
+    if (eflat >= 0) return fmt::format("dpedge o{} e{} T{}", eflat, eedge, ethr);
     if (!lambda) return "dp";
     const std::string l = scale == 1 ? fmt::format("{}", lambda) : fmt::format("{}/{}", lambda, scale);
     return fmt::format("dp l{} T{} dz{} y-{}", l, t, dz, back);
   }
 };
 
-DispImage dp_vert(const CostVolume& agg, uint8_t occ, const HwConfig& hw, const DpSpec& s) {
+DispImage dp_vert(const CostVolume& agg, const Image8& left, uint8_t occ, const HwConfig& hw, const DpSpec& s) {
+  if (s.eflat >= 0)
+    return trellis_dp_edge(agg, left, static_cast<uint8_t>(s.eflat), static_cast<uint8_t>(s.eedge),
+                           static_cast<uint8_t>(s.ethr), hw);
   const int w = agg.w, h = agg.h, nd = agg.d;
   DispImage out(w, h);
   DpScratch scratch;
@@ -340,6 +348,19 @@ std::vector<Candidate> candidates() {
           c.push_back({"dp", s.key() + " +chain", s, chain()});
         }
   }
+  // Edge-dependent occlusion penalty: occ `o` in flat areas, `e` where the left image has an
+  // intensity step above T (lower: depth edges are intensity edges), with the model's F0 (K 8,
+  // 10, 12) and the chain; o == e is the uniform penalty.
+  for (int o : {8, 9, 10, 11, 12, 13})
+    for (int e : {5, 6, 7, 8})
+      for (int thr : {8, 12, 16, 20, 24, 32}) {
+        if (e > o || (e == o && thr != 16)) continue;
+        const DpSpec s{0, 0, 0, 0, 1, o, e, thr};
+        c.push_back({"dpedge", s.key() + " +chain", s, chain()});
+        for (int k : {8, 10, 12})
+          c.push_back({"dpedge", fmt::format("{} +rband K{} L1+chain", s.key(), k), s,
+                       std::vector<Filter>{rband(k, 1, -1)} + chain()});
+      }
   // The DP term (fed from two or three rows above) together with a band filter.
   for (int back : {2, 3})
     for (int t : {2, 4, 8}) {
@@ -403,7 +424,7 @@ int main(int argc, char** argv) {
       regs.filter_enable = 7;  // the chain F1..F3 without F0: the study's "chain" candidate is checked against it
       const PipelineResult r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, true);
       // The study's own DP and chain reproduce the model's (same functions, same bits).
-      if (dp_vert(r.agg, regs.occ, hw, DpSpec{}) != r.dp)
+      if (dp_vert(r.agg, r.rl, regs.occ, hw, DpSpec{}) != r.dp)
         throw std::logic_error(s.name + ": DP differs from the model");
       const Ctx ctx{hw, r.rl};
       // The model's post_band is the study's rband with L 1 and no intensity test.
@@ -413,7 +434,7 @@ int main(int argc, char** argv) {
       std::map<std::string, DispImage> dps{{"dp", r.dp}};
       for (size_t c = 0; c < cands.size(); ++c) {
         const std::string key = cands[c].dp.key();
-        if (!dps.count(key)) dps.emplace(key, dp_vert(r.agg, regs.occ, hw, cands[c].dp));
+        if (!dps.count(key)) dps.emplace(key, dp_vert(r.agg, r.rl, regs.occ, hw, cands[c].dp));
         DispImage d = dps.at(key);
         for (const Filter& f : cands[c].post) d = f(d, ctx);
         if (cands[c].name == "chain F1+F2+F3" && d != r.post)
