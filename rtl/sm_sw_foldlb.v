@@ -1,3 +1,4 @@
+`default_nettype none
 // Cost line buffer of the folded support-weight aggregation (sm_sw_aggregate with
 // PU < DISP): one word per (column, level group) holding that group's ROWS previous
 // row steps, so a column's F groups are F words of a deeper, narrower memory (the same

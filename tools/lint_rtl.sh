@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Lints every RTL module on its own with verilator --lint-only -Wall, at its default
-# parameters. Usage: lint_rtl.sh <rtl dir> [generated dir]
+# parameters, and checks the house rules a linter does not: the first line is
+# `default_nettype none, the last is `default_nettype wire, and the module is named after
+# its file. Usage: lint_rtl.sh <rtl dir> [generated dir]
 # VERILATOR= the Verilator to run (default: verilator on PATH); its version is printed.
 set -u
 verilator=${VERILATOR:-verilator}
@@ -13,6 +15,13 @@ fail=0; n=0
 for f in "$rtl"/*.v; do
   m=$(basename "$f" .v)
   n=$((n + 1))
+  if [ "$(head -n1 "$f")" != '`default_nettype none' ] || [ "$(tail -n1 "$f")" != '`default_nettype wire' ]; then
+    echo "RULE FAIL $m: the file must open with \`default_nettype none and close with \`default_nettype wire"
+    fail=$((fail + 1)); continue
+  fi
+  if ! grep -q "^module $m\b" "$f"; then
+    echo "RULE FAIL $m: no module named after the file"; fail=$((fail + 1)); continue
+  fi
   if ! out=$("$verilator" --lint-only -Wall "${inc[@]}" --top-module "$m" "$f" 2>&1); then
     echo "LINT FAIL $m"; echo "$out"; fail=$((fail + 1))
   fi
