@@ -26,3 +26,12 @@ target_compile_options(test_regmap PRIVATE ${SM_WARNINGS})
 add_dependencies(test_regmap sm_regmap_gen_files)
 add_test(NAME test_regmap COMMAND test_regmap)
 set_tests_properties(test_regmap PROPERTIES LABELS unit)
+
+# The sequencer's framing rules (model/seq.hpp) against hand-written streams; the fault
+# classes' bit order against the register map.
+add_executable(test_seq_model ${SM_HOST_TESTS}/test_seq_model.cpp)
+target_include_directories(test_seq_model PRIVATE ${SM_GEN_DIR})
+target_link_libraries(test_seq_model PRIVATE sm_model Catch2::Catch2)
+target_compile_options(test_seq_model PRIVATE ${SM_WARNINGS})
+add_dependencies(test_seq_model sm_regmap_gen_files)
+catch_discover_tests(test_seq_model PROPERTIES LABELS unit)

@@ -10,8 +10,9 @@
 //  - every output frame (faulty or not) is bit-exact with sm::run_pipeline run on the
 //    image the stream rules of docs/streams.md make of the input (padding = 0 pixels),
 //    the object packets too,
-//  - ERR_FLAGS and ERR_CNT_* (read over AXI4-Lite) equal the faults a reference model
-//    of the sequencer's rules counted; register reads return the documented clamp.
+//  - ERR_FLAGS and ERR_CNT_* (read over AXI4-Lite) equal the faults the model of the
+//    sequencer's rules (sm::Sequencer, model/seq.hpp) counted; register reads return
+//    the documented clamp.
 //
 // Usage: tb_faults <scene dir> [frames] [seed] [nosoft]
 //   nosoft: no CONTROL.SOFT_RESET steps (aresetn steps instead)
@@ -32,6 +33,7 @@
 #include "toolio/sm_io.hpp"
 #include "pipeline.hpp"
 #include "post.hpp"
+#include "seq.hpp"
 #include "sm_axil.hpp"
 #include "sm_regmap.hpp"
 #include "sm_regs_io.hpp"
@@ -61,10 +63,12 @@ bool check(bool ok, const std::string& what) {
   return ok;
 }
 
-// ERR_FLAGS bit order.
-enum Fault { kShort = 0, kLong, kMissing, kExtra, kFew, kMany, kOverflow, kClamped, kNumFlags };
-const char* const kFaultName[kNumFlags] = {"SHORT_LINE", "LONG_LINE",  "MISSING_SOF",  "EXTRA_SOF",
-                                           "FEW_LINES",  "MANY_LINES", "OUT_OVERFLOW", "CLAMPED"};
+// ERR_FLAGS bit order: the sequencer's faults (sm::SeqFault), then the two others.
+constexpr int kOverflow = sm::kNumSeqFaults, kClamped = kOverflow + 1, kNumFlags = kClamped + 1;
+const char* fault_name(int k) {
+  if (k < sm::kNumSeqFaults) return sm::seq_fault_name(static_cast<sm::SeqFault>(k));
+  return k == kOverflow ? "OUT_OVERFLOW" : "CLAMPED";
+}
 
 struct Pixel {
   uint16_t data = 0;  // {right, left}
@@ -72,25 +76,23 @@ struct Pixel {
   int gap = 0;  // idle cycles before the pixel is offered
 };
 
-// A frame as the IP must output it: the stream rules turn whatever arrived into W x H.
-struct ExpFrame {
-  int w = 0, h = 0;
-  sm::Image8 l, r;
+// A frame as the IP must output it: the stream rules (sm::Sequencer) turn whatever
+// arrived into W x H (sm::SeqFrame: size, input images, faulty, complete).
+struct ExpFrame : sm::SeqFrame {
   sm::Regs regs;
-  bool faulty = false;                        // the input of this frame was malformed
-  bool closed = false;                        // all its pixels are known
   int id = 0;                                 // frames started since reset
   std::shared_ptr<sm::PipelineResult> model;  // computed once (frame or packet first)
+  ExpFrame(int w_, int h_) : SeqFrame(w_, h_) {}
   const sm::PipelineResult& result(const sm::HwConfig& hw) {
-    if (!model) model = std::make_shared<sm::PipelineResult>(sm::run_pipeline(l, r, hw, regs, false));
+    if (!model) model = std::make_shared<sm::PipelineResult>(sm::run_pipeline(left, right, hw, regs, false));
     return *model;
   }
 };
 
-// Reference model of the sequencer's stream rules (docs/streams.md, "Stream faults"),
-// fed with the accepted camera pixels in order. It does not model timing: the rules'
-// outcome does not depend on it (padding needs no input, drops need no output).
-class SeqModel {
+// The sequencer's stream rules (docs/streams.md, "Stream faults"; sm::Sequencer,
+// model/seq.hpp) fed with the accepted camera pixels in order. This keeps the frames
+// they make, each with the host registers it latched, and counts the fault events.
+class SeqModel : public sm::SeqSink {
  public:
   std::array<uint32_t, kNumFlags> cnt{};  // events since the last CLEAR_ERRORS (counters)
   std::array<uint32_t, kNumFlags> ev{};   // events since the flags were last cleared
@@ -98,10 +100,12 @@ class SeqModel {
   sm::Regs host;                          // host copy of the registers
   bool enable = true;
 
+  SeqModel() = default;
+  SeqModel(const SeqModel&) = delete;  // seq_ reports to this object
+  SeqModel& operator=(const SeqModel&) = delete;
+
   void reset(bool counters) {
-    mode_frame_ = false;
-    drop_line_ = dropping_ = after_frame_ = false;
-    x_ = y_ = 0;
+    seq_.reset();
     next_id_ = 0;
     frames.clear();
     if (counters) {
@@ -109,88 +113,26 @@ class SeqModel {
       ev.fill(0);
     }
   }
-  void bump(int k) {
-    ++cnt[k];
-    ++ev[k];
-  }
-
   void push(const Pixel& p) {
-    if (drop_line_) {
-      if (!p.user) {
-        if (p.last) drop_line_ = false;
-        return;
-      }
-      drop_line_ = false;
-    }
-    if (!mode_frame_) {
-      if (!p.user) {
-        if (!dropping_) bump(after_frame_ ? kMany : kMissing);
-        dropping_ = true;
-        return;
-      }
-      if (!enable) {
-        dropping_ = true;
-        return;
-      }
-      ExpFrame f;
-      f.w = host.width;
-      f.h = host.height;
-      f.l = sm::Image8(f.w, f.h, 0);
-      f.r = sm::Image8(f.w, f.h, 0);
-      f.regs = host;
-      f.id = next_id_++;
-      frames.push_back(std::move(f));
-      mode_frame_ = true;
-      dropping_ = false;
-      x_ = y_ = 0;
-      take(p);
-      return;
-    }
-    ExpFrame& f = frames.back();
-    if (p.user) {
-      bump(x_ == 0 ? kFew : kExtra);
-      f.faulty = true;
-      close();
-      push(p);
-      return;
-    }
-    take(p);
+    seq_.push({p.data, p.user, p.last},
+              {static_cast<uint16_t>(host.width), static_cast<uint16_t>(host.height), enable});
   }
 
  private:
-  void take(const Pixel& p) {
-    ExpFrame& f = frames.back();
-    f.l.at(x_, y_) = static_cast<uint8_t>(p.data & 0xff);
-    f.r.at(x_, y_) = static_cast<uint8_t>(p.data >> 8);
-    const bool last_col = (x_ == f.w - 1);
-    if (p.last && !last_col) {
-      bump(kShort);
-      f.faulty = true;
-      x_ = f.w - 1;  // the rest of the row is padded with 0
-    } else if (!p.last && last_col) {
-      bump(kLong);
-      f.faulty = true;
-      drop_line_ = true;
-    }
-    if (x_ == f.w - 1) {
-      x_ = 0;
-      if (++y_ == f.h) {
-        mode_frame_ = false;
-        after_frame_ = true;
-        f.closed = true;
-      }
-    } else {
-      ++x_;
-    }
+  void frame_start(int width, int height) override {
+    ExpFrame f(width, height);
+    f.regs = host;
+    f.id = next_id_++;
+    frames.push_back(std::move(f));
   }
-  void close() {  // early sof: the open frame is completed with 0 pixels
-    frames.back().closed = true;
-    mode_frame_ = false;
-    after_frame_ = true;
+  void beat(int x, int y, uint16_t data, bool /*pad*/) override { frames.back().put(x, y, data); }
+  void frame_end(bool faulty) override { frames.back().faulty = faulty; }
+  void fault(sm::SeqFault f) override {
+    ++cnt[sm::seq_fault_bit(f)];
+    ++ev[sm::seq_fault_bit(f)];
   }
 
-  bool mode_frame_ = false, drop_line_ = false, dropping_ = false, after_frame_ = false;
-  int x_ = 0, y_ = 0;
+  sm::Sequencer seq_{*this};
   int next_id_ = 0;
 };
 
@@ -342,7 +284,7 @@ class FaultTb {
     drain(3000);
     size_t pending = 0;
     for (const auto& f : model_.frames)
-      if (f.closed) ++pending;
+      if (f.complete()) ++pending;
     check(pending == 0, fmt::format("{} complete frames still inside the core after the flush", pending));
   }
 
@@ -380,7 +322,7 @@ class FaultTb {
       pre_.push_back(model_.frames.front());
     pre_pkts_.clear();
     for (auto& f : model_.frames)
-      if (f.closed && f.id >= next_pkt_) pre_pkts_.push_back(sm::object_packet(f.result(hw_).objects, false));
+      if (f.complete() && f.id >= next_pkt_) pre_pkts_.push_back(sm::object_packet(f.result(hw_).objects, false));
     for (int id = next_pkt_; id < out_id_; ++id) pre_pkts_.push_back(done_pkts_[id % kKeep]);
     soft_cycle_ = tb_.cycles();
     model_.reset(false);
@@ -418,10 +360,10 @@ class FaultTb {
                                          rows & 0xffff, rows >> 16, out & 0xffff};
     for (int k = 0; k < 7; ++k) {
       const uint32_t want = std::min<uint32_t>(model_.cnt[k], 0xffff);
-      check(got[k] == want, fmt::format("{}: ERR_CNT {} = {}, expected {}", when, kFaultName[k], got[k], want));
+      check(got[k] == want, fmt::format("{}: ERR_CNT {} = {}, expected {}", when, fault_name(k), got[k], want));
       const bool fl = (flags >> k) & 1u;
       check(fl == (model_.ev[k] > 0),
-            fmt::format("{}: ERR_FLAGS.{} = {}, expected {}", when, kFaultName[k], fl, model_.ev[k] > 0));
+            fmt::format("{}: ERR_FLAGS.{} = {}, expected {}", when, fault_name(k), fl, model_.ev[k] > 0));
       fault_total_[k] += model_.ev[k];
     }
     check(((flags >> kClamped) & 1u) == (clamped_ ? 1u : 0u),
@@ -539,7 +481,7 @@ class FaultTb {
   }
 
   void out_frame_done(ExpFrame& f) {
-    if (!check(f.closed, fmt::format("output frame {} complete before its input", frames_out_))) {
+    if (!check(f.complete(), fmt::format("output frame {} complete before its input", frames_out_))) {
       model_.frames.pop_front();
       return;
     }
@@ -586,7 +528,7 @@ class FaultTb {
     const int id = next_pkt_++;
     for (auto& f : model_.frames)
       if (f.id == id) {
-        if (!check(f.closed, fmt::format("object packet of frame {} before its input was complete", id))) return;
+        if (!check(f.complete(), fmt::format("object packet of frame {} before its input was complete", id))) return;
         const auto want = sm::object_packet(f.result(hw_).objects, false);
         check(pkt_ == want,
               fmt::format("object packet of frame {} ({} words, expected {})", id, pkt_.size(), want.size()));
@@ -1067,14 +1009,14 @@ int main(int argc, char** argv) {
     fmt::print("injected:");
     for (int k = 0; k < n_kinds; ++k) fmt::print(" {}={}", kind_name[k], injected[k]);
     fmt::print("\nfault events counted by the model and matched in ERR_CNT:");
-    for (int k = 0; k < 7; ++k) fmt::print(" {}={}", kFaultName[k], tb.fault_total()[k]);
+    for (int k = 0; k < 7; ++k) fmt::print(" {}={}", fault_name(k), tb.fault_total()[k]);
     fmt::print(
         "\n{} frames out: {} from faulty input, {} well-formed ({} right after a fault), all compared "
         "bit-exactly, {} completed at a soft reset; {} cycles\n",
         tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.recovered(), tb.soft_frames(), tb.cycles());
     check(tb.recovered() >= n_frames / 10,
           fmt::format("{} recovery frames (at least {})", tb.recovered(), n_frames / 10));
-    for (int k = 0; k < 6; ++k) check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", kFaultName[k]));
+    for (int k = 0; k < 6; ++k) check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", fault_name(k)));
   } catch (const std::exception& e) {
     fmt::print("FAIL: exception: {}\n", e.what());
     ++failures;

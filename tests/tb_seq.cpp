@@ -1,7 +1,7 @@
 // Block test of sm_seq: camera streams (random idle cycles, with and without blanking,
 // continuous, faulty) go in; every beat taken on ce comes out. The real beats must equal
-// the framing model seq_frames() (the sequencer's fault rules applied to the pixel
-// sequence, docs/streams.md) pixel for pixel; rows must be exactly W beats with correct
+// the framing model sm::seq_frames() (model/seq.hpp: the sequencer's fault rules applied
+// to the pixel sequence, docs/streams.md) pixel for pixel; rows must be exactly W beats with correct
 // sof/sol/ftag; virtual rows only after complete frames, at most FLUSH_ROWS per gap,
 // exactly FLUSH_ROWS before a width change and after the last frame; fault pulses must
 // match the model's counts; a continuous stream with ce = beat_valid never sees tready low.
@@ -16,120 +16,10 @@
 
 #include SM_VTOP_H
 #include "beat_schedule.hpp"
+#include "seq.hpp"
 #include "sm_coverage.hpp"
 
 using Top = SM_VTOP;
-
-namespace sm {
-
-// One camera pixel as it enters, with the settings the host has at that time.
-struct CamPix {
-  uint16_t data = 0;  // {right, left}
-  bool user = false;
-  bool last = false;
-  int w = 0, h = 0;  // host width / height
-  bool enable = true;
-};
-
-struct SeqFrame {
-  int w = 0, h = 0;
-  std::vector<uint16_t> px;  // h * w, raster order
-};
-
-enum SeqErr { kShort, kLong, kMissingSof, kExtraSof, kFewLines, kManyLines, kNumSeqErr };
-
-struct SeqResult {
-  std::vector<SeqFrame> frames;
-  int err[kNumSeqErr] = {};
-};
-
-// Framing model of the input sequencer: what the frames become, independent of timing.
-SeqResult seq_frames(const std::vector<CamPix>& in) {
-  SeqResult r;
-  bool in_frame = false, pad_row = false, pad_frame = false, drop_line = false;
-  bool dropping = false, after_frame = false;
-  int x = 0, y = 0, w = 0, h = 0;
-  size_t i = 0;
-  const size_t n = in.size();
-  auto emit = [&](uint16_t v) {
-    r.frames.back().px.push_back(v);
-    if (x == w - 1) {
-      x = 0;
-      pad_row = false;
-      if (y == h - 1) {
-        y = 0;
-        in_frame = false;
-        pad_frame = false;
-        after_frame = true;
-      } else {
-        ++y;
-      }
-    } else {
-      ++x;
-    }
-  };
-  auto take = [&](const CamPix& p) {
-    const bool last_col = x == w - 1;
-    ++i;
-    emit(p.data);
-    if (p.last && !last_col) {
-      ++r.err[kShort];
-      pad_row = true;
-    }
-    if (!p.last && last_col) {
-      ++r.err[kLong];
-      drop_line = true;
-    }
-  };
-  for (;;) {
-    if (drop_line) {
-      if (i == n) break;
-      if (in[i].user) {
-        drop_line = false;
-      } else {
-        drop_line = !in[i].last;
-        ++i;
-      }
-      continue;
-    }
-    if (in_frame) {
-      if (pad_row || pad_frame) {
-        emit(0);
-        continue;
-      }
-      if (i == n) break;
-      if (in[i].user) {
-        ++r.err[x == 0 ? kFewLines : kExtraSof];
-        pad_frame = true;
-        emit(0);
-        continue;
-      }
-      take(in[i]);
-    } else {
-      if (i == n) break;
-      const CamPix& p = in[i];
-      if (p.user && !p.enable) {
-        ++i;
-        dropping = true;
-      } else if (p.user) {
-        r.frames.push_back({p.w, p.h, {}});
-        in_frame = true;
-        x = y = 0;
-        w = p.w;
-        h = p.h;
-        dropping = false;
-        take(p);
-      } else {
-        ++i;
-        if (!dropping) ++r.err[after_frame ? kManyLines : kMissingSof];
-        dropping = true;
-      }
-    }
-  }
-  return r;
-}
-
-}  // namespace sm
 
 namespace {
 
@@ -149,7 +39,7 @@ struct Segment {
   int w = 37, h = 6;
   bool enable = true;
   bool drain_before = false;  // let the sequencer run empty before changing settings
-  std::vector<sm::CamPix> px;
+  std::vector<sm::CamPixel> px;
   int hblank = 0;  // idle cycles after each tlast
   int vblank = 0;  // idle cycles after the segment
 };
@@ -157,12 +47,12 @@ struct Segment {
 std::mt19937 g_rng(4242);
 
 // Lines of the given lengths (negative: no tlast at the end), tuser on the first pixel.
-std::vector<sm::CamPix> lines(const std::vector<int>& lengths, bool sof = true) {
-  std::vector<sm::CamPix> v;
+std::vector<sm::CamPixel> lines(const std::vector<int>& lengths, bool sof = true) {
+  std::vector<sm::CamPixel> v;
   for (size_t l = 0; l < lengths.size(); ++l) {
     const int len = std::abs(lengths[l]);
     for (int x = 0; x < len; ++x) {
-      sm::CamPix p;
+      sm::CamPixel p;
       p.data = static_cast<uint16_t>(g_rng());
       p.user = sof && l == 0 && x == 0;
       p.last = x == len - 1 && lengths[l] > 0;
@@ -171,7 +61,7 @@ std::vector<sm::CamPix> lines(const std::vector<int>& lengths, bool sof = true) 
   }
   return v;
 }
-std::vector<sm::CamPix> good(int w, int h) { return lines(std::vector<int>(static_cast<size_t>(h), w)); }
+std::vector<sm::CamPixel> good(int w, int h) { return lines(std::vector<int>(static_cast<size_t>(h), w)); }
 
 struct Beat {
   uint8_t side;
@@ -181,14 +71,14 @@ struct Beat {
 struct RunOut {
   std::vector<Beat> beats;
   std::vector<std::pair<int, int>> starts;  // host (w, h) at each frame_start
-  int err[sm::kNumSeqErr] = {};
+  sm::SeqFaultCounts err{};
   uint64_t stall_cycles = 0;  // tvalid && !tready
 };
 
 constexpr int kFlush = SM_P_FLUSH_ROWS;
 constexpr int kMaxW = SM_P_MAX_WIDTH;
 
-RunOut run(std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, uint32_t seed) {
+RunOut run(const std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, uint32_t seed) {
   RunOut out;
   auto ctx = std::make_unique<VerilatedContext>();
   ctx->randReset(0);
@@ -211,7 +101,7 @@ RunOut run(std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, ui
   for (int i = 0; i < 4; ++i) tick();
   top->rst_n = 1;
   // One clock: drive inputs, decide ce, record, tick.
-  auto cycle = [&](bool valid, const sm::CamPix* p) -> bool {
+  auto cycle = [&](bool valid, const sm::CamPixel* p) -> bool {
     top->s_axis_tvalid = valid;
     if (valid) {
       top->s_axis_tdata = p->data;
@@ -229,8 +119,8 @@ RunOut run(std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, ui
     if (valid && !top->s_axis_tready) ++out.stall_cycles;
     if (top->ce) out.beats.push_back({top->beat_side, top->beat_left, top->beat_right});
     if (top->frame_start) out.starts.emplace_back(top->host_width, top->host_height);
-    for (int e = 0; e < sm::kNumSeqErr; ++e)
-      if (top->err_pulse >> e & 1) ++out.err[e];
+    for (int e = 0; e < sm::kNumSeqFaults; ++e)
+      if (top->err_pulse >> e & 1) ++out.err[static_cast<size_t>(e)];
     tick();
     return hs;
   };
@@ -241,10 +131,7 @@ RunOut run(std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, ui
     top->host_width = s.w;
     top->host_height = s.h;
     top->enable = s.enable;
-    for (auto& p : s.px) {
-      p.w = s.w;
-      p.h = s.h;
-      p.enable = s.enable;
+    for (const auto& p : s.px) {
       while (static_cast<int>(rng() % 100) < idle_percent) cycle(false, nullptr);
       while (!cycle(true, &p)) {
       }
@@ -259,9 +146,10 @@ RunOut run(std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, ui
 }
 
 // Checks the beats of one run against the model.
-void verify(const std::string& name, std::vector<Segment>& segs, const RunOut& o) {
-  std::vector<sm::CamPix> all;
-  for (const auto& s : segs) all.insert(all.end(), s.px.begin(), s.px.end());
+void verify(const std::string& name, const std::vector<Segment>& segs, const RunOut& o) {
+  std::vector<sm::SeqInput> all;
+  for (const auto& s : segs)
+    for (const auto& p : s.px) all.push_back({p, {static_cast<uint16_t>(s.w), static_cast<uint16_t>(s.h), s.enable}});
   const sm::SeqResult m = sm::seq_frames(all);
   const auto& F = m.frames;
   fmt::print("{}: {} frames, {} beats, fault pulses {} {} {} {} {} {} (short long missing extra few many)\n", name,
@@ -272,8 +160,9 @@ void verify(const std::string& name, std::vector<Segment>& segs, const RunOut& o
     check(o.starts[f] == std::make_pair(F[f].w, F[f].h),
           fmt::format("{}: frame {} latched {}x{}, model {}x{}", name, f, o.starts[f].first, o.starts[f].second, F[f].w,
                       F[f].h));
-  for (int e = 0; e < sm::kNumSeqErr; ++e)
-    check(o.err[e] == m.err[e], fmt::format("{}: error class {}: {} pulses, model {}", name, e, o.err[e], m.err[e]));
+  for (size_t e = 0; e < sm::kNumSeqFaults; ++e)
+    check(o.err[e] == m.faults[e],
+          fmt::format("{}: error class {}: {} pulses, model {}", name, e, o.err[e], m.faults[e]));
 
   // Walk the beats row by row.
   size_t b = 0;
@@ -320,7 +209,11 @@ void verify(const std::string& name, std::vector<Segment>& segs, const RunOut& o
                                                    row, x, bt.side, want_side)))
         return;
       if (real) {
-        const uint16_t want = F[static_cast<size_t>(frame)].px[static_cast<size_t>(row * w + x)];
+        const sm::SeqFrame& mf = F[static_cast<size_t>(frame)];
+        if (!check(row * w + x < mf.beats,
+                   fmt::format("{}: frame {} x {} y {}: beyond the model's {} beats", name, frame, x, row, mf.beats)))
+          return;
+        const uint16_t want = mf.data(x, row);
         const uint16_t got = static_cast<uint16_t>(bt.left | (bt.right << 8));
         if (!check(got == want, fmt::format("{}: frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", name, frame, x,
                                             row, want, got)) &&
@@ -374,7 +267,7 @@ int main(int argc, char** argv) {
   }
   {  // 3. faults
     std::vector<Segment> s;
-    auto seg = [&](std::vector<sm::CamPix> px) {
+    auto seg = [&](std::vector<sm::CamPixel> px) {
       Segment g;
       g.w = W;
       g.h = H;
