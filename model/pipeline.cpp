@@ -71,6 +71,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   r.dp = DispImage(w, h);
   DpScratch scratch;
   DpLine line;
+  std::vector<uint8_t> pen;     // the row's occlusion penalties (edge_penalties)
   double ms[4] = {0, 0, 0, 0};  // census, cost, aggregate, dp
   auto since = [](clock::time_point a, clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
@@ -102,7 +103,8 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     uint8_t* a = keep_volumes ? r.agg.pix(0, ya) : agg_line.data();
     detail::agg_row(ag, win.data(), r.rl.px.data(), ya, a);
     const auto t1 = clock::now();
-    trellis_line(a, w, regs.occ, hw, scratch, line);
+    edge_penalties(&r.rl.px[static_cast<size_t>(ya) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
+    trellis_line_pen(a, w, pen.data(), hw, scratch, line);
     std::copy(line.disp.begin(), line.disp.end(), &r.dp.at(0, ya));
     const auto t2 = clock::now();
     ms[2] += since(t0, t1);

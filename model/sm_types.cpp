@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+
 namespace sm {
 
 namespace {
@@ -34,19 +36,22 @@ int HwConfig::flush_rows() const {  // as sm_top.v's FLUSH_ROWS
 
 void HwConfig::validate() const {
   auto bad = [](const std::string& m) { throw std::invalid_argument(m); };
-  if (max_width < 16 || max_width > 4095) bad(fmt::format("max_width {} outside 16..4095", max_width));
-  if (max_height < 16 || max_height > 4095) bad(fmt::format("max_height {} outside 16..4095", max_height));
-  if (disp < 4 || disp > 254 || disp % 2) bad(fmt::format("disp {} must be even, 4..254", disp));
+  const auto params = parameters();
+  for (const auto& l : defs::kLimits) {
+    const int v = params.at(l.name);
+    std::string field = l.name;  // the HwConfig field (and tool option) is the lower-case name
+    for (auto& c : field) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool parity_ok = l.parity == defs::Parity::kAny || (v % 2 == 0) == (l.parity == defs::Parity::kEven);
+    if (v < l.min || v > l.max || !parity_ok)
+      bad(fmt::format("{} {} must be {}{}..{} ({})", field, v,
+                      l.parity == defs::Parity::kAny    ? ""
+                      : l.parity == defs::Parity::kEven ? "even, "
+                                                        : "odd, ",
+                      l.min, l.max, l.desc));
+  }
   if (max_width < min_width())
     bad(fmt::format("max_width {} below DISP/2 + 3 = {} (disp {})", max_width, min_width(), disp));
-  if (census < 3 || census > 15 || census % 2 == 0) bad(fmt::format("census {} must be odd, 3..15", census));
-  if (sw < 3 || sw > 7 || sw % 2 == 0) bad(fmt::format("sw {} must be odd, 3..7", sw));
-  if (rect_radius < 1 || rect_radius > 31) bad(fmt::format("rect_radius {} outside 1..31", rect_radius));
-  if (cost_shift < 0 || cost_shift > 4) bad(fmt::format("cost_shift {} outside 0..4", cost_shift));
-  if (max_objects < 1 || max_objects > 64) bad(fmt::format("max_objects {} outside 1..64", max_objects));
-  if (label_slots < max_objects || label_slots > 1024)
-    bad(fmt::format("label_slots {} outside max_objects..1024", label_slots));
-  if (band_k < 1 || band_k > 16) bad(fmt::format("band_k {} outside 1..16", band_k));
+  if (label_slots < max_objects) bad(fmt::format("label_slots {} below max_objects {}", label_slots, max_objects));
   if (pu != 0 && pu != disp && (pu < 2 || pu % 2 || disp % pu))
     bad(fmt::format("pu {} must be 0 (= disp), disp, or an even divisor of disp {}", pu, disp));
   // sm_top's pipeline depth in rows of 16 beats must stay below the 4-frame parameter

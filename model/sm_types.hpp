@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "sm_defs.hpp"  // generated from rtl/defs.json
+
 namespace sm {
 
 // A W x H plane of one integer type, row-major.
@@ -68,14 +70,14 @@ struct HwConfig {
   int max_width = 320;   // MAX_WIDTH: widest active line
   int max_height = 240;  // MAX_HEIGHT: tallest active frame
   int disp = 128;        // DISP: disparity levels 0..DISP-1
-  int census = 15;       // CENSUS: census window side (odd, 3..15)
-  int sw = 5;            // SW: support-weight window side (odd, 3..7)
+  int census = 15;       // CENSUS: census window side
+  int sw = 5;            // SW: support-weight window side
   int rect_radius = 18;  // RECT_RADIUS: rows above/below the output row the
                          // rectifier can read (line buffer holds 2R+2 rows)
   int cost_shift = 2;    // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
   int max_objects = 8;   // MAX_OBJECTS (K): objects reported per frame
   int label_slots = 64;  // LABEL_SLOTS: equivalence-table entries of the labeller
-  int band_k = 8;        // BAND_K: look-ahead rows of the band filter F0 (1..16)
+  int band_k = 8;        // BAND_K: look-ahead rows of the band filter F0
   int pu = 0;            // PU: disparity levels computed per clock (0 = DISP, fully parallel)
   // Levels per clock and clocks per beat of the folded datapath (docs/algorithm.md,
   // "Folded datapath"): F = DISP / PU clocks per pixel in cost, aggregation and DP.
@@ -89,24 +91,27 @@ struct HwConfig {
   int cost_bits() const;  // width of the aggregated cost (see algorithm.md)
   // Virtual rows after a frame, sm_top's FLUSH_ROWS: the pipeline depth in rows of 16 beats.
   int flush_rows() const;
-  void validate() const;  // throws std::invalid_argument on an illegal combination
+  // Throws std::invalid_argument on an illegal combination: every parameter inside its
+  // range of defs::kLimits (rtl/defs.json, the ranges sm_top checks at elaboration), then
+  // the rules between parameters.
+  void validate() const;
   // Every field by its sm_top parameter name (the one list of them in C++).
   std::map<std::string, int> parameters() const;
 };
 
 // Rectification map as a coarse grid of source coordinates (docs/algorithm.md, stage 2).
-constexpr int kGridShift = 4;  // grid spacing 16 output pixels
+constexpr int kGridShift = defs::kGridShift;  // grid spacing 16 output pixels
 constexpr int kGridStep = 1 << kGridShift;
-constexpr int kMapFrac = 5;     // grid coordinates are Q.5 (1/32 px)
-constexpr int kInterpFrac = 4;  // bilinear weights are 1/16
+constexpr int kMapFrac = defs::kGridFrac;  // grid coordinates are Q.5 (1/32 px)
+constexpr int kInterpFrac = 4;             // bilinear weights are 1/16
 struct RectGrid {
   int gw = 0;               // grid points per row: ceil(W/16) + 1
   int gh = 0;               // grid rows: ceil(H/16) + 1
   std::vector<int16_t> sx;  // source x, Q.5, gw*gh entries, row-major
   std::vector<int16_t> sy;  // source y, Q.5
   static RectGrid identity(int width, int height);
-  static int points_w(int width) { return (width + kGridStep - 1) / kGridStep + 1; }
-  static int points_h(int height) { return (height + kGridStep - 1) / kGridStep + 1; }
+  static int points_w(int width) { return defs::grid_pts(width); }
+  static int points_h(int height) { return defs::grid_pts(height); }
 };
 
 // Run-time registers (AXI4-Lite), with the paper's defaults.
@@ -120,7 +125,12 @@ struct Regs {
   bool rect_enable = true;  // false: the rectifier passes pixels through
   RectGrid grid_l;          // empty = identity for the active size
   RectGrid grid_r;
-  uint8_t occ = 8;                     // DP occlusion penalty (8 bits); 8 by measurement (docs/evaluation.md)
+  // DP occlusion penalty (8 bits) where the left image is flat, and at its edges: a left
+  // pixel x >= 1 with |L(x) - L(x-1)| > edge_t (docs/algorithm.md section 6); 11 / 7 / 16
+  // chosen on the 14 scenes (docs/evaluation.md). occ_edge == occ: one penalty everywhere.
+  uint8_t occ = 11;
+  uint8_t occ_edge = 7;
+  uint8_t edge_t = 16;
   std::array<uint8_t, 32> sw_table{};  // 2-bit weight codes by |dI| >> 3 (set by defaults())
   uint8_t filter_enable = 15;          // bits 0..2: median filters F1..F3, bit 3: band filter F0
   uint8_t obj_near = 32;               // objects: disparity >= obj_near is "near"

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // AXI4-Lite register file (docs/registers.md, generated from rtl/regmap.json together
 // with the included sm_regmap.vh). The host sees and writes one copy of the pipeline
 // parameters; a shadow copy drives the pipeline and is refreshed from the host copy only
@@ -57,6 +58,8 @@ module sm_axil_regs #(
     output reg               cfg_rect_enable,
     output reg               cfg_grid_bank,
     output reg  [7:0]        cfg_occ,
+    output reg  [7:0]        cfg_occ_edge,
+    output reg  [7:0]        cfg_edge_t,
     output reg  [63:0]       cfg_sw_table,    // code k at bits 2k+1:2k
     output reg  [3:0]        cfg_filter_enable,
     output reg  [7:0]        cfg_obj_near,
@@ -78,22 +81,19 @@ module sm_axil_regs #(
   /* verilator lint_on UNUSEDPARAM */
 
   localparam ADDR_W = SM_ADDR_BITS;
-  localparam XW = $clog2(MAX_WIDTH + 1);
-  localparam YW = $clog2(MAX_HEIGHT + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
+  localparam YW = `SM_COUNT_W(MAX_HEIGHT);
   // Port widths are written from parameters directly: Yosys 0.23 cannot evaluate
   // $clog2 of a parameter-derived localparam in a forward-referenced port width.
   // Grid point = {gy, gx} with a power-of-two row of points, the rectifier's grid
   // address (sm_rectify): no multiplier between the host and the grid memory.
-  localparam GW_PTS = (MAX_WIDTH + 15) / 16 + 1;   // points per grid row
-  localparam GH_PTS = (MAX_HEIGHT + 15) / 16 + 1;  // grid rows
-  localparam GXB0 = $clog2(GW_PTS);
-  localparam GYB0 = $clog2(GH_PTS);
-  localparam GXB = (GXB0 < 2) ? 2 : GXB0;
-  localparam GYB = (GYB0 < 2) ? 2 : GYB0;
+  localparam GW_PTS = `SM_GRID_PTS(MAX_WIDTH);   // points per grid row
+  localparam GH_PTS = `SM_GRID_PTS(MAX_HEIGHT);  // grid rows
+  localparam GXB = `SM_GRID_AB(MAX_WIDTH);
+  localparam GYB = `SM_GRID_AB(MAX_HEIGHT);
   localparam PB = GXB + GYB;
   localparam GRID_POINTS = (1 << PB);
-  localparam GAW = (($clog2((MAX_WIDTH + 15) / 16 + 1) < 2) ? 2 : $clog2((MAX_WIDTH + 15) / 16 + 1)) +
-                   (($clog2((MAX_HEIGHT + 15) / 16 + 1) < 2) ? 2 : $clog2((MAX_HEIGHT + 15) / 16 + 1)) + 2;
+  localparam GAW = `SM_GRID_AB(MAX_WIDTH) + `SM_GRID_AB(MAX_HEIGHT) + 2;
   localparam OBJ_IDX_END = SM_OBJ_FIRST_IDX + SM_OBJ_WORDS * MAX_OBJECTS;  // first unused
   localparam OIW = $clog2(SM_OBJ_FIRST_IDX + SM_OBJ_WORDS * MAX_OBJECTS);
   localparam OWW = $clog2(SM_OBJ_SIZE / 4);  // word index bits of the object window
@@ -117,8 +117,10 @@ module sm_axil_regs #(
     if (LEVEL_W < 1 || LEVEL_W > SM_IN_FIFO_LEVEL_MAX_W) begin : g_bad_level
       initial $error("sm_axil_regs: LEVEL_W (%0d) must be 1..%0d", LEVEL_W, SM_IN_FIFO_LEVEL_MAX_W);
     end
-    if (MAX_WIDTH < 16 || MAX_WIDTH > 65535 || MAX_HEIGHT < 16 || MAX_HEIGHT > 65535) begin : g_bad_size
-      initial $error("sm_axil_regs: MAX_WIDTH / MAX_HEIGHT must be 16..65535");
+    if (MAX_WIDTH < `SM_MAX_WIDTH_MIN || MAX_WIDTH > `SM_MAX_WIDTH_MAX ||
+        MAX_HEIGHT < `SM_MAX_HEIGHT_MIN || MAX_HEIGHT > `SM_MAX_HEIGHT_MAX) begin : g_bad_size
+      initial $error("sm_axil_regs: MAX_WIDTH / MAX_HEIGHT must be %0d..%0d / %0d..%0d", `SM_MAX_WIDTH_MIN,
+                     `SM_MAX_WIDTH_MAX, `SM_MAX_HEIGHT_MIN, `SM_MAX_HEIGHT_MAX);
     end
   endgenerate
 
@@ -129,7 +131,7 @@ module sm_axil_regs #(
   reg [9:0]    gain_l_q, gain_r_q;
   reg [8:0]    offset_l_q, offset_r_q;
   reg          rect_enable_q;
-  reg [7:0]    occ_q;
+  reg [7:0]    occ_q, occ_edge_q, edge_t_q;
   reg [63:0]   sw_table_q;
   reg [3:0]    filter_enable_q;
   reg [7:0]    obj_near_q, obj_tol_q;
@@ -153,7 +155,8 @@ module sm_axil_regs #(
         SM_ERR_CNT_LINE_ADDR, SM_ERR_CNT_SOF_ADDR, SM_ERR_CNT_ROWS_ADDR, SM_ERR_CNT_OUT_ADDR,
         SM_CAPS0_ADDR, SM_CAPS1_ADDR, SM_IN_FIFO_ADDR, SM_WIDTH_ADDR, SM_HEIGHT_ADDR, SM_GAIN_L_ADDR,
         SM_GAIN_R_ADDR, SM_OFFSET_L_ADDR, SM_OFFSET_R_ADDR, SM_RECT_ENABLE_ADDR, SM_OCC_ADDR,
-        SM_SW_TABLE0_ADDR, SM_SW_TABLE1_ADDR, SM_FILTER_ENABLE_ADDR, SM_OBJ_NEAR_ADDR,
+        SM_SW_TABLE0_ADDR, SM_SW_TABLE1_ADDR, SM_FILTER_ENABLE_ADDR, SM_OCC_EDGE_ADDR,
+        SM_EDGE_T_ADDR, SM_OBJ_NEAR_ADDR,
         SM_OBJ_TOL_ADDR, SM_OBJ_MIN_PIXELS_ADDR: is_reg = 1'b1;
         default: is_reg = 1'b0;
       endcase
@@ -166,7 +169,8 @@ module sm_axil_regs #(
       case ({a[ADDR_W-1:2], 2'b00})
         SM_CONTROL_ADDR, SM_ERR_FLAGS_ADDR, SM_WIDTH_ADDR, SM_HEIGHT_ADDR, SM_GAIN_L_ADDR,
         SM_GAIN_R_ADDR, SM_OFFSET_L_ADDR, SM_OFFSET_R_ADDR, SM_RECT_ENABLE_ADDR, SM_OCC_ADDR,
-        SM_SW_TABLE0_ADDR, SM_SW_TABLE1_ADDR, SM_FILTER_ENABLE_ADDR, SM_OBJ_NEAR_ADDR,
+        SM_SW_TABLE0_ADDR, SM_SW_TABLE1_ADDR, SM_FILTER_ENABLE_ADDR, SM_OCC_EDGE_ADDR,
+        SM_EDGE_T_ADDR, SM_OBJ_NEAR_ADDR,
         SM_OBJ_TOL_ADDR, SM_OBJ_MIN_PIXELS_ADDR: is_writable = 1'b1;
         default: is_writable = 1'b0;
       endcase
@@ -221,6 +225,8 @@ module sm_axil_regs #(
         SM_OFFSET_R_ADDR: host_value = {{23{offset_r_q[8]}}, offset_r_q};
         SM_RECT_ENABLE_ADDR: host_value = {31'd0, rect_enable_q};
         SM_OCC_ADDR: host_value = {24'd0, occ_q};
+        SM_OCC_EDGE_ADDR: host_value = {24'd0, occ_edge_q};
+        SM_EDGE_T_ADDR: host_value = {24'd0, edge_t_q};
         SM_SW_TABLE0_ADDR: host_value = sw_table_q[31:0];
         SM_SW_TABLE1_ADDR: host_value = sw_table_q[63:32];
         SM_FILTER_ENABLE_ADDR: host_value = {28'd0, filter_enable_q};
@@ -289,6 +295,8 @@ module sm_axil_regs #(
   wire [32:0] c_off_l  = clamp_s(wm, SM_OFFSET_L_VALUE_MIN, SM_OFFSET_L_VALUE_MAX);
   wire [32:0] c_off_r  = clamp_s(wm, SM_OFFSET_R_VALUE_MIN, SM_OFFSET_R_VALUE_MAX);
   wire [32:0] c_occ    = clamp_u(wm, SM_OCC_VALUE_MIN, SM_OCC_VALUE_MAX);
+  wire [32:0] c_occ_e  = clamp_u(wm, SM_OCC_EDGE_VALUE_MIN, SM_OCC_EDGE_VALUE_MAX);
+  wire [32:0] c_edge_t = clamp_u(wm, SM_EDGE_T_VALUE_MIN, SM_EDGE_T_VALUE_MAX);
   wire [32:0] c_near   = clamp_u(wm, SM_OBJ_NEAR_VALUE_MIN, SM_OBJ_NEAR_VALUE_MAX);
   wire [32:0] c_tol    = clamp_u(wm, SM_OBJ_TOL_VALUE_MIN, SM_OBJ_TOL_VALUE_MAX);
   wire [32:0] c_minpix = clamp_u(wm, SM_OBJ_MIN_PIXELS_VALUE_MIN, SM_OBJ_MIN_PIXELS_VALUE_MAX);
@@ -303,6 +311,8 @@ module sm_axil_regs #(
       SM_OFFSET_L_ADDR: clamped = c_off_l[32];
       SM_OFFSET_R_ADDR: clamped = c_off_r[32];
       SM_OCC_ADDR: clamped = c_occ[32];
+      SM_OCC_EDGE_ADDR: clamped = c_occ_e[32];
+      SM_EDGE_T_ADDR: clamped = c_edge_t[32];
       SM_OBJ_NEAR_ADDR: clamped = c_near[32];
       SM_OBJ_TOL_ADDR: clamped = c_tol[32];
       SM_OBJ_MIN_PIXELS_ADDR: clamped = c_minpix[32];
@@ -363,6 +373,8 @@ module sm_axil_regs #(
       offset_r_q       <= SM_OFFSET_R_VALUE_RESET[8:0];
       rect_enable_q    <= SM_RECT_ENABLE_VALUE_RESET[0];
       occ_q            <= SM_OCC_VALUE_RESET[7:0];
+      occ_edge_q       <= SM_OCC_EDGE_VALUE_RESET[7:0];
+      edge_t_q         <= SM_EDGE_T_VALUE_RESET[7:0];
       sw_table_q       <= {SM_SW_TABLE1_CODES_RESET, SM_SW_TABLE0_CODES_RESET};
       filter_enable_q  <= SM_FILTER_ENABLE_VALUE_RESET[3:0];
       obj_near_q       <= SM_OBJ_NEAR_VALUE_RESET[7:0];
@@ -408,6 +420,8 @@ module sm_axil_regs #(
           SM_OFFSET_R_ADDR: offset_r_q <= c_off_r[8:0];
           SM_RECT_ENABLE_ADDR: rect_enable_q <= wm[0];
           SM_OCC_ADDR: occ_q <= c_occ[7:0];
+          SM_OCC_EDGE_ADDR: occ_edge_q <= c_occ_e[7:0];
+          SM_EDGE_T_ADDR: edge_t_q <= c_edge_t[7:0];
           SM_SW_TABLE0_ADDR: sw_table_q[31:0] <= wm;
           SM_SW_TABLE1_ADDR: sw_table_q[63:32] <= wm;
           SM_FILTER_ENABLE_ADDR: filter_enable_q <= wm[3:0];
@@ -432,6 +446,8 @@ module sm_axil_regs #(
       cfg_rect_enable    <= SM_RECT_ENABLE_VALUE_RESET[0];
       cfg_grid_bank      <= SM_CONTROL_GRID_BANK_RESET[0];
       cfg_occ            <= SM_OCC_VALUE_RESET[7:0];
+      cfg_occ_edge       <= SM_OCC_EDGE_VALUE_RESET[7:0];
+      cfg_edge_t         <= SM_EDGE_T_VALUE_RESET[7:0];
       cfg_sw_table       <= {SM_SW_TABLE1_CODES_RESET, SM_SW_TABLE0_CODES_RESET};
       cfg_filter_enable  <= SM_FILTER_ENABLE_VALUE_RESET[3:0];
       cfg_obj_near       <= SM_OBJ_NEAR_VALUE_RESET[7:0];
@@ -447,6 +463,8 @@ module sm_axil_regs #(
       cfg_rect_enable    <= rect_enable_q;
       cfg_grid_bank      <= grid_bank_q;
       cfg_occ            <= occ_q;
+      cfg_occ_edge       <= occ_edge_q;
+      cfg_edge_t         <= edge_t_q;
       cfg_sw_table       <= sw_table_q;
       cfg_filter_enable  <= filter_enable_q;
       cfg_obj_near       <= obj_near_q;

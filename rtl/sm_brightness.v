@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Brightness control of both cameras (docs/algorithm.md, section 1):
 //   out = clamp(((in * gain + 128) >> 8) + offset, 0, 255)
 // Two beats of latency: the product is registered before the offset and clamp so the
@@ -13,16 +14,16 @@ module sm_brightness (
     input  wire [9:0] gain_r,
     input  wire [8:0] offset_l,  // signed, -256..255
     input  wire [8:0] offset_r,
-    input  wire [4:0] s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [7:0] s_left,
     input  wire [7:0] s_right,
-    output reg  [4:0] m_side,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output reg  [7:0] m_left,
     output reg  [7:0] m_right
 );
   localparam [9:0] GAIN_ONE = 10'd256;
 
-  wire in_sof = s_side[1];
+  wire in_sof = s_side[`SM_SIDE_SOF];
 
   // Frame parameters: the live register values on sof, the latched ones after.
   reg  [9:0] gain_l_q, gain_r_q;
@@ -34,7 +35,7 @@ module sm_brightness (
 
   // Stage 1: products; the offset travels with its beat so a new frame's sof entering
   // behind it cannot change it.
-  reg [4:0]  side_q;
+  reg [`SM_SIDE_W-1:0] side_q;
   // Bits 6:0 of the product never reach the result, only bit 7 (the rounding bit).
   reg [10:0] prod_l_q, prod_r_q;  // product >> 7
   /* verilator lint_off UNUSEDSIGNAL */  // low product bits below the rounding bit
@@ -60,8 +61,8 @@ module sm_brightness (
       gain_r_q <= GAIN_ONE;
       off_l_q  <= 9'd0;
       off_r_q  <= 9'd0;
-      side_q   <= 5'd0;
-      m_side   <= 5'd0;
+      side_q   <= {`SM_SIDE_W{1'b0}};
+      m_side   <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       gain_l_q <= gain_l_f;
       gain_r_q <= gain_r_f;

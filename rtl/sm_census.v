@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Census transform of both rectified images (docs/algorithm.md, section 3).
 // One sm_linebuf holds the CENSUS-1 previous rows of both cameras ({right, left} per
 // word), so a full window column arrives per beat; a CENSUS x CENSUS window slides over
@@ -18,28 +19,28 @@ module sm_census #(
     input  wire          rst_n,
     input  wire          ce,
     input  wire [XW-1:0] width,    // active width
-    input  wire [4:0]    s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [7:0]    s_left,   // rectified left pixel
     input  wire [7:0]    s_right,  // rectified right pixel
-    output reg  [4:0]    m_side,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output reg  [CB-1:0] m_cl,     // left census vector, bit k = neighbour k < centre
     output reg  [CB-1:0] m_cr,     // right census vector
     output reg  [7:0]    m_left    // left centre pixel, for the aggregation weights
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam CB = CENSUS * CENSUS - 1;
   localparam R  = (CENSUS - 1) / 2;
   localparam C  = CENSUS;
 
   generate
-    if (CENSUS < 3 || CENSUS > 15 || CENSUS % 2 == 0) begin : g_bad_census
-      initial $error("sm_census: CENSUS (%0d) must be odd, 3..15", CENSUS);
+    if (CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0) begin : g_bad_census
+      initial $error("sm_census: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX);
     end
   endgenerate
 
   // ---- window control for the entering beat --------------------------------------
   wire [XW-1:0] s_x;
-  wire [4:0]    c_side;
+  wire [`SM_SIDE_W-1:0] c_side;
   wire [XW-1:0] c_x;
   wire [C-1:0]  row_ok;
   wire [C-1:0]  col_ok;
@@ -58,7 +59,7 @@ module sm_census #(
       .clk(clk), .ce(ce), .col(s_x), .din({s_right, s_left}), .dout(lb_dout)
   );
   reg [15:0]  live_q;  // the entering pixel, aligned with the line-buffer read
-  reg [4:0]   side_q, side_q2;
+  reg [`SM_SIDE_W-1:0] side_q, side_q2;
   reg [C-1:0] row_ok_q, row_ok_q2;
   reg [C-1:0] col_ok_q, col_ok_q2;
 
@@ -140,9 +141,9 @@ module sm_census #(
   // sideband: control state, reset so no phantom real beat leaves after reset
   always @(posedge clk) begin
     if (!rst_n) begin
-      side_q  <= 5'd0;
-      side_q2 <= 5'd0;
-      m_side  <= 5'd0;
+      side_q  <= {`SM_SIDE_W{1'b0}};
+      side_q2 <= {`SM_SIDE_W{1'b0}};
+      m_side  <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       side_q  <= c_side;
       side_q2 <= side_q;

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Matching cost: Hamming distance of the left census vector with the right vectors
 // of the DISP previous beats (docs/algorithm.md, section 4). The right vectors of the
 // last DISP-1 beats sit in a delay line; since rows are exactly width beats, the
@@ -34,15 +35,15 @@ module sm_cost #(
     input  wire               rst_n,
     input  wire               ce,
     input  wire [XW-1:0]      width,   // unused: the cost needs only the row starts
-    input  wire [4:0]         s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [CB-1:0]      s_cl,    // left census vector
     input  wire [CB-1:0]      s_cr,    // right census vector
     input  wire [7:0]         s_left,  // left centre pixel, passed through
-    output reg  [4:0]         m_side,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output reg  [HW*DISP-1:0] m_cost,  // bit-plane order: bit f of level d at [f*DISP + d]
     output reg  [7:0]         m_left
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam CB = CENSUS * CENSUS - 1;
   localparam HW = $clog2(CB + 1);
   localparam F  = DISP / PU;                  // clocks per beat
@@ -53,8 +54,8 @@ module sm_cost #(
   /* verilator lint_on WIDTH */
 
   generate
-    if (CENSUS < 3 || CENSUS > 15 || CENSUS % 2 == 0) begin : g_bad_census
-      initial $error("sm_cost: CENSUS (%0d) must be odd, 3..15", CENSUS);
+    if (CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0) begin : g_bad_census
+      initial $error("sm_cost: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX);
     end
     if (DISP < 2 || DISP > 256) begin : g_bad_disp
       initial $error("sm_cost: DISP (%0d) must be 2..256", DISP);
@@ -67,18 +68,18 @@ module sm_cost #(
 
   // ok[d] = (x >= d) for the entering beat: all ones shifted in since the row start.
   reg  [DISP-1:0] ok_q;
-  wire [DISP-1:0] ok = s_side[2] ? {{(DISP - 1) {1'b0}}, 1'b1} : {ok_q[DISP-2:0], 1'b1};
+  wire [DISP-1:0] ok = s_side[`SM_SIDE_SOL] ? {{(DISP - 1) {1'b0}}, 1'b1} : {ok_q[DISP-2:0], 1'b1};
   wire unused_ok_top = ok_q[DISP-1];  // shifted out
 
   // Control and pass-through data along the three ce stages.
-  reg [4:0] side_q2, side_q3;
+  reg [`SM_SIDE_W-1:0] side_q2, side_q3;
   reg [7:0] left_q2, left_q3;
   always @(posedge clk) begin
     if (!rst_n) begin
       ok_q    <= {DISP{1'b0}};
-      side_q2 <= 5'd0;
-      side_q3 <= 5'd0;
-      m_side  <= 5'd0;
+      side_q2 <= {`SM_SIDE_W{1'b0}};
+      side_q3 <= {`SM_SIDE_W{1'b0}};
+      m_side  <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       ok_q    <= ok;
       side_q2 <= s_side;

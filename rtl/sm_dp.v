@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Trellis dynamic programming stage (docs/algorithm.md, section 6): a systolic array
 // of DISP processing elements (sm_dp_pe), one per level, linked only to neighbours.
 // Line k runs its forward pass in exactly W ce's (two sites per clock), writing one
@@ -31,6 +32,14 @@
 // LUT-RAM of F words U(2t, g*PU+j). Cost skew: per lane a LUT-RAM ring of
 // (beat mod 2^KW, group) words, written at {wp, g} and read at
 // {wp - (S - g*PU/2 - ceil(j/2)), g}; skew 0 (level DISP-1) takes the input directly.
+// Penalty per occlusion node (docs/algorithm.md section 6, "Edge-dependent penalty"): the
+// occlusion nodes of level pair m at DP clock t have xl = t + m + 1, the column that
+// entered S-1-m beats before column S + t; node (i, d) costs occ_edge where that
+// column's edge flag is set, else occ. s_edge runs one beat ahead (on the ce of column
+// x it holds the flag of the next beat), so every pair's 8-bit penalty is registered on
+// the ce before the DP clock that uses it: no select in front of the PE adders.
+// Folded: lane j of group g reads the flag of tap S-1-g*PU/2-floor(j/2), prefetched
+// into a register for the next sub-step like the lane's state.
 // Decisions: one word of 2*PU+2 bits per sub-step at {bank, t, g}: the group's 2*PU
 // bits above the 2 bits of level g*PU-1, so the backward step of any level of group g
 // finds both levels it may need in one word (written one clock late through a
@@ -56,13 +65,17 @@ module sm_dp #(
     input  wire               rst_n,
     input  wire               ce,
     input  wire [XW-1:0]      width,   // active width, S + 3 .. MAX_WIDTH
-    input  wire [7:0]         occ,     // occlusion penalty, latched per frame
-    input  wire [4:0]         s_side,
-    input  wire [DISP*CW-1:0] s_cost,  // A(x, d) at [d*CW +: CW]
-    output reg  [4:0]         m_side,
+    input  wire [7:0]         occ,       // occlusion penalty, latched per frame
+    input  wire [7:0]         occ_edge,  // penalty at flagged pixels, latched with occ
+    input  wire [`SM_SIDE_W-1:0] s_side,
+    input  wire [DISP*CW-1:0] s_cost,    // A(x, d) at [d*CW +: CW]
+    // Edge flag of the NEXT beat (column x+1 when this ce samples column x; column 0 of
+    // the next row, whose flag is 0, after a row's last beat), virtual rows included.
+    input  wire               s_edge,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output wire [15:0]        m_disp   // bit 15 valid (always), low DW bits disparity
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam AW = $clog2(MAX_WIDTH);
   localparam DW = $clog2(DISP);
   localparam S = DISP / 2;
@@ -75,8 +88,8 @@ module sm_dp #(
   localparam DEC_AW = (F > 1) ? AW + 1 + GW : AW + 1;  // decision address {bank, t[, g]}
 
   generate
-    if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_dp: DISP (%0d) must be even, 4..254", DISP);
+    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
+      initial $error("sm_dp: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
     end
     if (CW < 1 || CW > 8) begin : g_bad_cw
       initial $error("sm_dp: CW (%0d) must be 1..8", CW);
@@ -94,7 +107,7 @@ module sm_dp #(
 
   // ---- beat position -----------------------------------------------------------
   wire [XW-1:0] x_in;
-  wire [4:0]    c_side;
+  wire [`SM_SIDE_W-1:0] c_side;
   wire [XW-1:0] c_x;
   wire [0:0]    row_ok;
   wire [0:0]    col_ok;
@@ -135,7 +148,7 @@ module sm_dp #(
   // at sol x_in = 0 gives W - S - 2, and it steps by one, wrapping after W - 1.
   reg  [XW-1:0] xo_q;       // x_out of the previous ce
   reg           xo_last_q;  // xo_q == W - 1
-  wire [XW-1:0] x_out = s_side[2] ? width - S_P2 : xo_last_q ? {XW{1'b0}} : xo_q + 1'b1;
+  wire [XW-1:0] x_out = s_side[`SM_SIDE_SOL] ? width - S_P2 : xo_last_q ? {XW{1'b0}} : xo_q + 1'b1;
   always @(posedge clk) begin
     if (ce) begin
       xo_q      <= x_out;
@@ -148,21 +161,44 @@ module sm_dp #(
   // c_x/masks are not needed; t_rev's top bit is 0 (t < MAX_WIDTH)
   wire unused_win = &{c_x, row_ok, col_ok, t_rev};
 
-  // ---- control: decision bank, per-frame occ -----------------------------------
+  // ---- control: decision bank, per-frame occ and occ_edge -----------------------
   reg       fbank_q;     // decision bank the forward pass writes
   reg       rowfirst_q;  // the row entering is the first of a frame
   reg [7:0] occ_q;
+  reg [7:0] occ_edge_q;
+  // this ce latches the frame's penalties: the next ce starts the forward pass of this
+  // row's line
+  wire      occ_ld = ce && line_end && rowfirst_q;
   always @(posedge clk) begin
     if (!rst_n) begin
       fbank_q    <= 1'b0;
       rowfirst_q <= 1'b0;
       occ_q      <= 8'd0;
+      occ_edge_q <= 8'd0;
     end else if (ce) begin
       if (line_end) fbank_q <= ~fbank_q;
-      if (s_side[2]) rowfirst_q <= s_side[1];
-      // the next ce starts the forward pass of this row's line
-      if (line_end && rowfirst_q) occ_q <= occ;
+      if (s_side[`SM_SIDE_SOL]) rowfirst_q <= s_side[`SM_SIDE_SOF];
+      if (occ_ld) begin
+        occ_q      <= occ;
+        occ_edge_q <= occ_edge;
+      end
     end
+  end
+  // The penalties from the next clock on: the per-pair penalty registers below are
+  // loaded one clock before they are used, so the frame's first line needs the values
+  // occ_q / occ_edge_q take on this edge.
+  wire [7:0] occ_nx = occ_ld ? occ : occ_q;
+  wire [7:0] occ_edge_nx = occ_ld ? occ_edge : occ_edge_q;
+
+  // Edge flags, one per beat: after the ce that samples column x (s_edge = e(x+1)),
+  // fl_q[k] = e(x+1-k). DP clock t (column S+t entering) needs e(t+m+1) for pair m,
+  // tap S-1-m counted from the entering column. Taps past a row's end see the next
+  // row's beats, whose column 0 has flag 0: the model's p(W) = occ for the end node;
+  // nodes with xl > W never reach it. A datapath register: no reset.
+  reg  [S-1:0] fl_q;
+  wire [S-1:0] fl_nx = {fl_q[S-2:0], s_edge};  // fl_q after this ce
+  always @(posedge clk) begin
+    if (ce) fl_q <= fl_nx;
   end
 
   // ---- shared by both branches --------------------------------------------------
@@ -212,6 +248,21 @@ module sm_dp #(
         end
       end
 
+      // ---- per-pair penalties ----------------------------------------------------
+      // Registered on the ce before the DP clock that uses them: on the ce of column x
+      // the next DP clock is that of column x+1, whose pair m needs tap S-1-m of
+      // fl_nx (tap 0 = s_edge, the flag of x+1 itself). Levels 2m and 2m+1 share it.
+      wire [8*S-1:0] pens;  // penalty of pair m at [8*m +: 8]
+      genvar m;
+      for (m = 0; m < S; m = m + 1) begin : g_pen
+        reg [7:0] pen_q;
+        always @(posedge clk) begin
+          if (ce) pen_q <= fl_nx[S-1-m] ? occ_edge_nx : occ_nx;
+        end
+        assign pens[8*m +: 8] = pen_q;
+      end
+      wire unused_fl = fl_q[S-1];  // tap S-1 is fl_q[S-2] after the shift
+
       // ---- the array -------------------------------------------------------------
       wire [(DISP+2)*ACC_W-1:0] nbx;  // nb of level d at (d+1)*ACC_W, zero pads at both ends
       assign nbx[ACC_W-1:0] = {ACC_W{1'b0}};
@@ -232,7 +283,7 @@ module sm_dp #(
             .clk  (clk),
             .ce   (ce),
             .init (line_end),
-            .occ  (occ_q),
+            .occ  (pens[8*(d/2) +: 8]),
             .cost (s_cost[d*CW +: CW]),
             .wp   (wp_q),
             .ra   (rps[(S-(d+1)/2)*KW +: KW]),
@@ -325,6 +376,34 @@ module sm_dp #(
       wire          nx_run = run_q && !ce && (g_q != G_LAST);
       wire [GW-1:0] g_nx = nx_run ? g_q + 1'b1 : {GW{1'b0}};
       wire          fresh_nx = ce ? line_end : fresh_q;
+
+      // ---- per-lane-pair penalties --------------------------------------------------
+      // Sub-step g of the beat on the input (column x, fl_q[k] = e(x-k) since the ce
+      // before it) needs, for lanes 2k and 2k+1 (pair m = g*PU/2 + k), tap
+      // S-1-g*PU/2-k of fl_q: an F:1 select, prefetched into a register one clock ahead
+      // like the state words (g_nx above). On a ce the prefetch is for sub-step 0 of the
+      // next beat, whose flags are fl_q shifted by this ce (tap - 1 of fl_q); on idle
+      // clocks after the last sub-step it is for nothing (the ce reloads it).
+      wire [8*(PU/2)-1:0] pens;  // penalty of lanes 2k, 2k+1 at [8*k +: 8]
+      genvar g;
+      for (k = 0; k < PU / 2; k = k + 1) begin : g_pen
+        wire [GD-1:0] fsel;  // flag of the sub-step g at [g]
+        for (g = 0; g < GD; g = g + 1) begin : g_tap
+          if (g == 0) begin : g_first
+            assign fsel[g] = ce ? fl_q[S-2-k] : fl_q[S-1-k];
+          end else if (g < F) begin : g_mid
+            assign fsel[g] = fl_q[S-1-g*(PU/2)-k];
+          end else begin : g_none
+            assign fsel[g] = 1'b0;  // no such group (F not a power of two)
+          end
+        end
+        reg [7:0] pen_q;
+        always @(posedge clk) begin
+          pen_q <= fsel[g_nx] ? occ_edge_nx : occ_nx;
+        end
+        assign pens[8*k +: 8] = pen_q;
+      end
+
       // nb of lane j at [(j+1)*ACC_W +: ACC_W]; below lane 0 the top of group g-1, above
       // lane PU-1 the bottom of group g+1
       wire [(PU+2)*ACC_W-1:0] f_nb;
@@ -380,7 +459,7 @@ module sm_dp #(
         ) u_fpe (
             .u     (u),
             .a     (a),
-            .occ   (occ_q),
+            .occ   (pens[8*(j/2) +: 8]),
             .has_lo(j > 0 ? 1'b1 : (g_q != {GW{1'b0}})),
             .has_hi(j < PU - 1 ? 1'b1 : (g_q != G_LAST)),
             .nb_lo (f_nb[j*ACC_W +: ACC_W]),
@@ -461,7 +540,7 @@ module sm_dp #(
   assign m_disp = {1'b1, {(15 - DW) {1'b0}}, disp_q};
 
   always @(posedge clk) begin
-    if (!rst_n) m_side <= 5'd0;
+    if (!rst_n) m_side <= {`SM_SIDE_W{1'b0}};
     else if (ce) m_side <= c_side;
   end
 endmodule

@@ -17,7 +17,7 @@ module sm_dp_fpe #(
 ) (
     input  wire [ACC_W-1:0] u,       // U(2t, d), read from the lane's state memory
     input  wire [CW-1:0]    a,       // skewed cost A(t + ceil(d/2), d)
-    input  wire [7:0]       occ,
+    input  wire [7:0]       occ,     // penalty of this sub-step's occlusion node
     input  wire             has_lo,  // level d-1 exists (d >= 1)
     input  wire             has_hi,  // level d+1 exists (d <= DISP-2)
     input  wire [ACC_W-1:0] nb_lo,   // nb of level d-1

@@ -25,7 +25,7 @@ module sm_dp_pe #(
     input  wire             clk,
     input  wire             ce,
     input  wire             init,    // this clock ends a line: load U(0, d) instead
-    input  wire [7:0]       occ,
+    input  wire [7:0]       occ,     // this clock's occlusion penalty (its level pair's)
     input  wire [CW-1:0]    cost,    // A(x, d) of the beat entering now (unskewed)
     input  wire [KW-1:0]    wp,      // ring write pointer (RING = 1)
     input  wire [KW-1:0]    ra,      // ring read pointer, wp - DELAY modulo 2^KW

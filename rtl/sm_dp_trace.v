@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Backward pass and left-occlusion fill of the trellis DP (docs/algorithm.md,
 // section 6). While the array runs the forward pass of line k+1, this block walks the
 // decision words of line k from the end node (2W, 0) back to site 0, two sites per
@@ -33,7 +34,7 @@ module sm_dp_trace #(
     output wire [GW-1:0]     d_grp,      // group of the current level (folded)
     output reg  [DW-1:0]     disp_q      // disparity of pixel x_out, after the ce
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam AW = $clog2(MAX_WIDTH);
   localparam DW = $clog2(DISP);
   localparam SW = AW + 2 * DW;  // stack word {x, d, fill}

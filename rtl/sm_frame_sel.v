@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Selects a stage's per-frame parameters from sm_frame_hist. The stage latches its
 // inputs at its own start of frame (L); the selector follows a beat stream `ev_side`
 // whose sof marks each frame once (E) and presents the entry of the frame the stage
@@ -18,7 +19,7 @@ module sm_frame_sel #(
     input  wire          clk,
     input  wire          rst_n,
     input  wire          ce,
-    input  wire [4:0]    ev_side,
+    input  wire [`SM_SIDE_W-1:0] ev_side,
     /* verilator lint_off UNUSEDSIGNAL */  // a stage uses one field of each entry
     input  wire [4*PW-1:0] hist,
     /* verilator lint_on UNUSEDSIGNAL */
@@ -38,7 +39,7 @@ module sm_frame_sel #(
   reg [1:0] tag_q;
   always @(posedge clk) begin
     if (!rst_n) tag_q <= 2'd0;
-    else if (ce && ev_side[0] && ev_side[1]) tag_q <= ev_side[4:3] + STEP;
+    else if (ce && ev_side[`SM_SIDE_REAL] && ev_side[`SM_SIDE_SOF]) tag_q <= ev_side[`SM_SIDE_TAG] + STEP;
   end
   // Constant slices and a 4:1 select: an index computed from tag_q would make Yosys
   // build a multiplier (a DSP) and a barrel shifter for what is one LUT per bit.
@@ -54,6 +55,6 @@ module sm_frame_sel #(
       default: par <= e3;
     endcase
   end
-  wire unused_sol = ev_side[2];  // only real, sof and the frame tag matter
+  wire unused_sol = ev_side[`SM_SIDE_SOL];  // only real, sof and the frame tag matter
 endmodule
 `default_nettype wire

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Line buffer shared by every windowed stage (docs/algorithm.md, "Shared building
 // blocks"). One memory word per column holds that column of the ROWS previous row
 // steps, so a whole window column comes out of a single block-RAM read. The word read
@@ -16,7 +17,7 @@ module sm_linebuf #(
     input  wire [DATA_W-1:0]      din,   // the entering beat's value (live row)
     output wire [ROWS*DATA_W-1:0] dout   // after the ce: row (live - 1 - k) at k*DATA_W
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam WW = ROWS * DATA_W;  // memory word
   localparam AW = $clog2(MAX_WIDTH);  // memory address; columns are below MAX_WIDTH
 

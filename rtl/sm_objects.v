@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Object separation (docs/algorithm.md, section 8): one-pass streaming labelling of the
 // near pixels of the disparity stream with a flat equivalence table, per-label
 // statistics, and at the end of each frame a scan that lists up to MAX_OBJECTS objects.
@@ -30,7 +31,7 @@ module sm_objects #(
     input  wire [7:0]    near_thr,    // near: valid and d >= near_thr
     input  wire [7:0]    tol,         // neighbours merge when |d1 - d2| <= tol
     input  wire [15:0]   min_pixels,  // smaller components are not listed
-    input  wire [4:0]    s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [15:0]   s_disp,      // bit 15 valid, low bits disparity
     // the list of the last complete frame (for the register file)
     output reg           list_ready,  // one clk when a new list is published
@@ -55,8 +56,8 @@ module sm_objects #(
     input  wire          m_axis_obj_tready,
     output wire          m_axis_obj_tlast
 );
-  localparam XW   = $clog2(MAX_WIDTH + 1);
-  localparam YW   = $clog2(MAX_HEIGHT + 1);
+  localparam XW   = `SM_COUNT_W(MAX_WIDTH);
+  localparam YW   = `SM_COUNT_W(MAX_HEIGHT);
   localparam DW   = $clog2(DISP);
   localparam LW   = (LABEL_SLOTS > 1) ? $clog2(LABEL_SLOTS) : 1;  // label
   localparam NW   = $clog2(LABEL_SLOTS + 1);                      // label counter
@@ -69,8 +70,8 @@ module sm_objects #(
   localparam SCAN_CLKS = LABEL_SLOTS + MAX_OBJECTS * (DW + 1) + 2;
 
   generate
-    if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_objects: DISP (%0d) must be even, 4..254", DISP);
+    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
+      initial $error("sm_objects: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
     end
     if (MAX_OBJECTS < 1 || MAX_OBJECTS > 64 || LABEL_SLOTS < MAX_OBJECTS) begin : g_bad_k
       initial $error("sm_objects: need 1 <= MAX_OBJECTS (%0d) <= 64 and <= LABEL_SLOTS (%0d)",
@@ -84,7 +85,7 @@ module sm_objects #(
 
   // ---- stage 1: entering beat, row buffer read ---------------------------------------
   wire [XW-1:0] s_x;
-  wire [4:0]    c_side;
+  wire [`SM_SIDE_W-1:0] c_side;
   wire [XW-1:0] c_x;
   wire [1:0]    row_ok;  // bit 0: the row above is in the frame
   wire [1:0]    col_ok;  // bit 0: the column left is in the frame
@@ -100,11 +101,11 @@ module sm_objects #(
   wire unused_sx_top = s_x[XW-1];
 
   reg  [YW-1:0] y_q;  // row of the last entering real beat
-  wire [YW-1:0] c_y = c_side[1] ? {YW{1'b0}} : (c_side[2] ? y_q + 1'b1 : y_q);
+  wire [YW-1:0] c_y = c_side[`SM_SIDE_SOF] ? {YW{1'b0}} : (c_side[`SM_SIDE_SOL] ? y_q + 1'b1 : y_q);
   // The frame's last row, latched at its sof; the sof beat itself is never the last
   // (H >= 16), so the compare needs no bypass of the latch.
   reg  [YW-1:0] hm1_q;
-  wire          c_eof = c_side[0] && !c_side[1] && (c_x == width - 1'b1) && (c_y == hm1_q);
+  wire          c_eof = c_side[`SM_SIDE_REAL] && !c_side[`SM_SIDE_SOF] && (c_x == width - 1'b1) && (c_y == hm1_q);
 
   // Row buffer: {near, d, label} of the row above, one word per column (block RAM).
   reg [RBW-1:0] rb [0:MAX_WIDTH-1];
@@ -114,7 +115,7 @@ module sm_objects #(
   reg           up_in_q;    // row above is in the frame
   reg           left_in_q;  // column left is in the frame
   reg           eof_q;
-  reg [4:0]     side_q;
+  reg [`SM_SIDE_W-1:0] side_q;
 
   // per-frame parameters, taken with the frame's first pixel
   reg [7:0]     thr_q, tol_q;
@@ -125,8 +126,8 @@ module sm_objects #(
   // left neighbour is the pixel now in stage 2, and the pixel above must lie in
   // [d - tol, d + tol], which needs only the entering d.
   wire [DW-1:0] s_d = s_disp[DW-1:0];
-  wire [7:0]    thr_e = c_side[1] ? near_thr : thr_q;
-  wire [7:0]    tol_e = c_side[1] ? tol : tol_q;
+  wire [7:0]    thr_e = c_side[`SM_SIDE_SOF] ? near_thr : thr_q;
+  wire [7:0]    tol_e = c_side[`SM_SIDE_SOF] ? tol : tol_q;
   wire [8:0]    s_hi = {{(9-DW){1'b0}}, s_d} + {1'b0, tol_e};
   wire [8:0]    s_lo = {{(9-DW){1'b0}}, s_d} - {1'b0, tol_e};  // bit 8: below 0
   wire [8:0]    p_hi = {{(9-DW){1'b0}}, pix_q} + {1'b0, tol_e};
@@ -137,8 +138,8 @@ module sm_objects #(
   reg  [DW-1:0] u_lo_q;                       // max(d - tol, 0)
 
   // ---- stage 2: label -------------------------------------------------------------
-  wire          real_q = side_q[0];
-  wire          fresh = side_q[0] & side_q[1];  // first pixel: tables start empty
+  wire          real_q = side_q[`SM_SIDE_REAL];
+  wire          fresh = side_q[`SM_SIDE_REAL] & side_q[`SM_SIDE_SOF];  // first pixel: tables start empty
   reg           bank_q;
   reg  [NW-1:0] next_q;                         // labels allocated in this frame
   reg           tf_q;                           // table full seen in this frame
@@ -235,7 +236,7 @@ module sm_objects #(
   wire [CNTW-1:0] n_cnt = (s3_alloc ? {CNTW{1'b0}} : b_cnt) + 1'b1;
   wire [SUMW-1:0] n_sum = (s3_alloc ? {SUMW{1'b0}} : b_sum) + {{(SUMW-DW){1'b0}}, s3_d};
   // only {valid, d} of the stream word and the real/sof/sol bits of the sideband matter
-  wire            unused_in = &{s_disp[14:DW], side_q[4:2], s_lo[8:DW], p_lo[8:DW]};
+  wire            unused_in = &{s_disp[14:DW], side_q[`SM_SIDE_TAG], side_q[`SM_SIDE_SOL], s_lo[8:DW], p_lo[8:DW]};
 
   integer i;
   always @(posedge clk) begin
@@ -248,7 +249,7 @@ module sm_objects #(
       pix_q     <= s_d;
       up_in_q   <= row_ok[0];
       left_in_q <= col_ok[0];
-      if (c_side[0]) y_q <= c_y;
+      if (c_side[`SM_SIDE_REAL]) y_q <= c_y;
       near_q    <= s_disp[15] && ({{(8-DW){1'b0}}, s_d} >= thr_e);
       l_close_q <= (p_lo[8] || s_d >= p_lo[DW-1:0]) && ({{(9-DW){1'b0}}, s_d} <= p_hi);
       u_hi_q    <= s_hi;
@@ -301,7 +302,7 @@ module sm_objects #(
   reg  [15:0]   sc_min;
   always @(posedge clk) begin
     if (!rst_n) begin
-      side_q  <= 5'd0;
+      side_q  <= {`SM_SIDE_W{1'b0}};
       eof_q   <= 1'b0;
       s3_v    <= 1'b0;
       bank_q  <= 1'b0;
@@ -322,7 +323,7 @@ module sm_objects #(
       if (ce) begin
         side_q <= c_side;
         eof_q  <= c_eof;
-        if (c_side[1]) begin
+        if (c_side[`SM_SIDE_SOF]) begin
           thr_q    <= near_thr;
           tol_q    <= tol;
           minpix_q <= min_pixels;

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Output formatter (docs/streams.md): at each ce it takes the last stage's beat, keeps
 // the real ones and queues them as the AXI4-Stream video output (tdata bit 15 = valid,
 // low bits = disparity; tuser on the frame's first pixel, tlast at x == W-1). The FIFO
@@ -23,7 +24,7 @@ module sm_outfmt #(
     input  wire          ce,
     input  wire [XW-1:0] width,         // active width (shadow), latched at each sof
     input  wire [YW-1:0] height,        // the height of the frame whose sof enters next
-    input  wire [4:0]    in_side,       // last stage's beat
+    input  wire [`SM_SIDE_W-1:0] in_side,       // last stage's beat
     input  wire [15:0]   in_disp,
     output wire [15:0]   m_axis_tdata,
     output wire          m_axis_tuser,
@@ -33,15 +34,15 @@ module sm_outfmt #(
     output reg           room,          // the FIFO can take the beat of one more ce
     output reg           err_overflow   // pulse: a real beat met a full FIFO and was lost
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
-  localparam YW = $clog2(MAX_HEIGHT + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
+  localparam YW = `SM_COUNT_W(MAX_HEIGHT);
   localparam LW = $clog2(FIFO_DEPTH) + 1;
   localparam [LW-1:0] CAP = FIFO_DEPTH[LW-1:0];  // level at which one more write still fits
 
-  wire          in_real = in_side[0];
-  wire          in_sof  = in_side[1];
-  wire          in_sol  = in_side[2];
-  wire [1:0]    unused_ftag = in_side[4:3];
+  wire          in_real = in_side[`SM_SIDE_REAL];
+  wire          in_sof  = in_side[`SM_SIDE_SOF];
+  wire          in_sol  = in_side[`SM_SIDE_SOL];
+  wire [1:0]    unused_ftag = in_side[`SM_SIDE_TAG];
 
   // Write side: position of the last queued pixel of the current frame.
   reg  [XW-1:0] x_q;

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Post-processing filter F0: recursive band filter (docs/algorithm.md, section 7; model
 // post_band). Top to bottom, a = this filter's own output at (x, y-1), c = the input at
 // (x, y), d(p) = the low DW bits: when a and c are valid, |d(c) - d(a)| > 1 and one of
@@ -24,12 +25,12 @@ module sm_post_band #(
     input  wire          ce,
     input  wire [XW-1:0] width,    // active width, at least 2
     input  wire          enable,   // 0: pass the centre through (same latency)
-    input  wire [4:0]    s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [15:0]   s_disp,   // bit 15 valid, low bits disparity
-    output reg  [4:0]    m_side,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output reg  [15:0]   m_disp
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam DW = $clog2(DISP);
   localparam AW = $clog2(MAX_WIDTH);   // memory address; columns are below MAX_WIDTH
   localparam LW = 16 * K;              // the K input rows of a column
@@ -37,8 +38,8 @@ module sm_post_band #(
   localparam WW = LW + OW;             // memory word
 
   generate
-    if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_post_band: DISP (%0d) must be even, 4..254", DISP);
+    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
+      initial $error("sm_post_band: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
     end
     if (K < 1 || K > 16) begin : g_bad_k
       initial $error("sm_post_band: K (%0d) must be 1..16", K);
@@ -50,7 +51,7 @@ module sm_post_band #(
 
   // ---- window control: centre K rows above the entering beat, rows y-1 .. y+K -------
   wire [XW-1:0] s_x;
-  wire [4:0]    c_side;
+  wire [`SM_SIDE_W-1:0] c_side;
   wire [XW-1:0] c_x;
   wire [K+1:0]  row_ok;  // bit 1+j: row y+j is in the centre's frame, j = -1..K
   wire          col_ok;
@@ -78,7 +79,7 @@ module sm_post_band #(
   reg [15:0]    live_q;   // the entering beat: row y+K
   reg           up_ok_q;  // row y-1 is in the centre's frame
   reg [K-1:0]   dn_ok_q;  // bit j-1: row y+j is in the centre's frame
-  reg [4:0]     side_q;
+  reg [`SM_SIDE_W-1:0] side_q;
 
   // rows of the centre's column after the read: row y+j at j = 0..K
   wire [15:0] row_w [0:K];
@@ -139,7 +140,7 @@ module sm_post_band #(
   // The enable is taken with the frame's first centre at the output stage, so every
   // pixel of a frame sees the same setting even when the register changes mid-frame.
   reg  en_q;
-  wire en = side_q[1] ? enable : en_q;
+  wire en = side_q[`SM_SIDE_SOF] ? enable : en_q;
 
   always @(posedge clk) begin
     if (ce) begin
@@ -156,8 +157,8 @@ module sm_post_band #(
   // sideband and enable: control state, reset so no phantom real beat leaves after reset
   always @(posedge clk) begin
     if (!rst_n) begin
-      side_q <= 5'd0;
-      m_side <= 5'd0;
+      side_q <= {`SM_SIDE_W{1'b0}};
+      m_side <= {`SM_SIDE_W{1'b0}};
       en_q   <= 1'b0;
     end else if (ce) begin
       side_q <= c_side;

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Windowed median of the disparity stream (docs/algorithm.md, section 7): the
 // (2*RY+1) x (2*RX+1) window of sort keys (valid ? d + 1 : 0) is ranked in parallel and
 // the element of middle rank is the output. Window pixels outside the frame take the
@@ -18,12 +19,12 @@ module sm_post_median #(
     input  wire          ce,
     input  wire [XW-1:0] width,    // active width
     input  wire          enable,   // 0: pass the centre through (same latency)
-    input  wire [4:0]    s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [15:0]   s_disp,   // bit 15 valid, low bits disparity
-    output reg  [4:0]    m_side,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output reg  [15:0]   m_disp
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam DW = $clog2(DISP);
   localparam KW = DW + 1;             // sort key: 0 = invalid, d + 1 otherwise
   localparam NR = 2 * RY + 1;         // window rows
@@ -33,8 +34,8 @@ module sm_post_median #(
   localparam RW = $clog2(N);          // rank counter width
 
   generate
-    if (DISP < 4 || DISP > 254 || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_post_median: DISP (%0d) must be even, 4..254", DISP);
+    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
+      initial $error("sm_post_median: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
     end
     if (RY < 0 || RY > 3 || RX < 0 || RX > 3 || N < 3) begin : g_bad_win
       initial $error("sm_post_median: window RY=%0d RX=%0d outside 0..3 or too small", RY, RX);
@@ -43,7 +44,7 @@ module sm_post_median #(
 
   // ---- window control for the entering beat --------------------------------------
   wire [XW-1:0] s_x;
-  wire [4:0]    c_side;
+  wire [`SM_SIDE_W-1:0] c_side;
   wire [XW-1:0] c_x;
   wire [NR-1:0] row_ok;
   wire [NC-1:0] col_ok;
@@ -76,7 +77,7 @@ module sm_post_median #(
   endgenerate
   assign col_in[16*(NR-1) +: 16] = live_q;
 
-  reg [4:0]    side_q, side_q2;
+  reg [`SM_SIDE_W-1:0] side_q, side_q2;
   reg [NR-1:0] row_ok_q;
   reg [NC-1:0] col_ok_q;
 
@@ -193,7 +194,7 @@ module sm_post_median #(
   // The enable is taken with the frame's first centre at this stage, so every pixel of
   // a frame sees the same setting even when the register changes mid-frame.
   reg  en_q;
-  wire en = side_q2[1] ? enable : en_q;
+  wire en = side_q2[`SM_SIDE_SOF] ? enable : en_q;
 
   integer a2;
   always @(posedge clk) begin
@@ -214,9 +215,9 @@ module sm_post_median #(
   // sideband and enable: control state, reset so no phantom real beat leaves after reset
   always @(posedge clk) begin
     if (!rst_n) begin
-      side_q  <= 5'd0;
-      side_q2 <= 5'd0;
-      m_side  <= 5'd0;
+      side_q  <= {`SM_SIDE_W{1'b0}};
+      side_q2 <= {`SM_SIDE_W{1'b0}};
+      m_side  <= {`SM_SIDE_W{1'b0}};
       en_q    <= 1'b0;
     end else if (ce) begin
       side_q  <= c_side;

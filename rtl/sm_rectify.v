@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Grid-based rectification of one camera (docs/algorithm.md, section 2).
 //
 // Output pixel (x, y) leaves while input (x, y + RECT_RADIUS + 1) enters (sm_win_ctrl
@@ -33,24 +34,22 @@ module sm_rectify #(
     input  wire           grid_we,     // grid write, independent of ce
     input  wire [GAW-1:0] grid_waddr,  // {bank, gy, gx}
     input  wire [31:0]    grid_wdata,  // {sy, sx}, signed Q.5
-    input  wire [4:0]     s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [7:0]     s_pix,
-    output reg  [4:0]     m_side,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output reg  [7:0]     m_pix
 );
   localparam R      = RECT_RADIUS;
-  localparam XW     = $clog2(MAX_WIDTH + 1);
-  localparam YW     = $clog2(MAX_HEIGHT + 1);
+  localparam XW     = `SM_COUNT_W(MAX_WIDTH);
+  localparam YW     = `SM_COUNT_W(MAX_HEIGHT);
   localparam NR     = 2 * R + 2;              // row slots of the line buffer
   localparam SB     = $clog2(NR);             // slot number bits
   localparam HALFW  = (MAX_WIDTH + 1) / 2;    // columns per column-parity bank row
   localparam CHW    = $clog2(HALFW);          // bits of a column pair index
   localparam BDEPTH = (R + 1) * HALFW;        // words per line-buffer bank
   localparam BAW    = $clog2(BDEPTH);
-  localparam GXB0   = $clog2((MAX_WIDTH + 15) / 16 + 1);
-  localparam GYB0   = $clog2((MAX_HEIGHT + 15) / 16 + 1);
-  localparam GXB    = (GXB0 < 2) ? 2 : GXB0;  // grid x bits, GWMAX = 2**GXB
-  localparam GYB    = (GYB0 < 2) ? 2 : GYB0;  // grid y bits
+  localparam GXB    = `SM_GRID_AB(MAX_WIDTH);  // grid x bits, GWMAX = 2**GXB
+  localparam GYB    = `SM_GRID_AB(MAX_HEIGHT);  // grid y bits
   localparam GAW    = 1 + GYB + GXB;          // grid_waddr width
   localparam GBW    = GAW - 2;                // address of one grid parity bank
   localparam VW     = 22;                     // V0/V1 (Q.9), |V| <= 2^19
@@ -60,20 +59,20 @@ module sm_rectify #(
   localparam RW     = 2 * R + 1;              // window rows
 
   generate
-    if (R < 1 || R > 31) begin : g_bad_r
-      initial $error("sm_rectify: RECT_RADIUS (%0d) must be 1..31", R);
+    if (R < `SM_RECT_RADIUS_MIN || R > `SM_RECT_RADIUS_MAX) begin : g_bad_r
+      initial $error("sm_rectify: RECT_RADIUS (%0d) must be %0d..%0d", R, `SM_RECT_RADIUS_MIN, `SM_RECT_RADIUS_MAX);
     end
-    if (MAX_WIDTH < 16 || MAX_WIDTH > 4095) begin : g_bad_w
-      initial $error("sm_rectify: MAX_WIDTH (%0d) must be 16..4095", MAX_WIDTH);
+    if (MAX_WIDTH < `SM_MAX_WIDTH_MIN || MAX_WIDTH > `SM_MAX_WIDTH_MAX) begin : g_bad_w
+      initial $error("sm_rectify: MAX_WIDTH (%0d) must be %0d..%0d", MAX_WIDTH, `SM_MAX_WIDTH_MIN, `SM_MAX_WIDTH_MAX);
     end
-    if (MAX_HEIGHT < 16 || MAX_HEIGHT > 4095) begin : g_bad_h
-      initial $error("sm_rectify: MAX_HEIGHT (%0d) must be 16..4095", MAX_HEIGHT);
+    if (MAX_HEIGHT < `SM_MAX_HEIGHT_MIN || MAX_HEIGHT > `SM_MAX_HEIGHT_MAX) begin : g_bad_h
+      initial $error("sm_rectify: MAX_HEIGHT (%0d) must be %0d..%0d", MAX_HEIGHT, `SM_MAX_HEIGHT_MIN, `SM_MAX_HEIGHT_MAX);
     end
   endgenerate
 
   // ---------------------------------------------------------------- stage 0 (entering)
   wire [XW-1:0] s_x;
-  wire [4:0]    c_side;
+  wire [`SM_SIDE_W-1:0] c_side;
   wire [XW-1:0] c_x;
   wire [RW-1:0] row_ok;
   /* verilator lint_off UNUSEDSIGNAL */  // no column window: taps test columns themselves
@@ -115,14 +114,14 @@ module sm_rectify #(
   // Row slot of the live row; the centre row is R+1 slots back, which modulo 2R+2 is
   // also R+1 slots ahead.
   reg  [SB-1:0] ls_q;
-  wire [SB-1:0] ls = !s_side[2] ? ls_q : (ls_q == LAST_SLOT) ? {SB{1'b0}} : ls_q + 1'b1;
+  wire [SB-1:0] ls = !s_side[`SM_SIDE_SOL] ? ls_q : (ls_q == LAST_SLOT) ? {SB{1'b0}} : ls_q + 1'b1;
   wire [SB-1:0] cs = (ls >= HALF_NR) ? ls - HALF_NR : ls + HALF_NR;
 
   // Centre row number and the frame's parameters, taken at the centre's sof.
   reg  [YW-1:0] cy_q;
   reg           bank_q, en_q;
-  wire          c_sof = c_side[1];
-  wire [YW-1:0] cy = c_sof ? {YW{1'b0}} : c_side[2] ? cy_q + 1'b1 : cy_q;
+  wire          c_sof = c_side[`SM_SIDE_SOF];
+  wire [YW-1:0] cy = c_sof ? {YW{1'b0}} : c_side[`SM_SIDE_SOL] ? cy_q + 1'b1 : cy_q;
   wire          bank_f = c_sof ? grid_bank : bank_q;
   wire          en_f = c_sof ? enable : en_q;
 
@@ -167,7 +166,7 @@ module sm_rectify #(
   endgenerate
 
   // ---------------------------------------------------------------- stage 1: V0/V1
-  reg [4:0]    side_q;
+  reg [`SM_SIDE_W-1:0] side_q;
   reg [3:0]    fx_q, fy_q;
   reg          gxp_q, gyp_q, en_q1;
   reg [XW-1:0] cx_q;
@@ -192,7 +191,7 @@ module sm_rectify #(
   wire [VW-1:0] v1y = sext16(k10[31:16]) * wy1 + sext16(k11[31:16]) * wy;
 
   // ---------------------------------------------------------------- stage 2: S
-  reg [4:0]    side_q2;
+  reg [`SM_SIDE_W-1:0] side_q2;
   reg [3:0]    fx_q2;
   reg          en_q2;
   reg [XW-1:0] cx_q2;
@@ -220,7 +219,7 @@ module sm_rectify #(
   wire [SW-1:0] sy_s = en_q2 ? sy_n : {SW{1'b0}};
 
   // ---------------------------------------------------------------- stage 3: taps
-  reg [4:0]    side_q3;
+  reg [`SM_SIDE_W-1:0] side_q3;
   reg [SB-1:0] cs_q3;
   reg [SB+1:0] csm_q3, csp_q3;  // cs - NR, cs + NR (signed)
   reg [RW-1:0] rok_q3;
@@ -311,7 +310,7 @@ module sm_rectify #(
   wire [4:0] ay1 = 5'd16 - {1'b0, ay};
 
   // ---------------------------------------------------------------- stage 4: read
-  reg [4:0]     side_q4;
+  reg [`SM_SIDE_W-1:0] side_q4;
   reg [SB-2:0]  hs_e_q, hs_o_q;  // slot pairs of the even / odd tap row
   reg [CHW-1:0] hc_e_q, hc_o_q;  // column pairs of the even / odd tap column
   reg [3:0]     ok_q;            // bank reads that hit a valid tap
@@ -352,7 +351,7 @@ module sm_rectify #(
   endgenerate
 
   // ---------------------------------------------------------------- stage 5: blend
-  reg [4:0] side_q5;
+  reg [`SM_SIDE_W-1:0] side_q5;
   reg [8:0] w00_q2, w10_q2, w01_q2, w11_q2;
   reg [3:0] tv_q2;
   reg       rp_q2, cp_q2;
@@ -374,12 +373,12 @@ module sm_rectify #(
       cy_q    <= {YW{1'b0}};
       bank_q  <= 1'b0;
       en_q    <= 1'b0;
-      side_q  <= 5'd0;
-      side_q2 <= 5'd0;
-      side_q3 <= 5'd0;
-      side_q4 <= 5'd0;
-      side_q5 <= 5'd0;
-      m_side  <= 5'd0;
+      side_q  <= {`SM_SIDE_W{1'b0}};
+      side_q2 <= {`SM_SIDE_W{1'b0}};
+      side_q3 <= {`SM_SIDE_W{1'b0}};
+      side_q4 <= {`SM_SIDE_W{1'b0}};
+      side_q5 <= {`SM_SIDE_W{1'b0}};
+      m_side  <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       ls_q    <= ls;
       cy_q    <= cy;

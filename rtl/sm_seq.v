@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Input sequencer (docs/streams.md): turns the camera's AXI4-Stream video into the
 // core's internal beats. Every frame becomes exactly H rows of exactly W beats whatever
 // the camera sends; after a complete frame, at each row boundary where no camera pixel
@@ -45,7 +46,7 @@ module sm_seq #(
     // internal beats
     input  wire            ce,
     output reg             beat_valid,
-    output reg  [4:0]      beat_side,
+    output reg  [`SM_SIDE_W-1:0] beat_side,
     output reg  [7:0]      beat_left,
     output reg  [7:0]      beat_right,
     // one-clock fault pulses, ERR_FLAGS bit order: short line, long line, missing sof,
@@ -53,8 +54,8 @@ module sm_seq #(
     output reg  [5:0]      err_pulse,
     output wire [LEVEL_W-1:0] in_level  // input FIFO entries (the camera's backlog)
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
-  localparam YW = $clog2(MAX_HEIGHT + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
+  localparam YW = `SM_COUNT_W(MAX_HEIGHT);
   localparam FW = $clog2(FLUSH_ROWS + 1);
   localparam LEVEL_W  = $clog2(IN_DEPTH) + 1;
   localparam [FW-1:0] FR = FLUSH_ROWS[FW-1:0];
@@ -180,8 +181,8 @@ module sm_seq #(
       dropping_q    <= 1'b0;
       after_frame_q <= 1'b0;
       beat_valid    <= 1'b0;
-      beat_side     <= 5'd0;
-      err_pulse           <= 6'd0;
+      beat_side     <= {`SM_SIDE_W{1'b0}};
+      err_pulse     <= 6'd0;
     end else begin
       err_pulse <= 6'd0;
       if (drop_end) drop_line_q <= 1'b0;
@@ -195,8 +196,10 @@ module sm_seq #(
       if (adv) begin
         beat_valid <= real_beat || vbeat;
         if (real_beat) begin
-          // {ftag, sol, sof, real}
-          beat_side <= {etag, ex == {XW{1'b0}}, (ex == {XW{1'b0}}) && (ey == {YW{1'b0}}), 1'b1};
+          beat_side[`SM_SIDE_TAG]  <= etag;
+          beat_side[`SM_SIDE_SOL]  <= (ex == {XW{1'b0}});
+          beat_side[`SM_SIDE_SOF]  <= (ex == {XW{1'b0}}) && (ey == {YW{1'b0}});
+          beat_side[`SM_SIDE_REAL] <= 1'b1;
           if (idle_start) begin
             mode_q     <= M_FRAME;
             w_q        <= host_width;
@@ -233,7 +236,10 @@ module sm_seq #(
             x_q <= ex + 1'b1;
           end
         end else if (vbeat) begin
-          beat_side <= {ftag_q, vx == {XW{1'b0}}, 1'b0, 1'b0};
+          beat_side[`SM_SIDE_TAG]  <= ftag_q;
+          beat_side[`SM_SIDE_SOL]  <= (vx == {XW{1'b0}});
+          beat_side[`SM_SIDE_SOF]  <= 1'b0;
+          beat_side[`SM_SIDE_REAL] <= 1'b0;
           if (vlast) begin
             x_q       <= {XW{1'b0}};
             mode_q    <= M_IDLE;

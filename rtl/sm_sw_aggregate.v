@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Adaptive support-weight cost aggregation (docs/algorithm.md, section 5).
 //
 // Every cost level of every pixel in the SW x SW window is weighted by a power of two
@@ -65,13 +66,13 @@ module sm_sw_aggregate #(
     input  wire                 ce,
     input  wire [XW-1:0]        width,     // active width
     input  wire [63:0]          sw_table,  // code of |dI| >> 3 = k at [2k +: 2]
-    input  wire [4:0]           s_side,
+    input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [HW*DISP-1:0]   s_cost,    // raw Hamming costs, bit b of level d at [b*DISP + d]
     input  wire [7:0]           s_left,    // left rectified pixel of the same beat
-    output reg  [4:0]           m_side,
+    output reg  [`SM_SIDE_W-1:0] m_side,
     output wire [DISP*CW-1:0]   m_agg      // aggregated cost of level d at [d*CW +: CW]
 );
-  localparam XW    = $clog2(MAX_WIDTH + 1);
+  localparam XW    = `SM_COUNT_W(MAX_WIDTH);
   localparam CB    = CENSUS * CENSUS - 1;           // census bits = largest raw cost
   localparam HW    = $clog2(CB + 1);                // raw cost width
   localparam CMAX  = CB >> COST_SHIFT;              // largest shifted cost
@@ -91,11 +92,11 @@ module sm_sw_aggregate #(
   localparam LAW   = $clog2(MAX_WIDTH);             // column address (columns < MAX_WIDTH)
 
   generate
-    if (SW < 3 || SW > 7 || (SW % 2) == 0) begin : g_bad_sw
-      initial $error("sm_sw_aggregate: SW (%0d) must be odd, 3..7", SW);
+    if (SW < `SM_SW_MIN || SW > `SM_SW_MAX || SW % 2 == 0) begin : g_bad_sw
+      initial $error("sm_sw_aggregate: SW (%0d) must be odd, %0d..%0d", SW, `SM_SW_MIN, `SM_SW_MAX);
     end
-    if (CENSUS < 3 || CENSUS > 15 || (CENSUS % 2) == 0) begin : g_bad_census
-      initial $error("sm_sw_aggregate: CENSUS (%0d) must be odd, 3..15", CENSUS);
+    if (CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0) begin : g_bad_census
+      initial $error("sm_sw_aggregate: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX);
     end
     if (CMAX < 1) begin : g_bad_shift
       initial $error("sm_sw_aggregate: COST_SHIFT (%0d) leaves no cost bits", COST_SHIFT);
@@ -110,7 +111,7 @@ module sm_sw_aggregate #(
 
   // ---------------------------------------------------------------- ce 0: entry
   wire [XW-1:0]   s_x;
-  wire [4:0]      c_side;
+  wire [`SM_SIDE_W-1:0] c_side;
   wire [XW-1:0]   unused_c_x;
   wire [2*R:0]    row_ok, col_ok;
   sm_win_ctrl #(
@@ -137,7 +138,7 @@ module sm_sw_aggregate #(
   reg [7:0]     live_pix_q;
   reg [2*R:0]   row_ok_q, col_ok_q;
   reg [63:0]    table_q;      // weight codes of the frame whose pixels are centred now
-  reg [4:0]     side1_q;
+  reg [`SM_SIDE_W-1:0] side1_q;
 
   always @(posedge clk) begin
     if (ce) begin
@@ -146,7 +147,7 @@ module sm_sw_aggregate #(
       row_ok_q    <= row_ok;
       col_ok_q    <= col_ok;
       // The codes of the sof centre are formed on the next ce, after this latch.
-      if (c_side[1]) table_q <= sw_table;
+      if (c_side[`SM_SIDE_SOF]) table_q <= sw_table;
     end
   end
 
@@ -185,7 +186,7 @@ module sm_sw_aggregate #(
   // after it (g_fold: they hold for the F steps, which start on the clock after ce).
   wire           code_en, recip_en;
   reg [NQ*2-1:0] code_q;
-  reg [4:0]      side2_q;
+  reg [`SM_SIDE_W-1:0] side2_q;
   always @(posedge clk) begin
     if (ce) pwin_q <= pform[(SW-1)*SW*8-1:0];
     if (code_en) code_q <= code;
@@ -420,17 +421,17 @@ module sm_sw_aggregate #(
     end
   endgenerate
 
-  reg [4:0] side3_q, side4_q, side5_q;
+  reg [`SM_SIDE_W-1:0] side3_q, side4_q, side5_q;
 
   // Sideband: the only control state, reset so no stale real beat leaves after reset.
   always @(posedge clk) begin
     if (!rst_n) begin
-      side1_q <= 5'd0;
-      side2_q <= 5'd0;
-      side3_q <= 5'd0;
-      side4_q <= 5'd0;
-      side5_q <= 5'd0;
-      m_side  <= 5'd0;
+      side1_q <= {`SM_SIDE_W{1'b0}};
+      side2_q <= {`SM_SIDE_W{1'b0}};
+      side3_q <= {`SM_SIDE_W{1'b0}};
+      side4_q <= {`SM_SIDE_W{1'b0}};
+      side5_q <= {`SM_SIDE_W{1'b0}};
+      m_side  <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       side1_q <= c_side;
       side2_q <= side1_q;

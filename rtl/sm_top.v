@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Census stereo matching IP: AXI4-Stream video in (left and right pixels together),
 // pre-processing -> main processing -> post-processing, AXI4-Stream disparity out, an
 // object-list packet per frame, and AXI4-Lite registers for every run-time parameter.
@@ -62,17 +63,15 @@ module sm_top #(
     output wire        s_axil_rvalid,
     input  wire        s_axil_rready
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
-  localparam YW = $clog2(MAX_HEIGHT + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
+  localparam YW = `SM_COUNT_W(MAX_HEIGHT);
   localparam CB = CENSUS * CENSUS - 1;
   localparam HW = $clog2(CB + 1);
   localparam CW = $clog2((CB >> COST_SHIFT) + 1);
   // Register-file port widths (rtl/regmap.json): grid point = {gy, gx} with a
   // power-of-two row of points, object list word index.
-  localparam GXB0 = $clog2((MAX_WIDTH + 15) / 16 + 1);
-  localparam GYB0 = $clog2((MAX_HEIGHT + 15) / 16 + 1);
-  localparam GXB  = (GXB0 < 2) ? 2 : GXB0;
-  localparam GYB  = (GYB0 < 2) ? 2 : GYB0;
+  localparam GXB  = `SM_GRID_AB(MAX_WIDTH);
+  localparam GYB  = `SM_GRID_AB(MAX_HEIGHT);
   localparam GAW  = 2 + GYB + GXB;
   localparam OIW  = $clog2(4 + 4 * MAX_OBJECTS);
   localparam PUE  = (PU == 0) ? DISP : PU;  // levels per clock
@@ -95,7 +94,7 @@ module sm_top #(
   wire [9:0]    cfg_gain_l, cfg_gain_r;
   wire [8:0]    cfg_offset_l, cfg_offset_r;
   wire          cfg_rect_enable, cfg_grid_bank;
-  wire [7:0]    cfg_occ;
+  wire [7:0]    cfg_occ, cfg_occ_edge, cfg_edge_t;
   wire [63:0]   cfg_sw_table;
   wire [3:0]    cfg_filter_enable;
   wire [7:0]    cfg_obj_near, cfg_obj_tol;
@@ -126,7 +125,8 @@ module sm_top #(
       .enable(core_enable), .soft_reset(soft_reset), .host_width(host_width), .host_height(host_height),
       .cfg_width(cfg_width), .cfg_height(cfg_height), .cfg_gain_l(cfg_gain_l), .cfg_gain_r(cfg_gain_r),
       .cfg_offset_l(cfg_offset_l), .cfg_offset_r(cfg_offset_r), .cfg_rect_enable(cfg_rect_enable),
-      .cfg_grid_bank(cfg_grid_bank), .cfg_occ(cfg_occ), .cfg_sw_table(cfg_sw_table),
+      .cfg_grid_bank(cfg_grid_bank), .cfg_occ(cfg_occ), .cfg_occ_edge(cfg_occ_edge),
+      .cfg_edge_t(cfg_edge_t), .cfg_sw_table(cfg_sw_table),
       .cfg_filter_enable(cfg_filter_enable), .cfg_obj_near(cfg_obj_near), .cfg_obj_tol(cfg_obj_tol),
       .cfg_obj_min_pixels(cfg_obj_min_pixels),
       .obj_rd_idx(obj_rd_idx), .obj_rd_data(obj_rd_data_q),
@@ -146,7 +146,7 @@ module sm_top #(
 
   // ---------------------------------------------------------------- input sequencer
   wire       beat_valid;
-  wire [4:0] beat_side;
+  wire [`SM_SIDE_W-1:0] beat_side;
   wire [7:0] beat_left, beat_right;
   wire       out_room;
   // Pacing: with F > 1 clocks per pixel a beat is taken at most every F clocks; the
@@ -188,6 +188,9 @@ module sm_top #(
   // be more than one frame deep in the pipeline). The four tags must outlast the
   // pipeline: FLUSH_ROWS rows of 16 beats bound its latency, four frames last at least
   // 4 x 16 rows.
+  // Every parameter inside its range of rtl/defs.json (the ranges HwConfig::validate()
+  // checks too), then the rules between parameters.
+  `include "sm_defs_check.vh"
   generate
     if (PUE < 1 || PUE > DISP || DISP % PUE != 0 || (PUE != DISP && PUE % 2 != 0)) begin : g_bad_pu
       initial $error("sm_top: PU (%0d) must be 0, DISP (%0d) or an even divisor of DISP", PU, DISP);
@@ -198,20 +201,21 @@ module sm_top #(
   endgenerate
   localparam P_RECT = 0;               // rectification enable, grid bank
   localparam P_SWT  = P_RECT + 2;      // support-weight table
-  localparam P_OCC  = P_SWT + 64;      // occlusion penalty
-  localparam P_FILT = P_OCC + 8;       // filter enables: F1..F3 medians, then F0 band
+  localparam P_OCC  = P_SWT + 64;      // occlusion penalties: flat, then at an edge
+  localparam P_EDGT = P_OCC + 16;      // edge threshold of the occlusion penalty
+  localparam P_FILT = P_EDGT + 8;      // filter enables: F1..F3 medians, then F0 band
   localparam P_OBJ  = P_FILT + 4;      // object near, tol, min pixels, then the height
   localparam P_H    = P_OBJ + 32;
   localparam PW     = P_H + YW;
   wire [PW-1:0]   fr_par = {cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
-                            cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
+                            cfg_edge_t, cfg_occ_edge, cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
   wire [4*PW-1:0] fr_hist;
   sm_frame_hist #(.PW(PW)) u_fhist (
       .clk(aclk), .ce(ce), .s_side(beat_side), .s_par(fr_par), .hist(fr_hist)
   );
 
   // ---------------------------------------------------------------- pre-processing
-  wire [4:0] br_side;
+  wire [`SM_SIDE_W-1:0] br_side;
   wire [7:0] br_left, br_right;
   sm_brightness u_bright (
       .clk(aclk), .rst_n(rst_n), .ce(ce),
@@ -220,7 +224,7 @@ module sm_top #(
       .m_side(br_side), .m_left(br_left), .m_right(br_right)
   );
 
-  wire [4:0] rl_side, rr_side;
+  wire [`SM_SIDE_W-1:0] rl_side, rr_side;
   wire [7:0] rl_pix, rr_pix;
   wire [GAW-2:0] grid_addr_cam = grid_waddr[GAW-2:0];  // {bank, gy, gx}
   wire [1:0] par_rect;  // {grid bank, enable}
@@ -242,7 +246,7 @@ module sm_top #(
   wire unused_rr_side = ^rr_side;  // both rectifiers carry the same sideband
 
   // ---------------------------------------------------------------- main processing
-  wire [4:0]    cs_side;
+  wire [`SM_SIDE_W-1:0] cs_side;
   wire [CB-1:0] cs_cl, cs_cr;
   wire [7:0]    cs_left;
   sm_census #(.MAX_WIDTH(MAX_WIDTH), .CENSUS(CENSUS)) u_census (
@@ -251,7 +255,7 @@ module sm_top #(
       .m_side(cs_side), .m_cl(cs_cl), .m_cr(cs_cr), .m_left(cs_left)
   );
 
-  wire [4:0]         ct_side;
+  wire [`SM_SIDE_W-1:0] ct_side;
   wire [HW*DISP-1:0] ct_cost;  // bit-plane order: bit f of level d at [f*DISP + d]
   wire [7:0]         ct_left;
   sm_cost #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .PU(PUE)) u_cost (
@@ -260,7 +264,7 @@ module sm_top #(
       .m_side(ct_side), .m_cost(ct_cost), .m_left(ct_left)
   );
 
-  wire [4:0]         ag_side;
+  wire [`SM_SIDE_W-1:0] ag_side;
   wire [DISP*CW-1:0] ag_cost;
   wire [63:0]        par_swt;
   sm_frame_sel #(.PW(PW), .LSB(P_SWT), .W(64), .NEXT(1)) u_fsel_agg (
@@ -274,28 +278,42 @@ module sm_top #(
       .m_side(ag_side), .m_agg(ag_cost)
   );
 
-  wire [4:0]  dp_side;
+  // Edge flags for the DP's occlusion penalty, from the left pixel that leaves the cost
+  // stage with the beat, delayed by the aggregation's R rows and R + 6 beats.
+  wire [7:0] par_edge_t;
+  wire       dp_edge;
+  sm_frame_sel #(.PW(PW), .LSB(P_EDGT), .W(8), .NEXT(1)) u_fsel_edge (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ct_side), .hist(fr_hist), .par(par_edge_t)
+  );
+  sm_edge_flag #(.MAX_WIDTH(MAX_WIDTH), .ROWS((SW - 1) / 2), .COLS((SW - 1) / 2 + 6)) u_edge (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .edge_t(par_edge_t),
+      .s_side(ct_side), .s_left(ct_left), .m_edge(dp_edge)
+  );
+
+  wire [`SM_SIDE_W-1:0] dp_side;
   wire [15:0] dp_disp;
-  wire [7:0]  par_occ;
-  sm_frame_sel #(.PW(PW), .LSB(P_OCC), .W(8), .NEXT(1)) u_fsel_dp (
+  wire [15:0] par_occ;  // {at an edge, flat}
+  sm_frame_sel #(.PW(PW), .LSB(P_OCC), .W(16), .NEXT(1)) u_fsel_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(dp_side), .hist(fr_hist), .par(par_occ)
   );
   sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW), .PU(PUE)) u_dp (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .occ(par_occ),
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
+      .occ(par_occ[7:0]), .occ_edge(par_occ[15:8]), .s_edge(dp_edge),
       .s_side(ag_side), .s_cost(ag_cost), .m_side(dp_side), .m_disp(dp_disp)
   );
 
   // ---------------------------------------------------------------- post-processing
   // F0 band filter (FILTER_ENABLE bit 3), then the medians F1..F3 (bits 0..2)
-  wire [4:0]  f0_side, f1_side, f2_side, f3_side;
+  wire [`SM_SIDE_W-1:0] f0_side, f1_side, f2_side, f3_side;
   wire [15:0] f0_disp, f1_disp, f2_disp, f3_disp;
   wire [3:0]  par_filt;
-  wire [19:0] filt_ev = {f0_side, f3_side, f2_side, f1_side};
+  wire [4*`SM_SIDE_W-1:0] filt_ev = {f0_side, f3_side, f2_side, f1_side};
   genvar fi;
   generate
     for (fi = 0; fi < 4; fi = fi + 1) begin : g_fsel_post
       sm_frame_sel #(.PW(PW), .LSB(P_FILT + fi), .W(1), .NEXT(1)) u_fsel (
-          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[5*fi +: 5]), .hist(fr_hist), .par(par_filt[fi])
+          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[`SM_SIDE_W*fi +: `SM_SIDE_W]), .hist(fr_hist),
+          .par(par_filt[fi])
       );
     end
   endgenerate

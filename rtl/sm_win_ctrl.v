@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Window controller shared by every windowed stage (docs/algorithm.md, "Streaming
 // protocol"). For the beat entering now it names the centre pixel of the stage's
 // window -- the beat that entered D_ROWS rows and D_COLS columns earlier -- and says
@@ -21,14 +22,14 @@ module sm_win_ctrl #(
     input  wire                    rst_n,
     input  wire                    ce,
     input  wire [XW-1:0]           width,     // active width, must exceed D_COLS
-    input  wire [4:0]              s_side,    // sideband of the entering beat
+    input  wire [`SM_SIDE_W-1:0] s_side,    // sideband of the entering beat
     output wire [XW-1:0]           s_x,       // column of the entering beat
-    output wire [4:0]              c_side,    // sideband of the centre beat
+    output wire [`SM_SIDE_W-1:0] c_side,    // sideband of the centre beat
     output wire [XW-1:0]           c_x,       // column of the centre beat
     output wire [R_UP+R_DN:0]      row_ok,    // bit R_UP+j: centre row + j is in the frame
     output wire [R_L+R_R:0]        col_ok     // bit R_L+i: centre column + i is in 0..W-1
 );
-  localparam XW = $clog2(MAX_WIDTH + 1);
+  localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam NT = D_ROWS + R_UP + 2;  // row tags kept: live row back to the oldest window row
 
   generate
@@ -44,8 +45,8 @@ module sm_win_ctrl #(
   reg  [3:0]    tag_q [0:NT-1];
   reg  [XW-1:0] col_q;
 
-  wire          in_sol = s_side[2];
-  wire [3:0]    in_tag = {s_side[4:3], s_side[1], s_side[0]};
+  wire          in_sol = s_side[`SM_SIDE_SOL];
+  wire [3:0]    in_tag = {s_side[`SM_SIDE_TAG], s_side[`SM_SIDE_SOF], s_side[`SM_SIDE_REAL]};
   wire [XW-1:0] col = in_sol ? {XW{1'b0}} : col_q + 1'b1;
   assign s_x = col;
 

@@ -2,6 +2,7 @@
 // generated from rtl/regmap.json, and applies a calibration file to a register set.
 #pragma once
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -38,20 +39,15 @@ inline std::vector<RegWord> register_words(const Regs& r) {
   using namespace regmap;
   uint64_t table = 0;
   for (int k = 0; k < 32; ++k) table |= static_cast<uint64_t>(r.sw_table[k] & 3u) << (2 * k);
-  return {{kWIDTH, static_cast<uint32_t>(r.width), "WIDTH"},
-          {kHEIGHT, static_cast<uint32_t>(r.height), "HEIGHT"},
-          {kGAIN_L, r.gain_l, "GAIN_L"},
-          {kGAIN_R, r.gain_r, "GAIN_R"},
-          {kOFFSET_L, static_cast<uint32_t>(static_cast<int32_t>(r.offset_l)), "OFFSET_L"},
-          {kOFFSET_R, static_cast<uint32_t>(static_cast<int32_t>(r.offset_r)), "OFFSET_R"},
-          {kRECT_ENABLE, r.rect_enable ? 1u : 0u, "RECT_ENABLE"},
-          {kOCC, r.occ, "OCC"},
-          {kSW_TABLE0, static_cast<uint32_t>(table), "SW_TABLE0"},
-          {kSW_TABLE1, static_cast<uint32_t>(table >> 32), "SW_TABLE1"},
-          {kFILTER_ENABLE, r.filter_enable, "FILTER_ENABLE"},
-          {kOBJ_NEAR, r.obj_near, "OBJ_NEAR"},
-          {kOBJ_TOL, r.obj_tol, "OBJ_TOL"},
-          {kOBJ_MIN_PIXELS, r.obj_min_pixels, "OBJ_MIN_PIXELS"}};
+  // the value registers (sm::Regs member of the register's name; a signed one sign-extends)
+  std::vector<RegWord> w;
+#define SM_X(NAME, member) w.push_back({k##NAME, static_cast<uint32_t>(static_cast<int32_t>(r.member)), #NAME});
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+  w.push_back({kSW_TABLE0, static_cast<uint32_t>(table), "SW_TABLE0"});
+  w.push_back({kSW_TABLE1, static_cast<uint32_t>(table >> 32), "SW_TABLE1"});
+  std::sort(w.begin(), w.end(), [](const RegWord& a, const RegWord& b) { return a.addr < b.addr; });
+  return w;
 }
 
 inline bool same_grid(const RectGrid& a, const RectGrid& b) {

@@ -55,3 +55,15 @@ set_tests_properties(tb_dp_zynq16_wmin PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
 sm_rtl_test(NAME tb_dp_zynq8 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CW=6 PU=8 ARGS --width 251 --rows 4 --frames 3 --seed 12
             LABELS "rtl;slow")
+
+# Edge flags of the DP's occlusion penalty (sm_edge_flag) against the model's
+# edge_penalties, delayed by the aggregation's R rows and R + 6 beats: SW 5 (R 2) at an
+# odd width, SW 3 at full width, SW 7 without idle cycles, and the paper configuration.
+sm_rtl_test(NAME tb_edge_flag TOP sm_edge_flag SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_edge_flag.cpp
+            PARAMS MAX_WIDTH=64 ROWS=2 COLS=8 ARGS --width 37 --rows 7 --frames 4)
+sm_rtl_test(NAME tb_edge_flag_sw3 TOP sm_edge_flag SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_edge_flag.cpp
+            PARAMS MAX_WIDTH=50 ROWS=1 COLS=7 ARGS --width 50 --rows 5 --frames 3 --seed 3)
+sm_rtl_test(NAME tb_edge_flag_sw7 TOP sm_edge_flag SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_edge_flag.cpp
+            PARAMS MAX_WIDTH=50 ROWS=3 COLS=9 ARGS --width 23 --rows 9 --frames 3 --seed 5 --idle 0)
+sm_rtl_test(NAME tb_edge_flag_paper TOP sm_edge_flag SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_edge_flag.cpp
+            PARAMS MAX_WIDTH=320 ROWS=2 COLS=8 ARGS --width 320 --rows 5 --frames 3 --seed 9)

@@ -245,20 +245,17 @@ int64_t shadow_port(Top& t, const std::string& n) {
     return static_cast<int64_t>(static_cast<int32_t>(v << (32 - bits)) >> (32 - bits));
   };
   if (n == "CONTROL.GRID_BANK") return t.cfg_grid_bank;
-  if (n == "WIDTH.VALUE") return t.cfg_width;
-  if (n == "HEIGHT.VALUE") return t.cfg_height;
-  if (n == "GAIN_L.VALUE") return t.cfg_gain_l;
-  if (n == "GAIN_R.VALUE") return t.cfg_gain_r;
-  if (n == "OFFSET_L.VALUE") return sx(t.cfg_offset_l, 9);
-  if (n == "OFFSET_R.VALUE") return sx(t.cfg_offset_r, 9);
-  if (n == "RECT_ENABLE.VALUE") return t.cfg_rect_enable;
-  if (n == "OCC.VALUE") return t.cfg_occ;
   if (n == "SW_TABLE0.CODES") return static_cast<uint32_t>(t.cfg_sw_table);
   if (n == "SW_TABLE1.CODES") return static_cast<uint32_t>(t.cfg_sw_table >> 32);
-  if (n == "FILTER_ENABLE.VALUE") return t.cfg_filter_enable;
-  if (n == "OBJ_NEAR.VALUE") return t.cfg_obj_near;
-  if (n == "OBJ_TOL.VALUE") return t.cfg_obj_tol;
-  if (n == "OBJ_MIN_PIXELS.VALUE") return t.cfg_obj_min_pixels;
+  // every value register: port cfg_<member>, sign-extended where the field is signed
+  bool is_signed = false;
+  int bits = 32;
+  for (const auto& f : rm::fields())
+    if (n == f.name) is_signed = f.is_signed, bits = f.width;
+#define SM_X(NAME, member) \
+  if (n == #NAME ".VALUE") return is_signed ? sx(t.cfg_##member, bits) : static_cast<int64_t>(t.cfg_##member);
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
   throw std::runtime_error("tb_axil_regs: no shadow port for " + n);
 }
 
@@ -315,12 +312,11 @@ int main() {
   check_shadows(d, m, "reset");
   {
     const sm::Regs def = sm::Regs::defaults(hw);
-    check(m.fval.at("WIDTH.VALUE") == def.width && m.fval.at("HEIGHT.VALUE") == def.height &&
-              m.fval.at("GAIN_L.VALUE") == def.gain_l && m.fval.at("OCC.VALUE") == def.occ &&
-              m.fval.at("FILTER_ENABLE.VALUE") == def.filter_enable && m.fval.at("OBJ_NEAR.VALUE") == def.obj_near &&
-              m.fval.at("OBJ_TOL.VALUE") == def.obj_tol && m.fval.at("OBJ_MIN_PIXELS.VALUE") == def.obj_min_pixels &&
-              m.fval.at("RECT_ENABLE.VALUE") == def.rect_enable,
-          "reset values differ from sm::Regs::defaults");
+    bool same = true;
+#define SM_X(NAME, member) same = same && m.fval.at(#NAME ".VALUE") == static_cast<int64_t>(def.member);
+    SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+    check(same, "reset values differ from sm::Regs::defaults");
     uint64_t sw = 0;
     for (int k = 0; k < 32; ++k) sw |= static_cast<uint64_t>(def.sw_table[k]) << (2 * k);
     check(static_cast<uint64_t>(d.top->cfg_sw_table) == sw, "SW_TABLE reset differs from defaults");

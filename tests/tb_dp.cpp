@@ -2,6 +2,11 @@
 // volumes (structured disparity steps, random full-range costs, tie-heavy costs) with
 // a random occlusion penalty per frame, streamed with random ce gaps and garbage on
 // virtual beats and idle cycles; every real output pixel is compared with trellis_dp.
+// Edge-dependent penalty (s_edge, occ_edge): frame 0 has no flags (trellis_dp, as
+// before); every later frame flags about a third of its pixels (column 0 never) with an
+// occ_edge different from occ and is compared with trellis_line_pen (pen[x] = flag(x) ?
+// occ_edge : occ, pen[W] = occ). s_edge carries the flag of the next beat; virtual rows
+// get random flags except at column 0 (the flag the end node sees).
 // Folded (SM_P_PU < SM_P_DISP, F = DISP/PU clocks per beat): ce at most every F clocks
 // (CeGen's minimum gap) and, as sm_top guarantees, the next beat's input held from the
 // clock after a ce up to its ce (no garbage on idle clocks), also for the F clocks
@@ -98,8 +103,11 @@ int main(int argc, char** argv) {
   std::mt19937 rng(seed);
   const int cmax = (1 << kCw) - 1;
   std::vector<sm::CostVolume> vol;
-  std::vector<uint8_t> occ;
+  std::vector<uint8_t> occ, occ_edge;
+  std::vector<std::vector<uint8_t>> flags;  // per frame, flags[f][y * width + x]
   std::vector<sm::DispImage> want;
+  sm::DpScratch scratch;
+  sm::DpLine line;
   for (int f = 0; f < frames; ++f) {
     sm::CostVolume v(width, rows, kDisp);
     const int kind = f % 3;
@@ -115,7 +123,34 @@ int main(int argc, char** argv) {
     const uint8_t o = static_cast<uint8_t>(kind == 0 ? rng() % 48 : kind == 1 ? rng() % 256 : rng() % 3);
     vol.push_back(v);
     occ.push_back(o);
-    want.push_back(sm::trellis_dp(v, o, hw));
+    std::vector<uint8_t> fl(static_cast<size_t>(width) * rows, 0);
+    if (f == 0) {  // no flags: today's DP (occ_edge is still random, and unused)
+      occ_edge.push_back(static_cast<uint8_t>(rng() & 255));
+      want.push_back(sm::trellis_dp(v, o, hw));
+    } else {
+      // occ_edge != occ. Kinds 1 and 2: occ_edge 0..3. Against kind 1's occ (0..255, mostly
+      // far above the costs) the path changes level almost only at flagged pixels, and
+      // cheaply enough to reach the high levels (a flag one beat or one group off shows
+      // there); kind 2 (costs 0..1, occ 0..2) is ties. Kind 0 in the range of its occ.
+      const unsigned range = kind == 0 ? 48 : 4;
+      uint8_t oe = static_cast<uint8_t>(rng() % range);
+      if (oe == o) oe = static_cast<uint8_t>((o + 1) % range);
+      occ_edge.push_back(oe);
+      sm::DispImage img(width, rows);
+      std::vector<uint8_t> pen(static_cast<size_t>(width) + 1);
+      for (int y = 0; y < rows; ++y) {
+        for (int x = 0; x < width; ++x) {
+          const bool e = x > 0 && rng() % 3 == 0;
+          fl[static_cast<size_t>(y) * width + x] = e;
+          pen[x] = e ? oe : o;
+        }
+        pen[width] = o;  // column 0 of the next row, flag 0
+        sm::trellis_line_pen(v.pix(0, y), width, pen.data(), hw, scratch, line);
+        std::copy(line.disp.begin(), line.disp.end(), &img.at(0, y));
+      }
+      want.push_back(img);
+    }
+    flags.push_back(fl);
   }
 
   const std::vector<int> heights(frames, rows);
@@ -136,35 +171,54 @@ int main(int argc, char** argv) {
   tb->width = width;
   tb->s_side = 0;
   tb->occ = 0;
+  tb->occ_edge = 0;
+  tb->s_edge = 0;
   for (int i = 0; i < 4; ++i) tb.tick();
   tb->rst_n = 1;
 
+  // Edge flag of every beat: the frame's flags; virtual rows random, column 0 always 0.
+  std::vector<uint8_t> beat_flag(sched.size());
+  for (size_t i = 0; i < sched.size(); ++i) {
+    const auto& b = sched[i];
+    if (b.frame >= 0)
+      beat_flag[i] = flags[b.frame][static_cast<size_t>(b.y) * width + b.x];
+    else
+      beat_flag[i] = b.x > 0 && grng() % 2 == 0;
+  }
+
   // The input of one beat, fixed when the beat is first driven (held at F > 1).
   struct Drive {
-    uint8_t side = 0, occ = 0;
+    uint8_t side = 0, occ = 0, occ_edge = 0, edge = 0;
     std::vector<uint32_t> cost;
   };
-  auto beat_input = [&](const sm::test::BeatInfo& b) {
+  auto beat_input = [&](size_t bi) {
+    const sm::test::BeatInfo& b = sched[bi];
     Drive d;
     d.side = b.side;
+    d.edge = bi + 1 < sched.size() ? beat_flag[bi + 1] : 0;  // s_edge: the next beat's flag
     if (b.frame >= 0) {
       d.cost = pack(vol[b.frame].pix(b.x, b.y));
-      // the frame's penalty is only guaranteed where sm_dp latches it
-      d.occ = (b.y == 0 && b.x < kS) ? occ[b.frame] : static_cast<uint8_t>(grng() & 255);
+      // the frame's penalties are only guaranteed where sm_dp latches them
+      const bool latch = b.y == 0 && b.x < kS;
+      d.occ = latch ? occ[b.frame] : static_cast<uint8_t>(grng() & 255);
+      d.occ_edge = latch ? occ_edge[b.frame] : static_cast<uint8_t>(grng() & 255);
     } else {
       d.cost = random_cost();
       d.occ = static_cast<uint8_t>(grng() & 255);
+      d.occ_edge = static_cast<uint8_t>(grng() & 255);
     }
     return d;
   };
   auto drive = [&](const Drive& d) {
     tb->s_side = d.side;
     tb->occ = d.occ;
+    tb->occ_edge = d.occ_edge;
+    tb->s_edge = d.edge;
     sm::test::set_port_words(tb->s_cost, d.cost, kDisp * kCw);
   };
   Drive first;                     // F > 1: beat 0's input, driven from reset on
   if (kF > 1 && !sched.empty()) {  // the first beat's sub-steps run on the F clocks after reset
-    first = beat_input(sched.front());
+    first = beat_input(0);
     tb->ce = 0;
     drive(first);
     for (int i = 0; i < kF; ++i) tb.tick();
@@ -173,8 +227,7 @@ int main(int argc, char** argv) {
   long passed = 0, failed = 0;
   bool order_error = false;
   for (size_t bi = 0; bi < sched.size(); ++bi) {
-    const auto& b = sched[bi];
-    const Drive in = (kF > 1 && bi == 0) ? first : beat_input(b);
+    const Drive in = (kF > 1 && bi == 0) ? first : beat_input(bi);
     for (;;) {
       const bool ce = ce_gen.next();
       tb->ce = ce;
@@ -184,6 +237,8 @@ int main(int argc, char** argv) {
         } else {  // idle cycle: everything random
           tb->s_side = grng() & 31;
           tb->occ = grng() & 255;
+          tb->occ_edge = grng() & 255;
+          tb->s_edge = grng() & 1;
           sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
         }
         tb.tick();

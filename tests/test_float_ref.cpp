@@ -122,12 +122,14 @@ TEST_CASE("float reference with every simplification on equals the bit-exact mod
   CHECK(differ == 0);
   CHECK(fa.unit == 4.0);
 
-  // Whole pipeline (post chain on) at several penalties: raw-scale penalty 4 * occ.
+  // Whole pipeline (post chain on) at several penalties: raw-scale penalty 4 * occ, the same
+  // at edges (OCC_EDGE = OCC: the edge-dependent penalty is the design's, not the paper's).
   for (int occ : {3, 6, 12, 20}) {
     sm::Regs regs = regs0;
     regs.width = sp.width;
     regs.height = sp.height;
     regs.occ = static_cast<uint8_t>(occ);
+    regs.occ_edge = regs.occ;  // the float reference has the paper's one penalty
     const auto model = sm::run_pipeline(l, r, hw, regs, false);
     INFO("occ " << occ);
     CHECK(sm::fref::run(l, r, p, 4.0 * occ) == model.post);

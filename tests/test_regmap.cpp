@@ -31,18 +31,10 @@ TEST_CASE("reset values are the model's defaults", "[regmap]") {
     hw.max_width = w;
     hw.max_height = h;
     const sm::Regs d = sm::Regs::defaults(hw);
-    CHECK(reset("WIDTH.VALUE", hw) == d.width);
-    CHECK(reset("HEIGHT.VALUE", hw) == d.height);
-    CHECK(reset("GAIN_L.VALUE", hw) == d.gain_l);
-    CHECK(reset("GAIN_R.VALUE", hw) == d.gain_r);
-    CHECK(reset("OFFSET_L.VALUE", hw) == d.offset_l);
-    CHECK(reset("OFFSET_R.VALUE", hw) == d.offset_r);
-    CHECK(reset("RECT_ENABLE.VALUE", hw) == (d.rect_enable ? 1 : 0));
-    CHECK(reset("OCC.VALUE", hw) == d.occ);
-    CHECK(reset("FILTER_ENABLE.VALUE", hw) == d.filter_enable);
-    CHECK(reset("OBJ_NEAR.VALUE", hw) == d.obj_near);
-    CHECK(reset("OBJ_TOL.VALUE", hw) == d.obj_tol);
-    CHECK(reset("OBJ_MIN_PIXELS.VALUE", hw) == d.obj_min_pixels);
+    // every value register: its reset is the default of the sm::Regs member of its name
+#define SM_X(NAME, member) CHECK(reset(#NAME ".VALUE", hw) == static_cast<int64_t>(d.member));
+    SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
     uint64_t sw = 0;
     for (int k = 0; k < 32; ++k) sw |= static_cast<uint64_t>(d.sw_table[k]) << (2 * k);
     CHECK(static_cast<uint64_t>(reset("SW_TABLE0.CODES", hw)) == (sw & 0xffffffffu));

@@ -317,6 +317,8 @@ TEST_CASE("--help shows the model's own defaults", "[unit][tools][cli]") {
                                               {"--offset-l", r.offset_l},
                                               {"--offset-r", r.offset_r},
                                               {"--occ", r.occ},
+                                              {"--occ-edge", r.occ_edge},
+                                              {"--edge-t", r.edge_t},
                                               {"--filter-enable", r.filter_enable},
                                               {"--obj-near", r.obj_near},
                                               {"--obj-tol", r.obj_tol},

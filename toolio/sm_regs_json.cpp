@@ -37,20 +37,12 @@ std::map<std::string, Set> register_setters(Regs& r) {
       for (int k = 0; k < 16; ++k) r.sw_table[16 * half + k] = static_cast<uint8_t>((v >> (2 * k)) & 3);
     };
   };
-  return {{"WIDTH", [&r](int64_t v) { r.width = static_cast<int>(v); }},
-          {"HEIGHT", [&r](int64_t v) { r.height = static_cast<int>(v); }},
-          {"GAIN_L", [&r](int64_t v) { r.gain_l = static_cast<uint16_t>(v); }},
-          {"GAIN_R", [&r](int64_t v) { r.gain_r = static_cast<uint16_t>(v); }},
-          {"OFFSET_L", [&r](int64_t v) { r.offset_l = static_cast<int16_t>(v); }},
-          {"OFFSET_R", [&r](int64_t v) { r.offset_r = static_cast<int16_t>(v); }},
-          {"RECT_ENABLE", [&r](int64_t v) { r.rect_enable = v != 0; }},
-          {"OCC", [&r](int64_t v) { r.occ = static_cast<uint8_t>(v); }},
-          {"SW_TABLE0", sw_word(0)},
-          {"SW_TABLE1", sw_word(1)},
-          {"FILTER_ENABLE", [&r](int64_t v) { r.filter_enable = static_cast<uint8_t>(v); }},
-          {"OBJ_NEAR", [&r](int64_t v) { r.obj_near = static_cast<uint8_t>(v); }},
-          {"OBJ_TOL", [&r](int64_t v) { r.obj_tol = static_cast<uint8_t>(v); }},
-          {"OBJ_MIN_PIXELS", [&r](int64_t v) { r.obj_min_pixels = static_cast<uint16_t>(v); }}};
+  // the value registers: the sm::Regs member of the register's name
+  std::map<std::string, Set> set{{"SW_TABLE0", sw_word(0)}, {"SW_TABLE1", sw_word(1)}};
+#define SM_X(NAME, member) set[#NAME] = [&r](int64_t v) { r.member = static_cast<decltype(r.member)>(v); };
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+  return set;
 }
 
 struct Range {

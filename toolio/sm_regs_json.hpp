@@ -3,7 +3,7 @@
 // (rtl/regmap.json) in lower case, with the map's ranges, plus the compile-time
 // parameters (HwConfig field names) and a calibration file:
 //
-//   width height gain_l gain_r offset_l offset_r rect_enable occ filter_enable
+//   width height gain_l gain_r offset_l offset_r rect_enable occ filter_enable occ_edge edge_t
 //   obj_near obj_tol obj_min_pixels   integers, the register's range (MIN_WIDTH etc.
 //                                     evaluated at the configuration)
 //   sw_table0 sw_table1               the SW_TABLE words (0..0xFFFFFFFF), or

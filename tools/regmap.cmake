@@ -3,22 +3,28 @@
 #   sm_regmap.vh   Verilog localparams, included inside rtl/sm_axil_regs.v
 #   sm_regmap.hpp  C++ constants + register table for test benches and the harness
 #   registers.md   documentation; docs/registers.md must equal it (ctest regmap_doc_current)
+# and, from rtl/defs.json (sideband layout, parameter limits, grid geometry):
+#   sm_defs.vh        Verilog macros, included by the RTL files that use them
+#   sm_defs_check.vh  sm_top's elaboration checks of its parameters
+#   sm_defs.hpp       the same constants for C++ (sm::defs), used by the model
 # Targets that use the outputs depend on the target sm_regmap_gen_files.
 add_executable(sm_regmap_gen ${CMAKE_CURRENT_SOURCE_DIR}/sm_regmap_gen.cpp)
 target_link_libraries(sm_regmap_gen PRIVATE nlohmann_json::nlohmann_json fmt::fmt CLI11::CLI11)
 target_compile_options(sm_regmap_gen PRIVATE ${SM_WARNINGS})
 
 set(SM_REGMAP_JSON ${SM_RTL_DIR}/regmap.json)
+set(SM_DEFS_JSON ${SM_RTL_DIR}/defs.json)
 
 set(SM_REGMAP_OUTPUTS ${SM_GEN_DIR}/sm_regmap.vh ${SM_GEN_DIR}/sm_regmap.hpp
-                      ${SM_GEN_DIR}/registers.md)
+                      ${SM_GEN_DIR}/registers.md ${SM_GEN_DIR}/sm_defs.vh
+                      ${SM_GEN_DIR}/sm_defs_check.vh ${SM_GEN_DIR}/sm_defs.hpp)
 add_custom_command(
   OUTPUT ${SM_REGMAP_OUTPUTS}
-  COMMAND sm_regmap_gen ${SM_REGMAP_JSON} ${SM_GEN_DIR}
+  COMMAND sm_regmap_gen ${SM_REGMAP_JSON} ${SM_GEN_DIR} --defs ${SM_DEFS_JSON}
   # the generator leaves unchanged files alone; touch so the outputs are newer than the json
   COMMAND ${CMAKE_COMMAND} -E touch_nocreate ${SM_REGMAP_OUTPUTS}
-  DEPENDS sm_regmap_gen ${SM_REGMAP_JSON}
-  COMMENT "Generating the register map from rtl/regmap.json"
+  DEPENDS sm_regmap_gen ${SM_REGMAP_JSON} ${SM_DEFS_JSON}
+  COMMENT "Generating the register map and definitions from rtl/regmap.json, rtl/defs.json"
   VERBATIM)
 add_custom_target(sm_regmap_gen_files ALL DEPENDS ${SM_REGMAP_OUTPUTS})
 

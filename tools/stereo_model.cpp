@@ -52,6 +52,7 @@ int run(int argc, char** argv) {
   sm::Regs r = sm::Regs::defaults(hw);
   // Option defaults shown by --help are the model's own (HwConfig / Regs::defaults).
   int gain_l = r.gain_l, gain_r = r.gain_r, offset_l = r.offset_l, offset_r = r.offset_r, occ = r.occ;
+  int occ_edge = r.occ_edge, edge_t = r.edge_t;
   int filter_enable = r.filter_enable, obj_near = r.obj_near, obj_tol = r.obj_tol, obj_min_pixels = r.obj_min_pixels;
   bool no_rect = !r.rect_enable, verbose = false;
   std::string sw_table;
@@ -91,7 +92,11 @@ int run(int argc, char** argv) {
   auto* o_ol = app.add_option("--offset-l", offset_l, "left offset -256..255")->capture_default_str();
   auto* o_or = app.add_option("--offset-r", offset_r, "right offset -256..255")->capture_default_str();
   auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
-  auto* o_occ = app.add_option("--occ", occ, "DP occlusion penalty 0..255")->capture_default_str();
+  auto* o_occ = app.add_option("--occ", occ, "DP occlusion penalty 0..255 (flat left image)")->capture_default_str();
+  auto* o_oce = app.add_option("--occ-edge", occ_edge, "DP occlusion penalty 0..255 at an edge of the left image")
+                    ->capture_default_str();
+  auto* o_edt = app.add_option("--edge-t", edge_t, "edge threshold 0..255: |L(x) - L(x-1)| > edge-t is an edge")
+                    ->capture_default_str();
   auto* o_swt =
       app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated")->capture_default_str();
   auto* o_fe = app.add_option("--filter-enable", filter_enable,
@@ -163,6 +168,8 @@ int run(int argc, char** argv) {
   if (o_or->count()) r.offset_r = in_range("offset-r", offset_r, -256, 255);
   if (o_nr->count()) r.rect_enable = !no_rect;
   if (o_occ->count()) r.occ = in_range("occ", occ, 0, 255);
+  if (o_oce->count()) r.occ_edge = in_range("occ-edge", occ_edge, 0, 255);
+  if (o_edt->count()) r.edge_t = in_range("edge-t", edge_t, 0, 255);
   if (o_fe->count()) r.filter_enable = in_range("filter-enable", filter_enable, 0, 15);
   if (o_on->count()) r.obj_near = in_range("obj-near", obj_near, 0, 255);
   if (o_ot->count()) r.obj_tol = in_range("obj-tol", obj_tol, 0, 255);

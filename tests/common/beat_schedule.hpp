@@ -8,9 +8,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sm_defs.hpp"
+
 namespace sm::test {
 
-enum SideBit : uint8_t { kReal = 1, kSof = 2, kSol = 4 };
+// The sideband's flags, as rtl/defs.json lays them out (sm_defs.hpp).
+enum SideBit : uint8_t { kReal = defs::kSideReal, kSof = defs::kSideSof, kSol = defs::kSideSol };
 
 struct BeatInfo {
   uint8_t side = 0;  // the 5-bit sideband
@@ -30,7 +33,7 @@ inline std::vector<BeatInfo> make_schedule(int w, const std::vector<int>& height
       b.frame = real ? frame : -1;
       b.x = x;
       b.y = y;
-      b.side = static_cast<uint8_t>((ftag & 3) << 3);
+      b.side = static_cast<uint8_t>((ftag & 3) << defs::kSideTagLsb);
       if (real) b.side |= kReal;
       if (real && x == 0 && y == 0) b.side |= kSof;
       if (x == 0) b.side |= kSol;

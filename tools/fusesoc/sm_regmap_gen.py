@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""FuseSoC generator of sm_stereo.core: the register map include sm_regmap.vh.
+"""FuseSoC generator of sm_stereo.core: the generated Verilog includes.
 
 rtl/sm_axil_regs.v includes sm_regmap.vh, which tools/sm_regmap_gen writes from
-rtl/regmap.json (the single source of truth, also used by the CMake build). This
+rtl/regmap.json (the single source of truth, also used by the CMake build); most RTL
+files include sm_defs.vh and sm_top includes sm_defs_check.vh, written from
+rtl/defs.json (sideband layout, parameter limits, grid geometry). This
 generator runs that same C++ generator, so nothing generated is committed:
 
 - the executable named by the environment variable SM_REGMAP_GEN (the CMake build's
@@ -20,7 +22,8 @@ import subprocess
 import sys
 
 
-DEFAULTS = {"regmap_json": "rtl/regmap.json", "regmap_gen_src": "tools/sm_regmap_gen.cpp"}
+DEFAULTS = {"regmap_json": "rtl/regmap.json", "defs_json": "rtl/defs.json",
+            "regmap_gen_src": "tools/sm_regmap_gen.cpp"}
 
 
 def read_input(path):
@@ -60,17 +63,20 @@ def main():
         sys.exit("usage: sm_regmap_gen.py <generator input yml>")
     files_root, vlnv, params = read_input(sys.argv[1])
     exe = generator_exe(os.path.join(files_root, params["regmap_gen_src"]))
-    subprocess.run([exe, os.path.join(files_root, params["regmap_json"]), "."], check=True)
-    # only the Verilog include is part of the core; the C++ header and the doc stay here
+    subprocess.run([exe, os.path.join(files_root, params["regmap_json"]), ".", "--defs",
+                    os.path.join(files_root, params["defs_json"])], check=True)
+    # only the Verilog includes are part of the core; the C++ headers and the doc stay here
     with open("sm_regmap.core", "w") as f:
         f.write(
             "CAPI=2:\n"
             f"name: {vlnv}\n"
-            "description: sm_regmap.vh generated from rtl/regmap.json\n"
+            "description: sm_regmap.vh, sm_defs.vh, sm_defs_check.vh generated from rtl/regmap.json, rtl/defs.json\n"
             "filesets:\n"
             "  rtl:\n"
             "    files:\n"
             "      - sm_regmap.vh: {is_include_file: true}\n"
+            "      - sm_defs.vh: {is_include_file: true}\n"
+            "      - sm_defs_check.vh: {is_include_file: true}\n"
             "    file_type: verilogSource\n"
             "targets:\n"
             "  default:\n"
