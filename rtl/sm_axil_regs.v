@@ -177,6 +177,14 @@ module sm_axil_regs #(
     end
   endfunction
 
+  // CONTROL's read/write fields (SOFT_RESET and CLEAR_ERRORS read as 0)
+  reg [31:0] control_own;
+  always @(*) begin
+    control_own = 32'd0;
+    control_own[SM_CONTROL_ENABLE_LSB]    = enable;
+    control_own[SM_CONTROL_GRID_BANK_LSB] = grid_bank_q;
+  end
+
   // Host-visible value of a register (0 for addresses outside the register block).
   function [31:0] host_value;
     input [ADDR_W-1:0] a;
@@ -190,10 +198,7 @@ module sm_axil_regs #(
           host_value[SM_VERSION_MAJOR_LSB +: SM_VERSION_MAJOR_W] =
               SM_VERSION_MAJOR_RESET[SM_VERSION_MAJOR_W-1:0];
         end
-        SM_CONTROL_ADDR: begin
-          host_value[SM_CONTROL_ENABLE_LSB]    = enable;
-          host_value[SM_CONTROL_GRID_BANK_LSB] = grid_bank_q;
-        end
+        SM_CONTROL_ADDR: host_value = control_own;
         SM_STATUS_ADDR: begin
           host_value[SM_STATUS_FRAME_COUNT_LSB +: SM_STATUS_FRAME_COUNT_W] = frame_count_q;
           host_value[SM_STATUS_GRID_BANK_ACTIVE_LSB] = cfg_grid_bank;
@@ -271,7 +276,13 @@ module sm_axil_regs #(
   wire do_write = aw_v_q && w_v_q && (!s_axil_bvalid || s_axil_bready);
 
   wire [31:0] strb_mask = {{8{w_s_q[3]}}, {8{w_s_q[2]}}, {8{w_s_q[1]}}, {8{w_s_q[0]}}};
-  wire [31:0] wm  = (w_d_q & strb_mask) | (host_value(aw_a_q) & ~strb_mask);  // rw fields
+  // A write merges the strobed bytes with the register's own value, not with the read-back
+  // multiplexer's: each merge is used only at its own address, and the clamps behind it
+  // stay off the multiplexer's path (one LUT level more at the vga point otherwise).
+  function [31:0] wm;
+    input [31:0] own;
+    wm = (w_d_q & strb_mask) | (own & ~strb_mask);
+  endfunction
   wire [31:0] w1  = w_d_q & strb_mask;                                       // w1c / wp fields
   wire [ADDR_W-1:0] wa = {aw_a_q[ADDR_W-1:2], 2'b00};
 
@@ -288,18 +299,21 @@ module sm_axil_regs #(
 
   // Clamped values fit their fields, so only the low bits are used.
   /* verilator lint_off UNUSEDSIGNAL */
-  wire [32:0] c_width  = clamp_u(wm, SM_WIDTH_VALUE_MIN, SM_WIDTH_VALUE_MAX);
-  wire [32:0] c_height = clamp_u(wm, SM_HEIGHT_VALUE_MIN, SM_HEIGHT_VALUE_MAX);
-  wire [32:0] c_gain_l = clamp_u(wm, SM_GAIN_L_VALUE_MIN, SM_GAIN_L_VALUE_MAX);
-  wire [32:0] c_gain_r = clamp_u(wm, SM_GAIN_R_VALUE_MIN, SM_GAIN_R_VALUE_MAX);
-  wire [32:0] c_off_l  = clamp_s(wm, SM_OFFSET_L_VALUE_MIN, SM_OFFSET_L_VALUE_MAX);
-  wire [32:0] c_off_r  = clamp_s(wm, SM_OFFSET_R_VALUE_MIN, SM_OFFSET_R_VALUE_MAX);
-  wire [32:0] c_occ    = clamp_u(wm, SM_OCC_VALUE_MIN, SM_OCC_VALUE_MAX);
-  wire [32:0] c_occ_e  = clamp_u(wm, SM_OCC_EDGE_VALUE_MIN, SM_OCC_EDGE_VALUE_MAX);
-  wire [32:0] c_edge_t = clamp_u(wm, SM_EDGE_T_VALUE_MIN, SM_EDGE_T_VALUE_MAX);
-  wire [32:0] c_near   = clamp_u(wm, SM_OBJ_NEAR_VALUE_MIN, SM_OBJ_NEAR_VALUE_MAX);
-  wire [32:0] c_tol    = clamp_u(wm, SM_OBJ_TOL_VALUE_MIN, SM_OBJ_TOL_VALUE_MAX);
-  wire [32:0] c_minpix = clamp_u(wm, SM_OBJ_MIN_PIXELS_VALUE_MIN, SM_OBJ_MIN_PIXELS_VALUE_MAX);
+  wire [32:0] c_width  = clamp_u(wm({{(32-XW){1'b0}}, width_q}), SM_WIDTH_VALUE_MIN, SM_WIDTH_VALUE_MAX);
+  wire [32:0] c_height = clamp_u(wm({{(32-YW){1'b0}}, height_q}), SM_HEIGHT_VALUE_MIN, SM_HEIGHT_VALUE_MAX);
+  wire [32:0] c_gain_l = clamp_u(wm({22'd0, gain_l_q}), SM_GAIN_L_VALUE_MIN, SM_GAIN_L_VALUE_MAX);
+  wire [32:0] c_gain_r = clamp_u(wm({22'd0, gain_r_q}), SM_GAIN_R_VALUE_MIN, SM_GAIN_R_VALUE_MAX);
+  wire [32:0] c_off_l  = clamp_s(wm({{23{offset_l_q[8]}}, offset_l_q}), SM_OFFSET_L_VALUE_MIN, SM_OFFSET_L_VALUE_MAX);
+  wire [32:0] c_off_r  = clamp_s(wm({{23{offset_r_q[8]}}, offset_r_q}), SM_OFFSET_R_VALUE_MIN, SM_OFFSET_R_VALUE_MAX);
+  wire [32:0] c_occ    = clamp_u(wm({24'd0, occ_q}), SM_OCC_VALUE_MIN, SM_OCC_VALUE_MAX);
+  wire [32:0] c_occ_e  = clamp_u(wm({24'd0, occ_edge_q}), SM_OCC_EDGE_VALUE_MIN, SM_OCC_EDGE_VALUE_MAX);
+  wire [32:0] c_edge_t = clamp_u(wm({24'd0, edge_t_q}), SM_EDGE_T_VALUE_MIN, SM_EDGE_T_VALUE_MAX);
+  wire [32:0] c_near   = clamp_u(wm({24'd0, obj_near_q}), SM_OBJ_NEAR_VALUE_MIN, SM_OBJ_NEAR_VALUE_MAX);
+  wire [32:0] c_tol    = clamp_u(wm({24'd0, obj_tol_q}), SM_OBJ_TOL_VALUE_MIN, SM_OBJ_TOL_VALUE_MAX);
+  wire [32:0] c_minpix = clamp_u(wm({16'd0, obj_min_pixels_q}), SM_OBJ_MIN_PIXELS_VALUE_MIN, SM_OBJ_MIN_PIXELS_VALUE_MAX);
+  wire [31:0] c_control = wm(control_own);
+  wire [31:0] c_rect_en = wm({31'd0, rect_enable_q});
+  wire [31:0] c_filter  = wm({28'd0, filter_enable_q});
   /* verilator lint_on UNUSEDSIGNAL */
   reg         clamped;
   always @(*) begin
@@ -408,8 +422,8 @@ module sm_axil_regs #(
       if (wr_reg) begin
         case (wa)
           SM_CONTROL_ADDR: begin
-            enable      <= wm[SM_CONTROL_ENABLE_LSB];
-            grid_bank_q <= wm[SM_CONTROL_GRID_BANK_LSB];
+            enable      <= c_control[SM_CONTROL_ENABLE_LSB];
+            grid_bank_q <= c_control[SM_CONTROL_GRID_BANK_LSB];
             soft_reset  <= w1[SM_CONTROL_SOFT_RESET_LSB];
           end
           SM_WIDTH_ADDR:  width_q <= c_width[XW-1:0];
@@ -418,13 +432,13 @@ module sm_axil_regs #(
           SM_GAIN_R_ADDR: gain_r_q <= c_gain_r[9:0];
           SM_OFFSET_L_ADDR: offset_l_q <= c_off_l[8:0];
           SM_OFFSET_R_ADDR: offset_r_q <= c_off_r[8:0];
-          SM_RECT_ENABLE_ADDR: rect_enable_q <= wm[0];
+          SM_RECT_ENABLE_ADDR: rect_enable_q <= c_rect_en[0];
           SM_OCC_ADDR: occ_q <= c_occ[7:0];
           SM_OCC_EDGE_ADDR: occ_edge_q <= c_occ_e[7:0];
           SM_EDGE_T_ADDR: edge_t_q <= c_edge_t[7:0];
-          SM_SW_TABLE0_ADDR: sw_table_q[31:0] <= wm;
-          SM_SW_TABLE1_ADDR: sw_table_q[63:32] <= wm;
-          SM_FILTER_ENABLE_ADDR: filter_enable_q <= wm[3:0];
+          SM_SW_TABLE0_ADDR: sw_table_q[31:0] <= wm(sw_table_q[31:0]);
+          SM_SW_TABLE1_ADDR: sw_table_q[63:32] <= wm(sw_table_q[63:32]);
+          SM_FILTER_ENABLE_ADDR: filter_enable_q <= c_filter[3:0];
           SM_OBJ_NEAR_ADDR: obj_near_q <= c_near[7:0];
           SM_OBJ_TOL_ADDR: obj_tol_q <= c_tol[7:0];
           SM_OBJ_MIN_PIXELS_ADDR: obj_min_pixels_q <= c_minpix[15:0];

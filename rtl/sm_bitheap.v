@@ -35,6 +35,9 @@ module sm_bitheap #(
   localparam NCP = NC + 2;  // columns in the tables; the top two stay empty
   localparam MS  = 16;      // stages in the tables (1,023 bits in a column need 6)
 
+  // Constant functions: they run while the design elaborates, never in simulation, so
+  // their statements are no coverage points.
+  /* verilator coverage_off */
   // Bits of the input heap (its own function: the port width must not wait for the
   // shape tables).
   function integer h0_total(input [NC*32-1:0] h0);
@@ -135,6 +138,7 @@ module sm_bitheap #(
       for (k = 0; k < st; k = k + 1) hoff = hoff + OFFS[(k*NCP + NC)*HB +: HB];
     end
   endfunction
+  /* verilator coverage_on */
   localparam HTOT = hoff(NS + 1);
 
   generate

@@ -64,7 +64,9 @@ sm_vtop(vtop_small_fold ${SM_SMALL_FOLD_PARAMS})
 # sm_add_sim(<target> <vtop library>)
 function(sm_add_sim target lib)
   add_executable(${target} ${CMAKE_CURRENT_SOURCE_DIR}/stereo_sim.cpp)
-  target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR})
+  # tests/common: sm_coverage.hpp, so the tests that run stereo_sim count in the coverage
+  target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR}
+                                               ${CMAKE_SOURCE_DIR}/tests/common)
   target_link_libraries(${target} PRIVATE ${lib} sm_model sm_toolio fmt::fmt CLI11::CLI11
                                           nlohmann_json::nlohmann_json ${OpenCV_LIBS})
   target_compile_definitions(${target} PRIVATE

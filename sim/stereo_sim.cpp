@@ -29,6 +29,7 @@
 #include "pipeline.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "sm_coverage.hpp"
 #include "sm_host.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
@@ -517,6 +518,7 @@ int main(int argc, char** argv) {
     const auto simulate = [&](auto tag) {
       using Top = typename decltype(tag)::type;
       sm::Testbench<Top> tb;
+      sm::CoverageOnExit cov{tb->contextp()};  // the coverage build's data (SM_COVERAGE_FILE)
       // Each scope must hold at least one traced signal: a trace of it alone is written
       // and read back before the run (no clock moves), and --wave-scopes lists them all.
       if (wave_list_scopes || !wave_scopes.empty()) {

@@ -12,6 +12,7 @@
 #if defined(SM_COVERAGE) && SM_COVERAGE
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 #include <verilated_cov.h>
@@ -32,12 +33,13 @@ class CoverageOnExit {
     if (!ctx_) return;
     const char* env = std::getenv("SM_COVERAGE_FILE");
     if (env && *env) {
-      static int n = 0;  // contexts written by this process
+      // The first free name of <test>.dat, <test>.2.dat, ...: a second model in this
+      // process, or another process of the same test (a test that runs stereo_sim
+      // several times), must not overwrite the data already written.
       std::string path = env;
-      if (++n > 1) {
-        const auto dot = path.rfind(".dat");
-        path = (dot == std::string::npos ? path : path.substr(0, dot)) + "." + std::to_string(n) + ".dat";
-      }
+      const auto dot = path.rfind(".dat");
+      const std::string stem = dot == std::string::npos ? path : path.substr(0, dot);
+      for (int n = 2; std::ifstream(path).good(); ++n) path = stem + "." + std::to_string(n) + ".dat";
       // one point per instance (not summed over a model's instances): a toggle point is
       // covered when one instance saw both edges (tools/sm_coverage.cpp)
       ctx_->coveragep()->forcePerInstance(true);
