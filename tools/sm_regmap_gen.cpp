@@ -462,7 +462,27 @@ struct Defs {
   std::vector<Limit> limits;
   int grid_shift = 0, grid_frac = 0;
   std::string grid_desc;
+  struct Constant {
+    std::string name, desc;
+    int64_t value = 0;
+  };
+  std::vector<Constant> constants;  // named numbers both languages use
 };
+
+// AGG_PIPE_BEATS -> AggPipeBeats (the C++ constant kAggPipeBeats)
+std::string camel(const std::string& upper) {
+  std::string o;
+  bool up = true;
+  for (char c : upper) {
+    if (c == '_') {
+      up = true;
+      continue;
+    }
+    o += up ? c : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    up = false;
+  }
+  return o;
+}
 
 Defs parse_defs(const json& j) {
   Defs d;
@@ -493,6 +513,15 @@ Defs parse_defs(const json& j) {
   d.grid_frac = static_cast<int>(parse_num(g.at("frac"), "grid.frac"));
   d.grid_desc = g.value("desc", "");
   if (d.grid_shift < 1 || d.grid_shift > 8 || d.grid_frac < 0 || d.grid_frac > 8) fail("grid: shift 1..8, frac 0..8");
+  for (const auto& c : j.value("constants", json::array())) {
+    Defs::Constant x;
+    x.name = c.at("name").get<std::string>();
+    x.value = parse_num(c.at("value"), "constants." + x.name);
+    x.desc = c.value("desc", "");
+    if (x.name.empty() || x.name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos)
+      fail("constants: name '" + x.name + "' must be upper case");
+    d.constants.push_back(x);
+  }
   return d;
 }
 
@@ -520,6 +549,12 @@ std::string gen_defs_vh(const Defs& d) {
     o << fmt::format("`define SM_{0}_MIN {1}\n`define SM_{0}_MAX {2}  // {3}\n", l.name, l.min, l.max, l.desc);
   o << "\n// Bits of a counter or coordinate that holds 0..n.\n"
        "`define SM_COUNT_W(n) $clog2((n) + 1)\n";
+  if (!d.constants.empty()) o << "\n";
+  for (const auto& c : d.constants) o << fmt::format("`define SM_{} {}  // {}\n", c.name, c.value, c.desc);
+  o << "\n// An illegal parameter combination: inside a generate region,\n"
+       "//   `SM_BAD_PARAM(g_bad_x, <illegal when true>, (\"sm_block: X (%0d) must be ...\", X))\n"
+       "// makes Yosys stop at elaboration and Verilator and Icarus stop at time 0.\n"
+       "`define SM_BAD_PARAM(label, bad, msg) if (bad) begin : label initial $error msg; end\n";
   o << "\n// " << d.grid_desc << "\n";
   o << fmt::format("`define SM_GRID_SHIFT {}\n`define SM_GRID_FRAC {}\n", d.grid_shift, d.grid_frac);
   o << "// grid points along an axis of n pixels, and the address bits of that axis (at least 2)\n"
@@ -540,8 +575,8 @@ std::string gen_defs_check_vh(const Defs& d) {
     std::string cond = fmt::format("{0} < `SM_{0}_MIN || {0} > `SM_{0}_MAX", l.name);
     if (l.parity == "even") cond += fmt::format(" || {} % 2 != 0", l.name);
     if (l.parity == "odd") cond += fmt::format(" || {} % 2 != 1", l.name);
-    o << fmt::format("  if ({}) begin : g_bad_{}\n    initial $error(\"sm_top: {} (%0d) must be {}\", {});\n  end\n",
-                     cond, lower, l.name, limit_text(l), l.name);
+    o << fmt::format("  `SM_BAD_PARAM(g_bad_{}, {},\n                (\"sm_top: {} (%0d) must be {}\", {}))\n", lower,
+                     cond, l.name, limit_text(l), l.name);
   }
   o << "endgenerate\n";
   return o.str();
@@ -593,6 +628,9 @@ std::string gen_defs_hpp(const Defs& d) {
   o << "\n// " << d.grid_desc << "\n";
   o << fmt::format("constexpr int kGridShift = {};\nconstexpr int kGridFrac = {};\n", d.grid_shift, d.grid_frac);
   o << "constexpr int grid_pts(int n) { return ((n + (1 << kGridShift) - 1) >> kGridShift) + 1; }  // `SM_GRID_PTS\n";
+  if (!d.constants.empty()) o << "\n";
+  for (const auto& c : d.constants)
+    o << fmt::format("constexpr int k{} = {};  // `SM_{}: {}\n", camel(c.name), c.value, c.name, c.desc);
   o << "\n}  // namespace sm::defs\n";
   return o.str();
 }
