@@ -1,26 +1,32 @@
 // Input sequencer sm_seq: the framing rules (docs/streams.md, "Stream faults").
 #include "seq.hpp"
 
+#include <array>
 #include <stdexcept>
+#include <string>
+
+#include "sm_regmap.hpp"  // generated from rtl/regmap.json
 
 namespace sm {
 
+// The fault bits are ERR_FLAGS' first fields, in the same order.
+static_assert(regmap::kERR_FLAGS_SHORT_LINE_LSB == 0 && regmap::kERR_FLAGS_LONG_LINE_LSB == 1 &&
+                  regmap::kERR_FLAGS_MISSING_SOF_LSB == 2 && regmap::kERR_FLAGS_EXTRA_SOF_LSB == 3 &&
+                  regmap::kERR_FLAGS_FEW_LINES_LSB == 4 && regmap::kERR_FLAGS_MANY_LINES_LSB == 5,
+              "SeqFault and the register map's ERR_FLAGS disagree");
+
 const char* seq_fault_name(SeqFault f) {
-  switch (f) {
-    case SeqFault::kShortLine:
-      return "SHORT_LINE";
-    case SeqFault::kLongLine:
-      return "LONG_LINE";
-    case SeqFault::kMissingSof:
-      return "MISSING_SOF";
-    case SeqFault::kExtraSof:
-      return "EXTRA_SOF";
-    case SeqFault::kFewLines:
-      return "FEW_LINES";
-    case SeqFault::kManyLines:
-      return "MANY_LINES";
-  }
-  return "?";
+  static const auto names = [] {
+    std::array<std::string, kNumSeqFaults> n;
+    const std::string reg = "ERR_FLAGS.";
+    for (const auto& field : regmap::fields()) {
+      const std::string name = field.name;
+      if (name.compare(0, reg.size(), reg) == 0 && field.lsb < kNumSeqFaults)
+        n[static_cast<size_t>(field.lsb)] = name.substr(reg.size());
+    }
+    return n;
+  }();
+  return names[seq_fault_bit(f)].c_str();
 }
 
 void Sequencer::reset() {

@@ -105,23 +105,16 @@ module sm_axil_regs #(
   localparam [OWW:0] OBJ_END   = OBJ_IDX_END[OWW:0];
 
   generate
-    if (PB > SM_GRID_POINT_BITS) begin : g_bad_grid
-      initial $error("sm_axil_regs: %0d grid points exceed the grid window", GRID_POINTS);
-    end
-    if (4 * OBJ_IDX_END > SM_OBJ_SIZE) begin : g_bad_obj
-      initial $error("sm_axil_regs: MAX_OBJECTS (%0d) exceeds the object window", MAX_OBJECTS);
-    end
-    if (SM_OBJ_BASE % SM_OBJ_SIZE != 0) begin : g_bad_obj_base
-      initial $error("sm_axil_regs: the object window must be aligned to its size");
-    end
-    if (LEVEL_W < 1 || LEVEL_W > SM_IN_FIFO_LEVEL_MAX_W) begin : g_bad_level
-      initial $error("sm_axil_regs: LEVEL_W (%0d) must be 1..%0d", LEVEL_W, SM_IN_FIFO_LEVEL_MAX_W);
-    end
-    if (MAX_WIDTH < `SM_MAX_WIDTH_MIN || MAX_WIDTH > `SM_MAX_WIDTH_MAX ||
-        MAX_HEIGHT < `SM_MAX_HEIGHT_MIN || MAX_HEIGHT > `SM_MAX_HEIGHT_MAX) begin : g_bad_size
-      initial $error("sm_axil_regs: MAX_WIDTH / MAX_HEIGHT must be %0d..%0d / %0d..%0d", `SM_MAX_WIDTH_MIN,
-                     `SM_MAX_WIDTH_MAX, `SM_MAX_HEIGHT_MIN, `SM_MAX_HEIGHT_MAX);
-    end
+    `SM_BAD_PARAM(g_bad_grid, PB > SM_GRID_POINT_BITS,
+                  ("sm_axil_regs: %0d grid points exceed the grid window", GRID_POINTS))
+    `SM_BAD_PARAM(g_bad_obj, 4 * OBJ_IDX_END > SM_OBJ_SIZE,
+                  ("sm_axil_regs: MAX_OBJECTS (%0d) exceeds the object window", MAX_OBJECTS))
+    `SM_BAD_PARAM(g_bad_obj_base, SM_OBJ_BASE % SM_OBJ_SIZE != 0,
+                  ("sm_axil_regs: the object window must be aligned to its size"))
+    `SM_BAD_PARAM(g_bad_level, LEVEL_W < 1 || LEVEL_W > SM_IN_FIFO_LEVEL_MAX_W,
+                  ("sm_axil_regs: LEVEL_W (%0d) must be 1..%0d", LEVEL_W, SM_IN_FIFO_LEVEL_MAX_W))
+    `SM_BAD_PARAM(g_bad_size, MAX_WIDTH < `SM_MAX_WIDTH_MIN || MAX_WIDTH > `SM_MAX_WIDTH_MAX || MAX_HEIGHT < `SM_MAX_HEIGHT_MIN || MAX_HEIGHT > `SM_MAX_HEIGHT_MAX,
+                  ("sm_axil_regs: MAX_WIDTH / MAX_HEIGHT must be %0d..%0d / %0d..%0d", `SM_MAX_WIDTH_MIN, `SM_MAX_WIDTH_MAX, `SM_MAX_HEIGHT_MIN, `SM_MAX_HEIGHT_MAX))
   endgenerate
 
   // ---- host copy

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Bit-heap compressor for L independent lanes side by side: the heap of bits of
 // weights 2^0 .. 2^(NC-1) (column c holds H0[c] bits of weight 2^c) is reduced to two
 // rows whose sum is the heap's sum. Shared by the Hamming popcounts (sm_popcount) and
@@ -142,18 +143,11 @@ module sm_bitheap #(
   localparam HTOT = hoff(NS + 1);
 
   generate
-    if (NC < 1 || NC > 32) begin : g_bad_nc
-      initial $error("sm_bitheap: NC (%0d) must be 1..32", NC);
-    end
-    if (L < 1 || L > 4096) begin : g_bad_l
-      initial $error("sm_bitheap: L (%0d) must be 1..4096", L);
-    end
-    if (HIN < 1) begin : g_bad_h0
-      initial $error("sm_bitheap: the heap H0 holds no bits");
-    end
-    if (LAST_MAX > 2) begin : g_bad_depth
-      initial $error("sm_bitheap: a column of H0 is too tall for %0d stages", MS);
-    end
+    `SM_BAD_PARAM(g_bad_nc, NC < 1 || NC > 32, ("sm_bitheap: NC (%0d) must be 1..32", NC))
+    `SM_BAD_PARAM(g_bad_l, L < 1 || L > 4096, ("sm_bitheap: L (%0d) must be 1..4096", L))
+    `SM_BAD_PARAM(g_bad_h0, HIN < 1, ("sm_bitheap: the heap H0 holds no bits"))
+    `SM_BAD_PARAM(g_bad_depth, LAST_MAX > 2,
+                  ("sm_bitheap: a column of H0 is too tall for %0d stages", MS))
   endgenerate
 
   // ---- compression stages ---------------------------------------------------------

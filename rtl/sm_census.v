@@ -33,9 +33,8 @@ module sm_census #(
   localparam C  = CENSUS;
 
   generate
-    if (CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0) begin : g_bad_census
-      initial $error("sm_census: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX);
-    end
+    `SM_BAD_PARAM(g_bad_census, CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0,
+                  ("sm_census: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX))
   endgenerate
 
   // ---- window control for the entering beat --------------------------------------

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // The last N columns of a sliding window (sm_census: CENSUS columns of pixels;
 // sm_sw_aggregate: SW columns of per-level costs) in a circular buffer of LUT-RAM
 // instead of a shift register of flip-flops (at the paper configuration this turns
@@ -24,12 +25,8 @@ module sm_colwin #(
   localparam PTW = $clog2(N);  // circular-buffer index
 
   generate
-    if (N < 3 || N > 64) begin : g_bad_n
-      initial $error("sm_colwin: N (%0d) must be 3..64", N);
-    end
-    if (W < 1) begin : g_bad_w
-      initial $error("sm_colwin: W (%0d) must be at least 1", W);
-    end
+    `SM_BAD_PARAM(g_bad_n, N < 3 || N > 64, ("sm_colwin: N (%0d) must be 3..64", N))
+    `SM_BAD_PARAM(g_bad_w, W < 1, ("sm_colwin: W (%0d) must be at least 1", W))
   endgenerate
 
   /* verilator lint_off WIDTH */  // small constants truncated to the index width

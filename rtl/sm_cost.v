@@ -54,15 +54,11 @@ module sm_cost #(
   /* verilator lint_on WIDTH */
 
   generate
-    if (CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0) begin : g_bad_census
-      initial $error("sm_cost: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX);
-    end
-    if (DISP < 2 || DISP > 256) begin : g_bad_disp
-      initial $error("sm_cost: DISP (%0d) must be 2..256", DISP);
-    end
-    if (PU < 1 || PU > DISP || DISP % PU != 0) begin : g_bad_pu
-      initial $error("sm_cost: PU (%0d) must divide DISP (%0d)", PU, DISP);
-    end
+    `SM_BAD_PARAM(g_bad_census, CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0,
+                  ("sm_cost: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX))
+    `SM_BAD_PARAM(g_bad_disp, DISP < 2 || DISP > 256, ("sm_cost: DISP (%0d) must be 2..256", DISP))
+    `SM_BAD_PARAM(g_bad_pu, PU < 1 || PU > DISP || DISP % PU != 0,
+                  ("sm_cost: PU (%0d) must divide DISP (%0d)", PU, DISP))
   endgenerate
   wire unused_width = &width;
 

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // One census bit of sm_cost's folded right-census delay line: L chained segments of
 // DEPTH taps each, read at a common tap address. Each segment is a shift register with
 // an indexed read, the pattern Yosys' xilinx_srl -variable maps to one SRL16E/SRLC32E
@@ -23,12 +24,9 @@ module sm_cost_srl #(
   localparam AW = $clog2(DEPTH);
 
   generate
-    if (DEPTH < 2 || DEPTH > 256) begin : g_bad_depth
-      initial $error("sm_cost_srl: DEPTH (%0d) must be 2..256", DEPTH);
-    end
-    if (L < 1) begin : g_bad_l
-      initial $error("sm_cost_srl: L (%0d) must be at least 1", L);
-    end
+    `SM_BAD_PARAM(g_bad_depth, DEPTH < 2 || DEPTH > 256,
+                  ("sm_cost_srl: DEPTH (%0d) must be 2..256", DEPTH))
+    `SM_BAD_PARAM(g_bad_l, L < 1, ("sm_cost_srl: L (%0d) must be at least 1", L))
   endgenerate
 
   wire [L-1:0] d_seg;  // what each segment shifts in

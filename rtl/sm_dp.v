@@ -88,21 +88,14 @@ module sm_dp #(
   localparam DEC_AW = (F > 1) ? AW + 1 + GW : AW + 1;  // decision address {bank, t[, g]}
 
   generate
-    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_dp: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
-    end
-    if (CW < 1 || CW > 8) begin : g_bad_cw
-      initial $error("sm_dp: CW (%0d) must be 1..8", CW);
-    end
-    if (S + P + 1 > MAX_WIDTH) begin : g_bad_width
-      initial $error("sm_dp: MAX_WIDTH (%0d) must be at least DISP/2 + 3", MAX_WIDTH);
-    end
-    if (RING_MIN < 2) begin : g_bad_ring
-      initial $error("sm_dp: RING_MIN (%0d) must be at least 2", RING_MIN);
-    end
-    if (PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0) begin : g_bad_pu
-      initial $error("sm_dp: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP);
-    end
+    `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
+                  ("sm_dp: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX))
+    `SM_BAD_PARAM(g_bad_cw, CW < 1 || CW > 8, ("sm_dp: CW (%0d) must be 1..8", CW))
+    `SM_BAD_PARAM(g_bad_width, S + P + 1 > MAX_WIDTH,
+                  ("sm_dp: MAX_WIDTH (%0d) must be at least DISP/2 + 3", MAX_WIDTH))
+    `SM_BAD_PARAM(g_bad_ring, RING_MIN < 2, ("sm_dp: RING_MIN (%0d) must be at least 2", RING_MIN))
+    `SM_BAD_PARAM(g_bad_pu, PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0,
+                  ("sm_dp: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP))
   endgenerate
 
   // ---- beat position -----------------------------------------------------------

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // The arithmetic of one trellis level (docs/algorithm.md, section 6), without state and
 // cost skew: sm_dp_pe wraps it with its register and skew (one PE per level), and the
 // folded array (sm_dp with F = DISP/PU > 1) uses it as a lane whose state and skew live
@@ -27,9 +28,8 @@ module sm_dp_fpe #(
     output wire [1:0]       dec      // choice of this sub-step's occlusion node
 );
   generate
-    if (ACC_W <= 8 || CW < 1 || CW >= ACC_W) begin : g_bad_w
-      initial $error("sm_dp_fpe: need 8 < ACC_W (%0d) and 1 <= CW (%0d) < ACC_W", ACC_W, CW);
-    end
+    `SM_BAD_PARAM(g_bad_w, ACC_W <= 8 || CW < 1 || CW >= ACC_W,
+                  ("sm_dp_fpe: need 8 < ACC_W (%0d) and 1 <= CW (%0d) < ACC_W", ACC_W, CW))
   endgenerate
 
   wire [ACC_W-1:0] self_in;  // choice 0 of the occlusion node

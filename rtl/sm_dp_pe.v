@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // One level d of the trellis systolic array (docs/algorithm.md, section 6). Per DP
 // clock t it advances U(., d) by the two sites 2t+1 and 2t+2: one matched add and one
 // min3, in the order the parity of d dictates. It talks only to levels d-1 and d+1:
@@ -38,15 +39,11 @@ module sm_dp_pe #(
   localparam [ACC_W-1:0] U0  = (IS_D0 != 0) ? {ACC_W{1'b0}} : BIG;
 
   generate
-    if (ACC_W <= 8 || CW < 1 || CW >= ACC_W) begin : g_bad_w
-      initial $error("sm_dp_pe: need 8 < ACC_W (%0d) and 1 <= CW (%0d) < ACC_W", ACC_W, CW);
-    end
-    if (DELAY < 0) begin : g_bad_delay
-      initial $error("sm_dp_pe: negative DELAY %0d", DELAY);
-    end
-    if (RING != 0 && (DELAY < 2 || (1 << KW) < DELAY)) begin : g_bad_ring
-      initial $error("sm_dp_pe: a ring needs 2 <= DELAY (%0d) <= 2^KW (KW %0d)", DELAY, KW);
-    end
+    `SM_BAD_PARAM(g_bad_w, ACC_W <= 8 || CW < 1 || CW >= ACC_W,
+                  ("sm_dp_pe: need 8 < ACC_W (%0d) and 1 <= CW (%0d) < ACC_W", ACC_W, CW))
+    `SM_BAD_PARAM(g_bad_delay, DELAY < 0, ("sm_dp_pe: negative DELAY %0d", DELAY))
+    `SM_BAD_PARAM(g_bad_ring, RING != 0 && (DELAY < 2 || (1 << KW) < DELAY),
+                  ("sm_dp_pe: a ring needs 2 <= DELAY (%0d) <= 2^KW (KW %0d)", DELAY, KW))
   endgenerate
 
   // ---- cost skew ---------------------------------------------------------------

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Simple dual-port memory of the DP (decision words, trace results): one write port,
 // one registered read port, no reset, so synthesis infers block RAM. The users never
 // read an address in the clock it is written (double buffering), so the
@@ -16,9 +17,8 @@ module sm_dp_ram #(
     output reg  [DATA_W-1:0] rdata
 );
   generate
-    if (DATA_W < 1 || ADDR_W < 1) begin : g_bad
-      initial $error("sm_dp_ram: DATA_W (%0d) and ADDR_W (%0d) must be >= 1", DATA_W, ADDR_W);
-    end
+    `SM_BAD_PARAM(g_bad, DATA_W < 1 || ADDR_W < 1,
+                  ("sm_dp_ram: DATA_W (%0d) and ADDR_W (%0d) must be >= 1", DATA_W, ADDR_W))
   endgenerate
 
   reg [DATA_W-1:0] mem[0:(1<<ADDR_W)-1];

@@ -44,12 +44,10 @@ module sm_dp_trace #(
   localparam LW = (PU > 1) ? $clog2(PU) : 1;  // index inside a group
 
   generate
-    if (DISP < 4 || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_dp_trace: DISP (%0d) must be even and >= 4", DISP);
-    end
-    if (PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0) begin : g_bad_pu
-      initial $error("sm_dp_trace: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP);
-    end
+    `SM_BAD_PARAM(g_bad_disp, DISP < 4 || DISP % 2 != 0,
+                  ("sm_dp_trace: DISP (%0d) must be even and >= 4", DISP))
+    `SM_BAD_PARAM(g_bad_pu, PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0,
+                  ("sm_dp_trace: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP))
   endgenerate
 
   // ---- backward walk -----------------------------------------------------------

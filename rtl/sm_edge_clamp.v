@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Border clamp of one line of census comparison bits (docs/algorithm.md, section 3): a
 // position outside the image takes the bit of the nearest position inside, i.e. of the
 // first inside position before the centre and of the last one after it. `ok` is a
@@ -16,9 +17,7 @@ module sm_edge_clamp #(
   localparam R = (N - 1) / 2;
 
   generate
-    if (N < 3 || N % 2 == 0) begin : g_bad_n
-      initial $error("sm_edge_clamp: N (%0d) must be odd, >= 3", N);
-    end
+    `SM_BAD_PARAM(g_bad_n, N < 3 || N % 2 == 0, ("sm_edge_clamp: N (%0d) must be odd, >= 3", N))
   endgenerate
 
   wire [N-1:0] first, last;  // one-hot: first inside position before, last after the centre

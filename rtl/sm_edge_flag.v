@@ -36,12 +36,10 @@ module sm_edge_flag #(
   localparam DW = $clog2(ROWS * MAX_WIDTH + COLS + 1);  // bits of the delay
 
   generate
-    if (ROWS < 1 || COLS < 0) begin : g_bad_delay
-      initial $error("sm_edge_flag: ROWS (%0d) must be at least 1, COLS (%0d) at least 0", ROWS, COLS);
-    end
-    if (ROWS * 16 + COLS < 4) begin : g_bad_short
-      initial $error("sm_edge_flag: a delay of %0d beats is too short for the read pipeline", ROWS * 16 + COLS);
-    end
+    `SM_BAD_PARAM(g_bad_delay, ROWS < 1 || COLS < 0,
+                  ("sm_edge_flag: ROWS (%0d) must be at least 1, COLS (%0d) at least 0", ROWS, COLS))
+    `SM_BAD_PARAM(g_bad_short, ROWS * 16 + COLS < 4,
+                  ("sm_edge_flag: a delay of %0d beats is too short for the read pipeline", ROWS * 16 + COLS))
   endgenerate
 
   // Read-to-write distance: the delay less the comparison step, the read step and the

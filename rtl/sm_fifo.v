@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Synchronous first-word-fall-through FIFO. The storage is one block RAM (one write
 // port, registered read with enable, no reset); its read register doubles as the output
 // register, so the head is visible on dout while dout_valid is high and rd_en pops it.
@@ -22,9 +23,8 @@ module sm_fifo #(
   localparam LW = AW + 1;  // holds DEPTH + 1
 
   generate
-    if (DEPTH < 2 || (1 << AW) != DEPTH) begin : g_bad_depth
-      initial $error("sm_fifo: DEPTH (%0d) must be a power of two >= 2", DEPTH);
-    end
+    `SM_BAD_PARAM(g_bad_depth, DEPTH < 2 || (1 << AW) != DEPTH,
+                  ("sm_fifo: DEPTH (%0d) must be a power of two >= 2", DEPTH))
   endgenerate
 
   reg [DATA_W-1:0] mem [0:DEPTH-1];

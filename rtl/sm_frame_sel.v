@@ -26,12 +26,10 @@ module sm_frame_sel #(
     output reg  [W-1:0]  par
 );
   generate
-    if (NEXT != 0 && NEXT != 1) begin : g_bad_next
-      initial $error("sm_frame_sel: NEXT (%0d) must be 0 or 1", NEXT);
-    end
-    if (W < 1 || LSB < 0 || LSB + W > PW) begin : g_bad_field
-      initial $error("sm_frame_sel: field [%0d +: %0d] outside the %0d-bit set", LSB, W, PW);
-    end
+    `SM_BAD_PARAM(g_bad_next, NEXT != 0 && NEXT != 1,
+                  ("sm_frame_sel: NEXT (%0d) must be 0 or 1", NEXT))
+    `SM_BAD_PARAM(g_bad_field, W < 1 || LSB < 0 || LSB + W > PW,
+                  ("sm_frame_sel: field [%0d +: %0d] outside the %0d-bit set", LSB, W, PW))
   endgenerate
   localparam [1:0] STEP = NEXT[1:0];
 

@@ -22,15 +22,10 @@ module sm_linebuf #(
   localparam AW = $clog2(MAX_WIDTH);  // memory address; columns are below MAX_WIDTH
 
   generate
-    if (ROWS < 1) begin : g_bad_rows
-      initial $error("sm_linebuf: ROWS (%0d) must be at least 1", ROWS);
-    end
-    if (DATA_W < 1) begin : g_bad_dw
-      initial $error("sm_linebuf: DATA_W (%0d) must be at least 1", DATA_W);
-    end
-    if (MAX_WIDTH < 2) begin : g_bad_mw
-      initial $error("sm_linebuf: MAX_WIDTH (%0d) must be at least 2", MAX_WIDTH);
-    end
+    `SM_BAD_PARAM(g_bad_rows, ROWS < 1, ("sm_linebuf: ROWS (%0d) must be at least 1", ROWS))
+    `SM_BAD_PARAM(g_bad_dw, DATA_W < 1, ("sm_linebuf: DATA_W (%0d) must be at least 1", DATA_W))
+    `SM_BAD_PARAM(g_bad_mw, MAX_WIDTH < 2,
+                  ("sm_linebuf: MAX_WIDTH (%0d) must be at least 2", MAX_WIDTH))
   endgenerate
 
   // A column never reaches MAX_WIDTH, so when MAX_WIDTH is a power of two the top bit

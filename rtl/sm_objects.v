@@ -70,17 +70,12 @@ module sm_objects #(
   localparam SCAN_CLKS = LABEL_SLOTS + MAX_OBJECTS * (DW + 1) + 2;
 
   generate
-    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_objects: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
-    end
-    if (MAX_OBJECTS < 1 || MAX_OBJECTS > 64 || LABEL_SLOTS < MAX_OBJECTS) begin : g_bad_k
-      initial $error("sm_objects: need 1 <= MAX_OBJECTS (%0d) <= 64 and <= LABEL_SLOTS (%0d)",
-                     MAX_OBJECTS, LABEL_SLOTS);
-    end
-    if (SCAN_CLKS > 256 || SUMW > 32 || MAX_WIDTH > 65535 || MAX_HEIGHT > 65535) begin : g_bad_scan
-      initial $error("sm_objects: the end-of-frame scan (%0d clocks) must fit a 16x16 frame",
-                     SCAN_CLKS);
-    end
+    `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
+                  ("sm_objects: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX))
+    `SM_BAD_PARAM(g_bad_k, MAX_OBJECTS < 1 || MAX_OBJECTS > 64 || LABEL_SLOTS < MAX_OBJECTS,
+                  ("sm_objects: need 1 <= MAX_OBJECTS (%0d) <= 64 and <= LABEL_SLOTS (%0d)", MAX_OBJECTS, LABEL_SLOTS))
+    `SM_BAD_PARAM(g_bad_scan, SCAN_CLKS > 256 || SUMW > 32 || MAX_WIDTH > 65535 || MAX_HEIGHT > 65535,
+                  ("sm_objects: the end-of-frame scan (%0d clocks) must fit a 16x16 frame", SCAN_CLKS))
   endgenerate
 
   // ---- stage 1: entering beat, row buffer read ---------------------------------------

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Bit-plane order to lane order: P planes of L lanes (plane p, lane l at [p*L + l]) to
 // L lanes of P bits (lane l at [l*P +: P]). Pure wiring, every output bit is one input
 // bit; written as 8 x 8 bit transposes so that Verilator moves 8 lanes with a few word
@@ -20,12 +21,8 @@ module sm_plane2lane #(
   localparam NLG = (L + 7) / 8;  // groups of 8 lanes
 
   generate
-    if (P < 1 || P > 4096) begin : g_bad_p
-      initial $error("sm_plane2lane: P (%0d) must be 1..4096", P);
-    end
-    if (L < 1 || L > 4096) begin : g_bad_l
-      initial $error("sm_plane2lane: L (%0d) must be 1..4096", L);
-    end
+    `SM_BAD_PARAM(g_bad_p, P < 1 || P > 4096, ("sm_plane2lane: P (%0d) must be 1..4096", P))
+    `SM_BAD_PARAM(g_bad_l, L < 1 || L > 4096, ("sm_plane2lane: L (%0d) must be 1..4096", L))
   endgenerate
 
   // Bit (r*8 + c) goes to bit (c*8 + r): each stage swaps the off-diagonal quarters of

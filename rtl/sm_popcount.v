@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Pipelined population count of a ^ b (docs/algorithm.md, section 4: the Hamming
 // distance of two census vectors), for L independent lanes side by side (sm_cost: one
 // lane per disparity level). A plain $countones, or a binary adder tree, costs 2-3 LUTs
@@ -32,12 +33,8 @@ module sm_popcount #(
   localparam OW  = $clog2(N + 1);
   localparam NG  = (N + 2) / 3;  // leaf groups of three pairs
   generate
-    if (N < 1 || N > 1023) begin : g_bad_n
-      initial $error("sm_popcount: N (%0d) must be 1..1023", N);
-    end
-    if (L < 1 || L > 1024) begin : g_bad_l
-      initial $error("sm_popcount: L (%0d) must be 1..1024", L);
-    end
+    `SM_BAD_PARAM(g_bad_n, N < 1 || N > 1023, ("sm_popcount: N (%0d) must be 1..1023", N))
+    `SM_BAD_PARAM(g_bad_l, L < 1 || L > 1024, ("sm_popcount: L (%0d) must be 1..1024", L))
   endgenerate
 
   // ---- leaves: 2-bit counts of three XOR'ed pairs ----------------------------------

@@ -38,15 +38,11 @@ module sm_post_band #(
   localparam WW = LW + OW;             // memory word
 
   generate
-    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_post_band: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
-    end
-    if (K < 1 || K > 16) begin : g_bad_k
-      initial $error("sm_post_band: K (%0d) must be 1..16", K);
-    end
-    if (MAX_WIDTH < 2) begin : g_bad_mw
-      initial $error("sm_post_band: MAX_WIDTH (%0d) must be at least 2", MAX_WIDTH);
-    end
+    `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
+                  ("sm_post_band: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX))
+    `SM_BAD_PARAM(g_bad_k, K < 1 || K > 16, ("sm_post_band: K (%0d) must be 1..16", K))
+    `SM_BAD_PARAM(g_bad_mw, MAX_WIDTH < 2,
+                  ("sm_post_band: MAX_WIDTH (%0d) must be at least 2", MAX_WIDTH))
   endgenerate
 
   // ---- window control: centre K rows above the entering beat, rows y-1 .. y+K -------

@@ -34,12 +34,10 @@ module sm_post_median #(
   localparam RW = $clog2(N);          // rank counter width
 
   generate
-    if (DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0) begin : g_bad_disp
-      initial $error("sm_post_median: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX);
-    end
-    if (RY < 0 || RY > 3 || RX < 0 || RX > 3 || N < 3) begin : g_bad_win
-      initial $error("sm_post_median: window RY=%0d RX=%0d outside 0..3 or too small", RY, RX);
-    end
+    `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
+                  ("sm_post_median: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX))
+    `SM_BAD_PARAM(g_bad_win, RY < 0 || RY > 3 || RX < 0 || RX > 3 || N < 3,
+                  ("sm_post_median: window RY=%0d RX=%0d outside 0..3 or too small", RY, RX))
   endgenerate
 
   // ---- window control for the entering beat --------------------------------------

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Simple dual-port memory of the rectifier (line-buffer banks and grid banks): one
 // write port, one registered read port, no reset, so Yosys maps it to block or
 // distributed RAM. Writes and reads have separate enables because the grid is written
@@ -18,9 +19,7 @@ module sm_rect_ram #(
   localparam AW = (DEPTH > 1) ? $clog2(DEPTH) : 1;
 
   generate
-    if (DEPTH < 2) begin : g_bad_depth
-      initial $error("sm_rect_ram: DEPTH (%0d) must be at least 2", DEPTH);
-    end
+    `SM_BAD_PARAM(g_bad_depth, DEPTH < 2, ("sm_rect_ram: DEPTH (%0d) must be at least 2", DEPTH))
   endgenerate
 
   reg [DATA_W-1:0] mem [0:DEPTH-1];

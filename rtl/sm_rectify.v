@@ -59,15 +59,12 @@ module sm_rectify #(
   localparam RW     = 2 * R + 1;              // window rows
 
   generate
-    if (R < `SM_RECT_RADIUS_MIN || R > `SM_RECT_RADIUS_MAX) begin : g_bad_r
-      initial $error("sm_rectify: RECT_RADIUS (%0d) must be %0d..%0d", R, `SM_RECT_RADIUS_MIN, `SM_RECT_RADIUS_MAX);
-    end
-    if (MAX_WIDTH < `SM_MAX_WIDTH_MIN || MAX_WIDTH > `SM_MAX_WIDTH_MAX) begin : g_bad_w
-      initial $error("sm_rectify: MAX_WIDTH (%0d) must be %0d..%0d", MAX_WIDTH, `SM_MAX_WIDTH_MIN, `SM_MAX_WIDTH_MAX);
-    end
-    if (MAX_HEIGHT < `SM_MAX_HEIGHT_MIN || MAX_HEIGHT > `SM_MAX_HEIGHT_MAX) begin : g_bad_h
-      initial $error("sm_rectify: MAX_HEIGHT (%0d) must be %0d..%0d", MAX_HEIGHT, `SM_MAX_HEIGHT_MIN, `SM_MAX_HEIGHT_MAX);
-    end
+    `SM_BAD_PARAM(g_bad_r, R < `SM_RECT_RADIUS_MIN || R > `SM_RECT_RADIUS_MAX,
+                  ("sm_rectify: RECT_RADIUS (%0d) must be %0d..%0d", R, `SM_RECT_RADIUS_MIN, `SM_RECT_RADIUS_MAX))
+    `SM_BAD_PARAM(g_bad_w, MAX_WIDTH < `SM_MAX_WIDTH_MIN || MAX_WIDTH > `SM_MAX_WIDTH_MAX,
+                  ("sm_rectify: MAX_WIDTH (%0d) must be %0d..%0d", MAX_WIDTH, `SM_MAX_WIDTH_MIN, `SM_MAX_WIDTH_MAX))
+    `SM_BAD_PARAM(g_bad_h, MAX_HEIGHT < `SM_MAX_HEIGHT_MIN || MAX_HEIGHT > `SM_MAX_HEIGHT_MAX,
+                  ("sm_rectify: MAX_HEIGHT (%0d) must be %0d..%0d", MAX_HEIGHT, `SM_MAX_HEIGHT_MIN, `SM_MAX_HEIGHT_MAX))
   endgenerate
 
   // ---------------------------------------------------------------- stage 0 (entering)

@@ -66,15 +66,12 @@ module sm_seq #(
   localparam [1:0] M_IDLE = 2'd0, M_FRAME = 2'd1, M_VROW = 2'd2;
 
   generate
-    if (MAX_WIDTH < 16 || MAX_HEIGHT < 1) begin : g_bad_size
-      initial $error("sm_seq: MAX_WIDTH (%0d) must be >= 16, MAX_HEIGHT >= 1", MAX_WIDTH);
-    end
-    if (IN_DEPTH < MAX_WIDTH + 32 || (1 << $clog2(IN_DEPTH)) != IN_DEPTH) begin : g_bad_depth
-      initial $error("sm_seq: IN_DEPTH (%0d) must be a power of two >= MAX_WIDTH + 32", IN_DEPTH);
-    end
-    if (FLUSH_ROWS < 1) begin : g_bad_flush
-      initial $error("sm_seq: FLUSH_ROWS (%0d) must be >= 1", FLUSH_ROWS);
-    end
+    `SM_BAD_PARAM(g_bad_size, MAX_WIDTH < 16 || MAX_HEIGHT < 1,
+                  ("sm_seq: MAX_WIDTH (%0d) must be >= 16, MAX_HEIGHT >= 1", MAX_WIDTH))
+    `SM_BAD_PARAM(g_bad_depth, IN_DEPTH < MAX_WIDTH + 32 || (1 << $clog2(IN_DEPTH)) != IN_DEPTH,
+                  ("sm_seq: IN_DEPTH (%0d) must be a power of two >= MAX_WIDTH + 32", IN_DEPTH))
+    `SM_BAD_PARAM(g_bad_flush, FLUSH_ROWS < 1,
+                  ("sm_seq: FLUSH_ROWS (%0d) must be >= 1", FLUSH_ROWS))
   endgenerate
 
   // ---- input FIFO: {tuser, tlast, tdata}

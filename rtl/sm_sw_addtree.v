@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Balanced adder tree for the support-weight aggregation's weight sum: the sum of N
 // unsigned terms in clog2(N) adder levels, so the reduction keeps a short logic depth
 // (a chained sum would be N-1 adders deep). Purely combinational; the caller registers.
@@ -14,12 +15,8 @@ module sm_sw_addtree #(
   localparam P = (N <= 1) ? 1 : (1 << $clog2(N));
 
   generate
-    if (N < 1) begin : g_bad_n
-      initial $error("sm_sw_addtree: N (%0d) must be at least 1", N);
-    end
-    if (OW < IW) begin : g_bad_ow
-      initial $error("sm_sw_addtree: OW (%0d) must not be below IW (%0d)", OW, IW);
-    end
+    `SM_BAD_PARAM(g_bad_n, N < 1, ("sm_sw_addtree: N (%0d) must be at least 1", N))
+    `SM_BAD_PARAM(g_bad_ow, OW < IW, ("sm_sw_addtree: OW (%0d) must not be below IW (%0d)", OW, IW))
   endgenerate
 
   // Heap order: node i is node 2i + node 2i+1, the root is node 1, leaves are P..2P-1.

@@ -13,7 +13,8 @@
 //
 // Pipeline, counted in ce from the one on which beat (x+R, y+R) enters (ce 0); the
 // output of pixel (x, y) is on m_side/m_agg after ce 5 (latency 6 beats after the
-// window delay of R rows and R columns):
+// window delay of R rows and R columns; `SM_AGG_PIPE_BEATS, which sm_top's edge-flag
+// delay and the block test use):
 //   ce 0  line-buffer read of the entering column; window-controller masks registered;
 //         sw_table latched when the centre is sof
 //   ce 1  column into the window (a circular buffer of SW columns, sm_colwin); weight
@@ -92,21 +93,15 @@ module sm_sw_aggregate #(
   localparam LAW   = $clog2(MAX_WIDTH);             // column address (columns < MAX_WIDTH)
 
   generate
-    if (SW < `SM_SW_MIN || SW > `SM_SW_MAX || SW % 2 == 0) begin : g_bad_sw
-      initial $error("sm_sw_aggregate: SW (%0d) must be odd, %0d..%0d", SW, `SM_SW_MIN, `SM_SW_MAX);
-    end
-    if (CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0) begin : g_bad_census
-      initial $error("sm_sw_aggregate: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX);
-    end
-    if (CMAX < 1) begin : g_bad_shift
-      initial $error("sm_sw_aggregate: COST_SHIFT (%0d) leaves no cost bits", COST_SHIFT);
-    end
-    if (DISP < 1) begin : g_bad_disp
-      initial $error("sm_sw_aggregate: DISP (%0d) must be at least 1", DISP);
-    end
-    if (PU < 1 || PU > DISP || DISP % PU != 0) begin : g_bad_pu
-      initial $error("sm_sw_aggregate: PU (%0d) must divide DISP (%0d)", PU, DISP);
-    end
+    `SM_BAD_PARAM(g_bad_sw, SW < `SM_SW_MIN || SW > `SM_SW_MAX || SW % 2 == 0,
+                  ("sm_sw_aggregate: SW (%0d) must be odd, %0d..%0d", SW, `SM_SW_MIN, `SM_SW_MAX))
+    `SM_BAD_PARAM(g_bad_census, CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0,
+                  ("sm_sw_aggregate: CENSUS (%0d) must be odd, %0d..%0d", CENSUS, `SM_CENSUS_MIN, `SM_CENSUS_MAX))
+    `SM_BAD_PARAM(g_bad_shift, CMAX < 1,
+                  ("sm_sw_aggregate: COST_SHIFT (%0d) leaves no cost bits", COST_SHIFT))
+    `SM_BAD_PARAM(g_bad_disp, DISP < 1, ("sm_sw_aggregate: DISP (%0d) must be at least 1", DISP))
+    `SM_BAD_PARAM(g_bad_pu, PU < 1 || PU > DISP || DISP % PU != 0,
+                  ("sm_sw_aggregate: PU (%0d) must divide DISP (%0d)", PU, DISP))
   endgenerate
 
   // ---------------------------------------------------------------- ce 0: entry

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Cost line buffer of the folded support-weight aggregation (sm_sw_aggregate with
 // PU < DISP): one word per (column, level group) holding that group's ROWS previous
 // row steps, so a column's F groups are F words of a deeper, narrower memory (the same
@@ -34,12 +35,9 @@ module sm_sw_foldlb #(
   localparam WW = ROWS * DATA_W;  // memory word
 
   generate
-    if (ROWS < 2) begin : g_bad_rows
-      initial $error("sm_sw_foldlb: ROWS (%0d) must be at least 2", ROWS);
-    end
-    if (DEPTH < 2 || DATA_W < 1) begin : g_bad_size
-      initial $error("sm_sw_foldlb: DEPTH (%0d) / DATA_W (%0d) too small", DEPTH, DATA_W);
-    end
+    `SM_BAD_PARAM(g_bad_rows, ROWS < 2, ("sm_sw_foldlb: ROWS (%0d) must be at least 2", ROWS))
+    `SM_BAD_PARAM(g_bad_size, DEPTH < 2 || DATA_W < 1,
+                  ("sm_sw_foldlb: DEPTH (%0d) / DATA_W (%0d) too small", DEPTH, DATA_W))
   endgenerate
 
   reg [AW-1:0]     addr_q;  // word read on the last step, written back on the next clock

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Output ring of the folded support-weight aggregation (sm_sw_aggregate with
 // PU < DISP): the PU-level results of the F groups of a beat arrive one group per
 // clock, at a fixed distance from the ce that started the beat, and must be presented
@@ -28,12 +29,8 @@ module sm_sw_foldout #(
   localparam SB  = $clog2(DELAY + 1);  // slot index: DELAY + 1 beats may be in the ring
 
   generate
-    if (F < 2) begin : g_bad_f
-      initial $error("sm_sw_foldout: F (%0d) must be at least 2", F);
-    end
-    if (DELAY < 1) begin : g_bad_delay
-      initial $error("sm_sw_foldout: DELAY (%0d) must be at least 1", DELAY);
-    end
+    `SM_BAD_PARAM(g_bad_f, F < 2, ("sm_sw_foldout: F (%0d) must be at least 2", F))
+    `SM_BAD_PARAM(g_bad_delay, DELAY < 1, ("sm_sw_foldout: DELAY (%0d) must be at least 1", DELAY))
   endgenerate
 
   /* verilator lint_off WIDTH */  // small constants truncated to the index widths

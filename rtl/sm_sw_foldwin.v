@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Column window of the folded support-weight aggregation (sm_sw_aggregate with
 // PU < DISP): the previous N columns of the window, each as F level groups, in one
 // LUT-RAM addressed by {column slot, group}. A step writes group g of the entering
@@ -28,15 +29,9 @@ module sm_sw_foldwin #(
   localparam DEPTH = N << FGW;
 
   generate
-    if (N < 1) begin : g_bad_n
-      initial $error("sm_sw_foldwin: N (%0d) must be at least 1", N);
-    end
-    if (F < 2) begin : g_bad_f
-      initial $error("sm_sw_foldwin: F (%0d) must be at least 2", F);
-    end
-    if (W < 1) begin : g_bad_w
-      initial $error("sm_sw_foldwin: W (%0d) must be at least 1", W);
-    end
+    `SM_BAD_PARAM(g_bad_n, N < 1, ("sm_sw_foldwin: N (%0d) must be at least 1", N))
+    `SM_BAD_PARAM(g_bad_f, F < 2, ("sm_sw_foldwin: F (%0d) must be at least 2", F))
+    `SM_BAD_PARAM(g_bad_w, W < 1, ("sm_sw_foldwin: W (%0d) must be at least 1", W))
   endgenerate
 
   /* verilator lint_off WIDTH */  // small constants truncated to the index widths

@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // One disparity level of the support-weight aggregation (docs/algorithm.md, section 5):
 // the weighted sum of the SW x SW window costs of this level, times the reciprocal of
 // the weight sum, rounded and saturated. sm_sw_aggregate holds one per level; the
@@ -33,15 +34,10 @@ module sm_sw_level #(
   localparam [QW-1:0] OMAX = {{(QW - CW) {1'b0}}, {CW{1'b1}}};
 
   generate
-    if (CW < 1 || CW > 8) begin : g_bad_cw
-      initial $error("sm_sw_level: CW (%0d) must be 1..8", CW);
-    end
-    if (SW < 1) begin : g_bad_sw
-      initial $error("sm_sw_level: SW (%0d) must be at least 1", SW);
-    end
-    if (QW < CW) begin : g_bad_qw
-      initial $error("sm_sw_level: product width %0d too narrow for CW %0d", PRW, CW);
-    end
+    `SM_BAD_PARAM(g_bad_cw, CW < 1 || CW > 8, ("sm_sw_level: CW (%0d) must be 1..8", CW))
+    `SM_BAD_PARAM(g_bad_sw, SW < 1, ("sm_sw_level: SW (%0d) must be at least 1", SW))
+    `SM_BAD_PARAM(g_bad_qw, QW < CW,
+                  ("sm_sw_level: product width %0d too narrow for CW %0d", PRW, CW))
   endgenerate
 
   wire [AW-1:0] araw = row_a + row_b;

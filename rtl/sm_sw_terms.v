@@ -1,4 +1,5 @@
 `default_nettype none
+`include "sm_defs.vh"
 // Weighted cost bits of the support-weight window (docs/algorithm.md, section 5), the bit
 // heap's input for L levels side by side: the weighted cost of window position q is its
 // cost shifted by 0, 1 or 2 (weight 1, 2, 4) or 0, so bit g of it is cost plane g, g-1 or
@@ -21,9 +22,8 @@ module sm_sw_terms #(
   localparam COLW = SW * LVW; // one window column
 
   generate
-    if (L < 1 || CW < 1 || SW < 1) begin : g_bad
-      initial $error("sm_sw_terms: L (%0d), CW (%0d) and SW (%0d) must be at least 1", L, CW, SW);
-    end
+    `SM_BAD_PARAM(g_bad, L < 1 || CW < 1 || SW < 1,
+                  ("sm_sw_terms: L (%0d), CW (%0d) and SW (%0d) must be at least 1", L, CW, SW))
   endgenerate
 
   genvar k, c, g;

@@ -192,12 +192,10 @@ module sm_top #(
   // checks too), then the rules between parameters.
   `include "sm_defs_check.vh"
   generate
-    if (PUE < 1 || PUE > DISP || DISP % PUE != 0 || (PUE != DISP && PUE % 2 != 0)) begin : g_bad_pu
-      initial $error("sm_top: PU (%0d) must be 0, DISP (%0d) or an even divisor of DISP", PU, DISP);
-    end
-    if (FLUSH_ROWS >= 64) begin : g_bad_flush
-      initial $error("sm_top: pipeline of %0d narrow rows outlasts the 4-frame parameter history", FLUSH_ROWS);
-    end
+    `SM_BAD_PARAM(g_bad_pu, PUE < 1 || PUE > DISP || DISP % PUE != 0 || (PUE != DISP && PUE % 2 != 0),
+                  ("sm_top: PU (%0d) must be 0, DISP (%0d) or an even divisor of DISP", PU, DISP))
+    `SM_BAD_PARAM(g_bad_flush, FLUSH_ROWS >= 64,
+                  ("sm_top: pipeline of %0d narrow rows outlasts the 4-frame parameter history", FLUSH_ROWS))
   endgenerate
   localparam P_RECT = 0;               // rectification enable, grid bank
   localparam P_SWT  = P_RECT + 2;      // support-weight table
@@ -279,13 +277,13 @@ module sm_top #(
   );
 
   // Edge flags for the DP's occlusion penalty, from the left pixel that leaves the cost
-  // stage with the beat, delayed by the aggregation's R rows and R + 6 beats.
+  // stage with the beat, delayed by the aggregation's R rows and R + `SM_AGG_PIPE_BEATS beats.
   wire [7:0] par_edge_t;
   wire       dp_edge;
   sm_frame_sel #(.PW(PW), .LSB(P_EDGT), .W(8), .NEXT(1)) u_fsel_edge (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ct_side), .hist(fr_hist), .par(par_edge_t)
   );
-  sm_edge_flag #(.MAX_WIDTH(MAX_WIDTH), .ROWS((SW - 1) / 2), .COLS((SW - 1) / 2 + 6)) u_edge (
+  sm_edge_flag #(.MAX_WIDTH(MAX_WIDTH), .ROWS((SW - 1) / 2), .COLS((SW - 1) / 2 + `SM_AGG_PIPE_BEATS)) u_edge (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .edge_t(par_edge_t),
       .s_side(ct_side), .s_left(ct_left), .m_edge(dp_edge)
   );

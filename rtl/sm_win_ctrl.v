@@ -33,12 +33,10 @@ module sm_win_ctrl #(
   localparam NT = D_ROWS + R_UP + 2;  // row tags kept: live row back to the oldest window row
 
   generate
-    if (R_DN > D_ROWS) begin : g_bad_rdn
-      initial $error("sm_win_ctrl: R_DN (%0d) must not exceed D_ROWS (%0d)", R_DN, D_ROWS);
-    end
-    if (D_COLS >= MAX_WIDTH) begin : g_bad_dcols
-      initial $error("sm_win_ctrl: D_COLS (%0d) must be below MAX_WIDTH", D_COLS);
-    end
+    `SM_BAD_PARAM(g_bad_rdn, R_DN > D_ROWS,
+                  ("sm_win_ctrl: R_DN (%0d) must not exceed D_ROWS (%0d)", R_DN, D_ROWS))
+    `SM_BAD_PARAM(g_bad_dcols, D_COLS >= MAX_WIDTH,
+                  ("sm_win_ctrl: D_COLS (%0d) must be below MAX_WIDTH", D_COLS))
   endgenerate
 
   // Row tag: {ftag[1:0], first row of frame, real}.

@@ -28,6 +28,7 @@
 #include "calib_file.hpp"
 #include "pipeline.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "sm_coverage.hpp"
 #include "sm_host.hpp"
@@ -234,7 +235,6 @@ int main(int argc, char** argv) {
   double pixel_clock = 0, clock_mhz = 100.0, core_mhz = 0;
   int vcd_frame = 0, vcd_line = 0, vcd_lines = 4;
   uint64_t vcd_cycles = 0;
-  int occ = -1, occ_edge = -1, edge_t = -1, filters = -1;
   app.add_option("--left", left, "left image (with --right)");
   app.add_option("--right", right, "right image");
   app.add_option("--sequence", seq_dir, "folder of left*/right* image pairs, sorted by name");
@@ -257,12 +257,9 @@ int main(int argc, char** argv) {
                  "FRAME=FILE: from input frame FRAME on, these registers change (on top of the frame before); "
                  "written over AXI4-Lite while frame FRAME-1 streams (repeatable)");
   app.add_option("--calib", calib, "calibration JSON from sm_calibrate (written over AXI4-Lite)");
-  app.add_option("--occ", occ, "occlusion penalty register (OCC: flat left image)")->check(CLI::Range(0, 255));
-  app.add_option("--occ-edge", occ_edge, "occlusion penalty at a left-image edge (OCC_EDGE)")
-      ->check(CLI::Range(0, 255));
-  app.add_option("--edge-t", edge_t, "edge threshold of the occlusion penalty (EDGE_T)")->check(CLI::Range(0, 255));
-  app.add_option("--filters", filters, "post-processing filter enables (bit mask: 0..2 medians F1..F3, 3 band F0)")
-      ->check(CLI::Range(0, 15));
+  // every other value register (--occ, --occ-edge, --gain-l, ...), written before the first frame
+  const sm::tools::RegOptions reg_opts(app, sm::Regs::defaults(hw), {"WIDTH", "HEIGHT"},
+                                       {{"FILTER_ENABLE", "--filters"}});
   app.add_flag("--continuous", continuous, "no blanking: one pixel every clock");
   app.add_option("--hblank", hblank, "camera horizontal blanking (cycles)")
       ->check(CLI::Range(0, 65535))
@@ -382,10 +379,7 @@ int main(int argc, char** argv) {
       }
     }
     if (!calib.empty()) apply_calib(sm::load_calib(calib), base);
-    if (occ >= 0) base.occ = static_cast<uint8_t>(occ);
-    if (occ_edge >= 0) base.occ_edge = static_cast<uint8_t>(occ_edge);
-    if (edge_t >= 0) base.edge_t = static_cast<uint8_t>(edge_t);
-    if (filters >= 0) base.filter_enable = static_cast<uint8_t>(filters);
+    reg_opts.apply(hw, base);  // a value out of range: a ToolError, one line like fail()
     // The schedule: FRAME=FILE entries, applied in frame order (command-line order within a frame).
     std::vector<std::pair<int, std::string>> sched;
     for (const std::string& e : regs_at) {

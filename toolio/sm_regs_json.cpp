@@ -56,7 +56,47 @@ Range register_range(const regmap::Reg& reg, const HwConfig& hw) {
   return {0, f.width == 32 ? int64_t{0xffffffff} : (int64_t{1} << f.width) - 1};
 }
 
+const regmap::Reg* find_register(const std::string& name) {
+  for (const auto& g : regmap::registers())
+    if (name == g.name) return &g;
+  return nullptr;
+}
+
 }  // namespace
+
+std::vector<ValueRegister> value_registers() {
+  std::vector<ValueRegister> v;
+  Regs scratch;
+  for (const auto& [name, set] : register_setters(scratch)) {
+    (void)set;
+    const regmap::Reg* reg = find_register(name);
+    v.push_back({name, reg->desc, reg->addr});
+  }
+  std::sort(v.begin(), v.end(), [](const ValueRegister& a, const ValueRegister& b) { return a.addr < b.addr; });
+  return v;
+}
+
+int64_t register_value(const std::string& name, const Regs& r) {
+#define SM_X(NAME, member) \
+  if (name == #NAME) return static_cast<int64_t>(r.member);
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+  uint64_t table = 0;  // SW_TABLE0/1: 16 two-bit codes a word
+  for (int k = 31; k >= 0; --k) table = (table << 2) | (r.sw_table[static_cast<size_t>(k)] & 3u);
+  if (name == "SW_TABLE0") return static_cast<int64_t>(table & 0xffffffffu);
+  if (name == "SW_TABLE1") return static_cast<int64_t>(table >> 32);
+  throw ToolError(fmt::format("{}: not a value register", name));
+}
+
+void set_register(const std::string& name, int64_t v, const HwConfig& hw, Regs& r, const std::string& what) {
+  const auto setters = register_setters(r);
+  const regmap::Reg* reg = find_register(name);
+  const auto s = setters.find(name);
+  if (!reg || s == setters.end()) throw ToolError(fmt::format("{}: not a value register", name));
+  const Range rg = register_range(*reg, hw);
+  if (v < rg.lo || v > rg.hi) throw ToolError(fmt::format("{} {} outside {}..{}", what, v, rg.lo, rg.hi));
+  s->second(v);
+}
 
 RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
   std::ifstream in(path);
@@ -79,17 +119,19 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
   };
 
   // Compile-time parameters first: the registers' ranges depend on them.
-  const std::map<std::string, std::tuple<int64_t, int64_t, int*>> hw_keys = {
-      {"max_width", {16, 4095, &hw.max_width}},
-      {"max_height", {16, 4095, &hw.max_height}},
-      {"disp", {4, 254, &hw.disp}},
-      {"census", {3, 15, &hw.census}},
-      {"sw", {3, 7, &hw.sw}},
-      {"rect_radius", {1, 31, &hw.rect_radius}},
-      {"cost_shift", {0, 4, &hw.cost_shift}},
-      {"max_objects", {1, 64, &hw.max_objects}},
-      {"label_slots", {1, 1024, &hw.label_slots}},
-      {"band_k", {1, 16, &hw.band_k}}};
+  // (the generated limits of rtl/defs.json; HwConfig::validate() checks parity and the rest)
+  const std::map<std::string, int*> hw_fields = {{"MAX_WIDTH", &hw.max_width},
+                                                 {"MAX_HEIGHT", &hw.max_height},
+                                                 {"DISP", &hw.disp},
+                                                 {"CENSUS", &hw.census},
+                                                 {"SW", &hw.sw},
+                                                 {"RECT_RADIUS", &hw.rect_radius},
+                                                 {"COST_SHIFT", &hw.cost_shift},
+                                                 {"MAX_OBJECTS", &hw.max_objects},
+                                                 {"LABEL_SLOTS", &hw.label_slots},
+                                                 {"BAND_K", &hw.band_k}};
+  std::map<std::string, std::tuple<int64_t, int64_t, int*>> hw_keys;
+  for (const auto& l : defs::kLimits) hw_keys[lower(l.name)] = {l.min, l.max, hw_fields.at(l.name)};
   RegsFile out;
   for (auto it = j.begin(); it != j.end(); ++it) {
     out.keys.push_back(it.key());

@@ -3,21 +3,22 @@
 // (rtl/regmap.json) in lower case, with the map's ranges, plus the compile-time
 // parameters (HwConfig field names) and a calibration file:
 //
-//   width height gain_l gain_r offset_l offset_r rect_enable occ filter_enable occ_edge edge_t
-//   obj_near obj_tol obj_min_pixels   integers, the register's range (MIN_WIDTH etc.
+//   <register>                        every value register of the map (value_registers():
+//                                     width, gain_l, occ_edge, ...; docs/registers.md),
+//                                     an integer in the register's range (MIN_WIDTH etc.
 //                                     evaluated at the configuration)
 //   sw_table0 sw_table1               the SW_TABLE words (0..0xFFFFFFFF), or
 //   sw_table                          an array of 1..32 weight codes 0..3 (the rest 0)
 //   calib                             calibration JSON (sm_calibrate, model/calib_file.hpp);
 //                                     a relative path is relative to the register file
-//   max_width max_height disp census sw rect_radius cost_shift max_objects label_slots
-//   band_k
-//                                     compile-time parameters (HwConfig)
+//   max_width max_height disp ...     compile-time parameters (HwConfig), in the ranges of
+//                                     rtl/defs.json
 //
 // Any other key, a value of the wrong type or out of range is a ToolError naming the
 // file and the key.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,5 +36,19 @@ struct RegsFile {
 // ranges of the registers), then the registers. r.grid_l / r.grid_r are not touched (the
 // caller applies `calib` once the active size is known). Throws ToolError.
 RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r);
+
+// The value registers a tool sets (rtl/regmap.json: every register whose fields are all
+// rw and shadowed, CONTROL aside; SW_TABLE0/1 are words of 16 weight codes), by address.
+struct ValueRegister {
+  std::string name;  // the map's name, e.g. "OCC_EDGE"
+  const char* desc;  // the map's description
+  uint32_t addr;
+};
+std::vector<ValueRegister> value_registers();
+// The register's value in r (the word a host writes, before sign extension).
+int64_t register_value(const std::string& name, const Regs& r);
+// Sets the register in r; a value outside the map's range at hw is a ToolError
+// "<what> <value> outside <lo>..<hi>".
+void set_register(const std::string& name, int64_t v, const HwConfig& hw, Regs& r, const std::string& what);
 
 }  // namespace sm::tools

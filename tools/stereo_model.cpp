@@ -20,6 +20,7 @@
 #include "calib_file.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_outputs.hpp"
+#include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "pipeline.hpp"
 
@@ -51,9 +52,6 @@ int run(int argc, char** argv) {
   sm::HwConfig hw;
   sm::Regs r = sm::Regs::defaults(hw);
   // Option defaults shown by --help are the model's own (HwConfig / Regs::defaults).
-  int gain_l = r.gain_l, gain_r = r.gain_r, offset_l = r.offset_l, offset_r = r.offset_r, occ = r.occ;
-  int occ_edge = r.occ_edge, edge_t = r.edge_t;
-  int filter_enable = r.filter_enable, obj_near = r.obj_near, obj_tol = r.obj_tol, obj_min_pixels = r.obj_min_pixels;
   bool no_rect = !r.rect_enable, verbose = false;
   std::string sw_table;
   {
@@ -87,24 +85,11 @@ int run(int argc, char** argv) {
       app.add_option("--max-objects", hw.max_objects, "MAX_OBJECTS")->capture_default_str(),
       app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str(),
       app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str()};
-  auto* o_gl = app.add_option("--gain-l", gain_l, "left gain, Q2.8 (256 = 1.0)")->capture_default_str();
-  auto* o_gr = app.add_option("--gain-r", gain_r, "right gain, Q2.8")->capture_default_str();
-  auto* o_ol = app.add_option("--offset-l", offset_l, "left offset -256..255")->capture_default_str();
-  auto* o_or = app.add_option("--offset-r", offset_r, "right offset -256..255")->capture_default_str();
+  // the value registers (the active size comes from the images, RECT_ENABLE is --no-rect)
+  const sm::tools::RegOptions reg_opts(app, r, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
   auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
-  auto* o_occ = app.add_option("--occ", occ, "DP occlusion penalty 0..255 (flat left image)")->capture_default_str();
-  auto* o_oce = app.add_option("--occ-edge", occ_edge, "DP occlusion penalty 0..255 at an edge of the left image")
-                    ->capture_default_str();
-  auto* o_edt = app.add_option("--edge-t", edge_t, "edge threshold 0..255: |L(x) - L(x-1)| > edge-t is an edge")
-                    ->capture_default_str();
   auto* o_swt =
       app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated")->capture_default_str();
-  auto* o_fe = app.add_option("--filter-enable", filter_enable,
-                              "post filters: bits 0..2 = medians F1..F3, bit 3 = band filter F0")
-                   ->capture_default_str();
-  auto* o_on = app.add_option("--obj-near", obj_near, "objects: near threshold")->capture_default_str();
-  auto* o_ot = app.add_option("--obj-tol", obj_tol, "objects: merge tolerance")->capture_default_str();
-  auto* o_om = app.add_option("--obj-min-pixels", obj_min_pixels, "objects: minimum size")->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   try {
     app.parse(argc, argv);
@@ -158,22 +143,8 @@ int run(int argc, char** argv) {
   r.height = L.h;
   r.grid_l = sm::RectGrid::identity(L.w, L.h);
   r.grid_r = r.grid_l;
-  auto in_range = [](const char* name, int v, int lo, int hi) {
-    if (v < lo || v > hi) throw ToolError(fmt::format("--{} {} outside {}..{}", name, v, lo, hi));
-    return v;
-  };
-  if (o_gl->count()) r.gain_l = in_range("gain-l", gain_l, 0, 1023);
-  if (o_gr->count()) r.gain_r = in_range("gain-r", gain_r, 0, 1023);
-  if (o_ol->count()) r.offset_l = in_range("offset-l", offset_l, -256, 255);
-  if (o_or->count()) r.offset_r = in_range("offset-r", offset_r, -256, 255);
+  reg_opts.apply(hw, r);
   if (o_nr->count()) r.rect_enable = !no_rect;
-  if (o_occ->count()) r.occ = in_range("occ", occ, 0, 255);
-  if (o_oce->count()) r.occ_edge = in_range("occ-edge", occ_edge, 0, 255);
-  if (o_edt->count()) r.edge_t = in_range("edge-t", edge_t, 0, 255);
-  if (o_fe->count()) r.filter_enable = in_range("filter-enable", filter_enable, 0, 15);
-  if (o_on->count()) r.obj_near = in_range("obj-near", obj_near, 0, 255);
-  if (o_ot->count()) r.obj_tol = in_range("obj-tol", obj_tol, 0, 255);
-  if (o_om->count()) r.obj_min_pixels = in_range("obj-min-pixels", obj_min_pixels, 0, 65535);
   if (o_swt->count()) {
     const auto codes = parse_sw_table(sw_table);
     r.sw_table.fill(0);
