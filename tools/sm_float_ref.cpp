@@ -12,7 +12,6 @@
 #include <exception>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "toolio/sm_io.hpp"
 #include "float_ref/float_ref.hpp"
@@ -23,47 +22,13 @@ namespace fs = std::filesystem;
 using sm::tools::ToolError;
 using json = nlohmann::json;
 
-std::vector<double> parse_list(const std::string& s) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (item.empty()) continue;
-    size_t used = 0;
-    double x = 0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !(x >= 0)) throw ToolError(fmt::format("--penalty: '{}' is not a number >= 0", item));
-    v.push_back(x);
-  }
-  if (v.empty()) throw ToolError("--penalty: empty");
-  return v;
-}
-
-std::array<uint8_t, 32> parse_table(const std::string& s) {
-  std::array<uint8_t, 32> t{};
-  std::stringstream ss(s);
-  std::string item;
-  size_t k = 0;
-  while (std::getline(ss, item, ',')) {
-    if (k >= t.size()) throw ToolError("--sw-table: more than 32 codes");
-    if (item != "0" && item != "1" && item != "2" && item != "3")
-      throw ToolError(fmt::format("--sw-table: code '{}' is not 0..3", item));
-    t[k++] = static_cast<uint8_t>(item[0] - '0');
-  }
-  return t;
-}
-
 bool is_classic(const std::string& n) { return n == "cones" || n == "teddy" || n == "tsukuba" || n == "venus"; }
 
 int run(int argc, char** argv) {
   sm::fref::Params p = sm::fref::Params::defaults();
-  std::string left, right, dataset, simplify = "none", penalties = "30", post = "chain", disp_file, json_path;
-  std::string table;
-  for (size_t k = 0; k < p.sw_table.size(); ++k) table += fmt::format("{}{}", k ? "," : "", p.sw_table[k]);
+  std::string left, right, dataset, simplify = "none", post = "chain", disp_file, json_path;
+  std::vector<double> pen = {30};
+  std::vector<int> table(p.sw_table.begin(), p.sw_table.end());
   bool quiet = false;
   CLI::App app{"floating-point reference of the pipeline, with the bit-exact model's simplifications switchable"};
   app.add_option("left", left, "left image (one pair; or use --dataset)");
@@ -73,9 +38,11 @@ int run(int argc, char** argv) {
                  fmt::format("simplifications on: comma-separated {}, or all / none",
                              fmt::format("{}", fmt::join(sm::fref::simplify_names(), ","))))
       ->capture_default_str();
-  app.add_option("--penalty", penalties,
+  app.add_option("--penalty", pen,
                  "occlusion penalties on the raw Hamming scale, comma-separated (model occ = penalty / "
                  "2^cost-shift when shift is on); one pair: the first")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--post", post, "post filters: chain (the model's F0-F3), med5x5, none")->capture_default_str();
   app.add_option("--levels", p.levels, "disparity levels")->check(CLI::Range(2, 256))->capture_default_str();
@@ -86,7 +53,9 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--gc", p.gc, "float weights: intensity scale")->capture_default_str();
   app.add_option("--gp", p.gp, "float weights: spatial scale")->capture_default_str();
-  app.add_option("--sw-table", table, "2-bit weight codes by |dI| >> 3 of the 'table' simplification")
+  app.add_option("--sw-table", table, "2-bit weight codes 0..3 by |dI| >> 3 of the 'table' simplification (up to 32)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 3))
       ->capture_default_str();
   app.add_option("--disp-file", disp_file, "one pair: disparity file (.pfm or 16-bit .png, x16)");
   app.add_option("--json", json_path, "dataset: write the results as JSON");
@@ -103,10 +72,12 @@ int run(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     throw ToolError(e.what());
   }
-  p.sw_table = parse_table(table);
+  if (table.size() > p.sw_table.size()) throw ToolError("--sw-table: more than 32 codes");
+  p.sw_table.fill(0);
+  std::copy(table.begin(), table.end(), p.sw_table.begin());
   if (p.census % 2 == 0 || p.sw % 2 == 0) throw ToolError("--census and --sw must be odd");
   if (!(p.gc > 0) || !(p.gp > 0)) throw ToolError("--gc and --gp must be positive");
-  const std::vector<double> pen = parse_list(penalties);
+  if (pen.empty()) throw ToolError("--penalty: empty");
 
   if (dataset.empty()) {
     if (left.empty() || right.empty()) throw ToolError("give LEFT RIGHT or --dataset DIR");

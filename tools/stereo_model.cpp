@@ -14,7 +14,6 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <tuple>
 
 #include "calib_file.hpp"
@@ -29,37 +28,15 @@ namespace {
 using sm::tools::ToolError;
 using json = nlohmann::json;
 
-std::vector<uint8_t> parse_sw_table(const std::string& s) {
-  std::vector<uint8_t> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      size_t used = 0;
-      const int c = std::stoi(item, &used);
-      if (used != item.size() || c < 0 || c > 3) throw std::invalid_argument("");
-      v.push_back(static_cast<uint8_t>(c));
-    } catch (const std::exception&) {
-      throw ToolError(fmt::format("--sw-table: '{}' is not a code 0..3", item));
-    }
-  }
-  if (v.empty() || v.size() > 32) throw ToolError("--sw-table: expected 1..32 comma-separated codes");
-  return v;
-}
-
 int run(int argc, char** argv) {
   std::string left, right, out, colour, disp_file, regs_json, calib, stage = "post", objects_json;
   sm::HwConfig hw;
   sm::Regs r = sm::Regs::defaults(hw);
   // Option defaults shown by --help are the model's own (HwConfig / Regs::defaults).
   bool no_rect = !r.rect_enable, verbose = false;
-  std::string sw_table;
-  {
-    size_t n = r.sw_table.size();
-    while (n > 1 && r.sw_table[n - 1] == 0) --n;
-    for (size_t i = 0; i < n; ++i) sw_table += fmt::format("{}{}", i ? "," : "", r.sw_table[i]);
-  }
-
+  // --help shows the table up to its last non-zero code
+  std::vector<int> sw_table(r.sw_table.begin(), r.sw_table.end());
+  while (sw_table.size() > 1 && sw_table.back() == 0) sw_table.pop_back();
   CLI::App app{"Bit-exact reference model of the census stereo IP on one image pair"};
   app.add_option("left", left, "left image (PNG/JPEG; reference view)")->required();
   app.add_option("right", right, "right image")->required();
@@ -88,8 +65,10 @@ int run(int argc, char** argv) {
   // the value registers (the active size comes from the images, RECT_ENABLE is --no-rect)
   const sm::tools::RegOptions reg_opts(app, r, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
   auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
-  auto* o_swt =
-      app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated")->capture_default_str();
+  auto* o_swt = app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated (1..32)")
+                    ->delimiter(',')
+                    ->check(CLI::Range(0, 3))
+                    ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   try {
     app.parse(argc, argv);
@@ -146,9 +125,10 @@ int run(int argc, char** argv) {
   reg_opts.apply(hw, r);
   if (o_nr->count()) r.rect_enable = !no_rect;
   if (o_swt->count()) {
-    const auto codes = parse_sw_table(sw_table);
+    if (sw_table.empty() || sw_table.size() > r.sw_table.size())
+      throw ToolError("--sw-table: expected 1..32 comma-separated codes");
     r.sw_table.fill(0);
-    std::copy(codes.begin(), codes.end(), r.sw_table.begin());
+    std::copy(sw_table.begin(), sw_table.end(), r.sw_table.begin());
   }
   if (!calib.empty()) {
     sm::CalibFile c;
