@@ -202,7 +202,9 @@ endfunction()
 
 # sm_rtl_test(NAME <test> TOP <module> SOURCES <tb.cpp ...> [PARAMS ...] [LABELS ...]
 #             [ARGS ...] [TRACE] [TIMEOUT s])
-#   One Verilated block test at one parameter point, registered with ctest.
+#   One Verilated block test at one parameter point, registered with ctest: the RTL
+#   parameters become SM_P_<NAME> definitions, ARGS the bench's command line (its
+#   width, heights, seed, ...: tests/common/sm_block_test.hpp).
 function(sm_rtl_test)
   cmake_parse_arguments(T "TRACE" "NAME;TOP;TIMEOUT" "SOURCES;PARAMS;LABELS;ARGS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
@@ -210,7 +212,8 @@ function(sm_rtl_test)
   set_source_files_properties(${T_SOURCES} PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
   target_include_directories(${T_NAME} PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
                                                ${CMAKE_SOURCE_DIR}/sim ${SM_GEN_DIR})
-  target_link_libraries(${T_NAME} PRIVATE sm_model fmt::fmt)
+  # CLI11: the bench's own knobs are options (tests/common/sm_block_test.hpp)
+  target_link_libraries(${T_NAME} PRIVATE sm_model fmt::fmt CLI11::CLI11)
   set(tr)
   if(T_TRACE)
     set(tr TRACE)

@@ -5,18 +5,11 @@ target_include_directories(test_post_model PRIVATE ${OpenCV_INCLUDE_DIRS})
 target_compile_options(test_post_model PRIVATE ${SM_WARNINGS})
 catch_discover_tests(test_post_model PROPERTIES LABELS unit)
 
-set(_post_filters vmed med3 med53)
-foreach(i RANGE 1 3)
-  math(EXPR _j "${i} - 1")
-  list(GET _post_filters ${_j} _f)
-  sm_rtl_test(NAME tb_post_${_f} TOP sm_post_${_f}
-              SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
-              PARAMS MAX_WIDTH=64 DISP=16 ARGS 37 9)
-  target_compile_definitions(tb_post_${_f} PRIVATE SM_FILTER=${i})
-  sm_rtl_test(NAME tb_post_${_f}_paper TOP sm_post_${_f}
-              SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
-              PARAMS MAX_WIDTH=320 DISP=128 ARGS 320 6 LABELS "rtl;slow")
-  target_compile_definitions(tb_post_${_f}_paper PRIVATE SM_FILTER=${i})
+foreach(_f vmed med3 med53)
+  sm_rtl_test(NAME tb_post_${_f} TOP sm_post_${_f} SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
+              PARAMS MAX_WIDTH=64 DISP=16 ARGS --filter ${_f} --width 37 --height 9)
+  sm_rtl_test(NAME tb_post_${_f}_paper TOP sm_post_${_f} SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
+              PARAMS MAX_WIDTH=320 DISP=128 ARGS --filter ${_f} --width 320 --height 6 LABELS "rtl;slow")
 endforeach()
 
 sm_rtl_test(NAME tb_objects TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
