@@ -22,7 +22,6 @@ sm_rtl_test(NAME tb_sw_aggregate_paper TOP sm_sw_aggregate SOURCES ${_agg_tb}
 # MAX_WIDTH 50 (not a power of two: the cost line buffer in two banks, sm_sw_foldlb
 # g_two, at a power-of-two F and at F 3).
 # Fields: name; SW; DISP; PU; COST_SHIFT; active width; seed; MAX_WIDTH.
-set(_agg_fold)
 foreach(_p "sw5_pu16;5;16;16;1;37;2;64" "sw5_pu8;5;16;8;1;37;5;64" "sw3_pu4;3;16;4;2;37;6;64"
            "sw5_pu2;5;16;2;1;23;7;64" "sw3_pu1;3;16;1;2;19;8;64" "sw7_pu4;7;16;4;1;29;9;64"
            "sw5_d12_pu4;5;12;4;2;31;10;64" "w50_pu4;5;16;4;1;50;14;50" "w50_d12_pu4;5;12;4;2;47;15;50")
@@ -37,7 +36,6 @@ foreach(_p "sw5_pu16;5;16;16;1;37;2;64" "sw5_pu8;5;16;8;1;37;5;64" "sw3_pu4;3;16
   sm_rtl_test(NAME tb_sw_aggregate_${_n} TOP sm_sw_aggregate SOURCES ${_agg_tb}
               PARAMS MAX_WIDTH=${_mw} DISP=${_d} CENSUS=7 SW=${_sw} COST_SHIFT=${_cs} PU=${_pu}
               ARGS --width ${_w} --heights 9 4 11 --seed ${_seed})
-  list(APPEND _agg_fold tb_sw_aggregate_${_n})
 endforeach()
 # The zynq point (320 wide, DISP 128, CENSUS 15, SW 5) at PU 16 and 8, the full line
 # with 50 % idle on the PU 16 binary.
@@ -50,10 +48,6 @@ sm_rtl_test(NAME tb_sw_aggregate_zynq_pu8 TOP sm_sw_aggregate SOURCES ${_agg_tb}
 add_test(NAME tb_sw_aggregate_zynq_pu16_w320
          COMMAND tb_sw_aggregate_zynq_pu16 --width 320 --heights 7 6 --seed 13 --idle 50)
 set_tests_properties(tb_sw_aggregate_zynq_pu16_w320 PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
-foreach(_t tb_sw_aggregate_sw3 tb_sw_aggregate_sw5 tb_sw_aggregate_paper ${_agg_fold}
-           tb_sw_aggregate_zynq_pu16 tb_sw_aggregate_zynq_pu8)
-  target_link_libraries(${_t} PRIVATE CLI11::CLI11)
-endforeach()
 # Full MAX_WIDTH line (last column of the line buffer) with the paper-point binary.
 add_test(NAME tb_sw_aggregate_paper_w320
          COMMAND tb_sw_aggregate_paper --width 320 --heights 7 6 --seed 4 --idle 50)

@@ -13,10 +13,11 @@ foreach(_f vmed med3 med53)
 endforeach()
 
 sm_rtl_test(NAME tb_objects TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
-            PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=16 ARGS 37 23)
+            PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=16
+            ARGS --width 37 --height 23)
 sm_rtl_test(NAME tb_objects_paper TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
             PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABEL_SLOTS=64
-            ARGS 320 40 LABELS "rtl;slow")
+            ARGS --width 320 --height 40 LABELS "rtl;slow")
 
 # Band filter F0 (sm_post_band) against the model's post_band: odd and tiny widths one
 # after the other without a reset, frames of at most K rows among them.
@@ -26,6 +27,3 @@ sm_rtl_test(NAME tb_post_band_k8 TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_D
             PARAMS MAX_WIDTH=64 DISP=16 K=8 ARGS --widths 23,64,3 --height 13)
 sm_rtl_test(NAME tb_post_band_paper TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
             PARAMS MAX_WIDTH=320 DISP=128 K=8 ARGS --widths 319,320,17 --height 20 LABELS "rtl;slow")
-foreach(_t tb_post_band tb_post_band_k8 tb_post_band_paper)
-  target_link_libraries(${_t} PRIVATE CLI11::CLI11)
-endforeach()
