@@ -132,10 +132,17 @@ class Testbench {
 
   // One clock period: falling half then rising edge.
   void tick() {
+    tick([] {});
+  }
+  // The same with `between_edges` run after the falling half is evaluated: a bench models
+  // a synchronous read port there, answering the address the rising edge will register.
+  template <class F>
+  void tick(F&& between_edges) {
     auto& clk = detail::clock_of(*top_, 0);
     clk = 0;
     top_->eval();
     dump(2 * cycles_);
+    between_edges();
     clk = 1;
     top_->eval();
     dump(2 * cycles_ + 1);

@@ -12,10 +12,10 @@ sm_host_test(tb_axil_regs_paper sm_axil_regs tb_axil_regs.cpp
              PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABELS rtl slow)
 sm_host_test(tb_seq sm_seq tb_seq.cpp PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 FLUSH_ROWS=3)
 sm_host_test(tb_seq_paper sm_seq tb_seq.cpp PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 FLUSH_ROWS=28
-             ARGS paper LABELS rtl slow)
+             ARGS --paper LABELS rtl slow)
 sm_host_test(tb_outfmt sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=64 FIFO_DEPTH=8)
 sm_host_test(tb_outfmt_paper sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=320 FIFO_DEPTH=256
-             ARGS paper LABELS rtl slow)
+             ARGS --paper LABELS rtl slow)
 
 # Register map against independent truth: sm::Regs defaults, the spec's grid size, layout.
 add_executable(test_regmap ${SM_HOST_TESTS}/test_regmap.cpp)

@@ -24,6 +24,17 @@
 
 namespace sm::test {
 
+namespace detail {
+template <class T>
+auto reset_of(T& t, int) -> decltype((t.aresetn)) {
+  return t.aresetn;
+}
+template <class T>
+auto reset_of(T& t, long) -> decltype((t.rst_n)) {
+  return t.rst_n;
+}
+}  // namespace detail
+
 template <class Top>
 class BlockTest {
  public:
@@ -46,24 +57,44 @@ class BlockTest {
     } catch (const CLI::ParseError& e) {
       return cli_.exit(e);
     }
-    if (!trace_.empty() && !tb_.open_trace(trace_)) fmt::print("note: model built without tracing, --trace ignored\n");
+    if (!trace_.empty() && !tb().open_trace(trace_)) fmt::print("note: model built without tracing, --trace ignored\n");
     return std::nullopt;
   }
 
-  Testbench<Top>& tb() { return tb_; }
-  Top* operator->() { return tb_.operator->(); }
-  void tick() { tb_.tick(); }
+  // The model, made on first use, from reset values (Verilator's randReset(0)).
+  Testbench<Top>& tb() {
+    if (!tb_) {
+      tb_ = std::make_unique<Testbench<Top>>();
+      cov_ = std::make_unique<CoverageOnExit>(tb_->top().contextp());
+    }
+    return *tb_;
+  }
+  Top* operator->() { return tb().operator->(); }
+  void tick() { tb().tick(); }
+  // Ends the current model (its coverage is written, as a further .dat) so that the next
+  // tb() starts a new one: for benches made of independent runs. A trace stays with the
+  // first model.
+  void new_model() {
+    cov_.reset();
+    tb_.reset();
+  }
 
-  // rst_n low for `cycles` clocks, then high. `each` runs before every reset clock, for
-  // benches that drive garbage during reset.
+  // The reset input (rst_n, or aresetn on AXI blocks) low for `cycles` calls of `tick`,
+  // then high: for benches whose clock does more than Testbench::tick().
+  template <class Tick>
+  void reset_by(int cycles, Tick&& tick) {
+    detail::reset_of(tb().top(), 0) = 0;
+    for (int i = 0; i < cycles; ++i) tick();
+    detail::reset_of(tb().top(), 0) = 1;
+  }
+  // The same with plain ticks; `each` runs before every reset clock, for benches that
+  // drive garbage during reset.
   template <class Each>
   void reset(int cycles, Each&& each) {
-    tb_->rst_n = 0;
-    for (int i = 0; i < cycles; ++i) {
+    reset_by(cycles, [&] {
       each();
-      tb_.tick();
-    }
-    tb_->rst_n = 1;
+      tb().tick();
+    });
   }
   void reset(int cycles) {
     reset(cycles, [] {});
@@ -77,7 +108,7 @@ class BlockTest {
   // The next clock's ce, driven on the model's ce input.
   bool next_ce() {
     const bool ce = ce_->next();
-    tb_->ce = ce;
+    tb()->ce = ce;
     return ce;
   }
   // The schedule's generator, for the benches whose garbage comes from the same stream.
@@ -144,8 +175,8 @@ class BlockTest {
   CLI::App cli_;
   std::string trace_;
   long max_report_ = 10;
-  Testbench<Top> tb_;
-  CoverageOnExit cov_{tb_->contextp()};  // after tb_: written before the model is deleted
+  std::unique_ptr<Testbench<Top>> tb_;
+  std::unique_ptr<CoverageOnExit> cov_;  // after tb_: written before the model is deleted
   std::unique_ptr<CeGen> ce_;
   std::unique_ptr<OutputOrder> order_;
   long passed_ = 0, failed_ = 0;
