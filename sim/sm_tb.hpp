@@ -47,6 +47,15 @@ template <class T>
 auto clock_of(T& t, long) -> decltype((t.clk)) {
   return t.clk;
 }
+// The same for the active-low reset: `rst_n`, or `aresetn` (AXI).
+template <class T>
+auto reset_of(T& t, int) -> decltype((t.aresetn)) {
+  return t.aresetn;
+}
+template <class T>
+auto reset_of(T& t, long) -> decltype((t.rst_n)) {
+  return t.rst_n;
+}
 #if VM_TRACE
 // The trace file class of a model: VerilatedVcdC for --trace, VerilatedFstC for
 // --trace-fst. The model's header does not say which: Verilator 5.006 declares trace()

@@ -46,11 +46,7 @@ foreach(pu 16 8)
 endforeach()
 
 # Model unit tests.
-add_executable(test_census_model ${CMAKE_CURRENT_LIST_DIR}/test_census_model.cpp)
-target_link_libraries(test_census_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
-target_compile_options(test_census_model PRIVATE ${SM_WARNINGS})
-add_test(NAME test_census_model COMMAND test_census_model)
-set_tests_properties(test_census_model PROPERTIES LABELS unit TIMEOUT 120)
+sm_unit_test(test_census_model LIBS sm_model ${OpenCV_LIBS} TIMEOUT 120)
 
 # The bit-plane to lane-order transpose on its own: padded planes and lanes, two plane
 # blocks, the paper configuration's 8 x 128, the degenerate 1 x 1, and 128 x 8 (lanes to

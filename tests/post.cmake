@@ -1,9 +1,5 @@
 # Post-processing (docs/algorithm.md sections 7-8): model unit tests and block tests.
-add_executable(test_post_model ${CMAKE_CURRENT_LIST_DIR}/test_post_model.cpp)
-target_link_libraries(test_post_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
-target_include_directories(test_post_model PRIVATE ${OpenCV_INCLUDE_DIRS})
-target_compile_options(test_post_model PRIVATE ${SM_WARNINGS})
-catch_discover_tests(test_post_model PROPERTIES LABELS unit)
+sm_unit_test(test_post_model LIBS sm_model ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS} DISCOVER)
 
 foreach(_f vmed med3 med53)
   sm_rtl_test(NAME tb_post_${_f} TOP sm_post_${_f} SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp

@@ -27,15 +27,6 @@ using Bench = sm::test::BlockTest<Top>;
 
 namespace {
 
-sm::HwConfig hw_config() {
-  sm::HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.max_height = SM_P_MAX_HEIGHT;
-  hw.disp = SM_P_DISP;
-  hw.max_objects = SM_P_MAX_OBJECTS;
-  return hw;
-}
-
 // The object block's read port as the register file expects it: registered, data of
 // obj_rd_idx one clock later.
 uint32_t obj_word(uint32_t idx) { return 0x5A000000u ^ (idx * 0x00010203u) ^ (idx << 20); }
@@ -280,7 +271,7 @@ void read_all(Dut& d, const Model& m, const std::string& when) {
 int main(int argc, char** argv) {
   Bench t{"sm_axil_regs block test"};
   if (auto rc = t.parse(argc, argv)) return *rc;
-  const sm::HwConfig hw = hw_config();
+  const sm::HwConfig hw = sm::verilated_config();
   Dut d{t};
   Model m(hw);
   t.reset_by(4, [&] { d.tick(); });

@@ -36,9 +36,7 @@ int main(int argc, char** argv) {
   t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
   if (auto rc = t.parse(argc, argv)) return *rc;
   const int r = (kCensus - 1) / 2;
-  sm::HwConfig hw;
-  hw.max_width = kMaxWidth;
-  hw.census = kCensus;
+  const sm::HwConfig hw = sm::verilated_config();
   const int cb = hw.census_bits();
 
   std::mt19937 rng(1234);

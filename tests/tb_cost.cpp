@@ -21,13 +21,6 @@ namespace {
 constexpr int kMaxWidth = SM_P_MAX_WIDTH;
 constexpr int kCensus = SM_P_CENSUS;
 constexpr int kDisp = SM_P_DISP;
-#ifdef SM_P_PU
-constexpr int kPu = SM_P_PU;
-#else
-constexpr int kPu = kDisp;
-#endif
-static_assert(kDisp % kPu == 0, "PU must divide DISP");
-constexpr int kFold = kDisp / kPu;  // clocks per beat
 
 sm::CensusVec garbage(std::mt19937& rng) {
   auto w = [&] { return (static_cast<uint64_t>(rng()) << 32) | rng(); };
@@ -43,10 +36,13 @@ int main(int argc, char** argv) {
   t.cli().add_option("--width", w, "active width")->check(CLI::Range(1, kMaxWidth));
   t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
   if (auto rc = t.parse(argc, argv)) return *rc;
-  sm::HwConfig hw;
-  hw.max_width = kMaxWidth;
-  hw.census = kCensus;
-  hw.disp = kDisp;
+  const sm::HwConfig hw = sm::verilated_config();
+  const int pu = hw.levels_per_clock();
+  if (kDisp % pu != 0) {
+    fmt::print(stderr, "tb_cost: PU {} does not divide DISP {}\n", pu, kDisp);
+    return 2;
+  }
+  const int fold = kDisp / pu;  // clocks per beat
   const int cb = hw.census_bits();
   int hwb = 0;  // HW = clog2(CB + 1)
   while ((1 << hwb) < cb + 1) ++hwb;
@@ -70,7 +66,7 @@ int main(int argc, char** argv) {
   }
   const auto sched = sm::test::make_schedule(w, heights, 1);
 
-  t.ce_schedule(0xc057u, 30, kFold);
+  t.ce_schedule(0xc057u, 30, fold);
   t.expect_frames(w, heights);
   t->width = w;
   t->ce = 1;
@@ -81,7 +77,7 @@ int main(int argc, char** argv) {
   size_t held = sched.size();
   uint8_t held_side = 0, held_left = 0;
   sm::CensusVec held_cl{}, held_cr{};
-  int warm = kFold - 1;
+  int warm = fold - 1;
   for (size_t n = 0; n < sched.size();) {
     // Folded: the reset starts the sub-steps of the first beat like a ce; its ce comes
     // F clocks later at the earliest.
@@ -92,7 +88,7 @@ int main(int argc, char** argv) {
     } else {
       ce = t.next_ce();
     }
-    if (kFold > 1) {
+    if (fold > 1) {
       if (held != n) {
         const auto& b = sched[n];
         held = n;
@@ -141,5 +137,5 @@ int main(int argc, char** argv) {
     t.check(what.empty(), [&] { return fmt::format("frame {} x {} y {} {}", p->frame, p->x, p->y, what); });
   }
   t.all_out();
-  return t.finish(fmt::format("tb_cost MAX_WIDTH={} CENSUS={} DISP={} PU={} W={}", kMaxWidth, kCensus, kDisp, kPu, w));
+  return t.finish(fmt::format("tb_cost MAX_WIDTH={} CENSUS={} DISP={} PU={} W={}", kMaxWidth, kCensus, kDisp, pu, w));
 }

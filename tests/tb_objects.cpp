@@ -49,12 +49,7 @@ DispImage random_map(std::mt19937& rng, int w, int h, int disp, int block) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.max_height = SM_P_MAX_HEIGHT;
-  hw.disp = SM_P_DISP;
-  hw.max_objects = SM_P_MAX_OBJECTS;
-  hw.label_slots = SM_P_LABEL_SLOTS;
+  const HwConfig hw = verilated_config();
   BlockTest<SM_VTOP> t{"sm_objects block test"};
   int w = 37, h = 23;
   // room for the scenes' boxes

@@ -12,14 +12,8 @@
 #include "sm_block_test.hpp"
 #include "sm_port.hpp"
 
-namespace {
-
-constexpr int kP = SM_P_P;
-constexpr int kL = SM_P_L;
-
-}  // namespace
-
 int main(int argc, char** argv) {
+  constexpr int kP = SM_P_P, kL = SM_P_L;
   sm::test::BlockTest<SM_VTOP> t{"sm_plane2lane direct test"};
   if (auto rc = t.parse(argc, argv)) return *rc;
   std::mt19937 rng(0x91a7e5u);

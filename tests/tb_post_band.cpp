@@ -12,7 +12,7 @@
 #include <vector>
 
 #include SM_VTOP_H
-#include "post.hpp"
+#include "disp_stream.hpp"
 #include "sm_block_test.hpp"
 
 using namespace sm;
@@ -60,9 +60,7 @@ DispImage band_map(std::mt19937& rng, int w, int h, int disp, unsigned dmask) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.disp = SM_P_DISP;
+  const HwConfig hw = verilated_config();
   BlockTest<SM_VTOP> t{"sm_post_band block test"};
   std::vector<int> widths{37};
   int h = 12;
@@ -112,13 +110,7 @@ int main(int argc, char** argv) {
     const auto sched = make_schedule(w, heights, kK + 2);
     // documented latency (docs/algorithm.md section 7): K*W + 1 beats
     const long latency = static_cast<long>(kK) * w + 1;
-    std::vector<std::vector<long>> beat_of(heights.size());  // frame -> y*w+x -> beat index
-    for (size_t i = 0; i < sched.size(); ++i)
-      if (sched[i].frame >= 0) {
-        auto& v = beat_of[sched[i].frame];
-        v.resize(static_cast<size_t>(w) * heights[sched[i].frame]);
-        v[static_cast<size_t>(sched[i].y) * w + sched[i].x] = static_cast<long>(i);
-      }
+    const auto beat_of = beat_index(sched, w, heights);
 
     t.expect_frames(w, heights);
     // The enable is latched with a frame's first centre at the output stage, K rows after
@@ -129,16 +121,7 @@ int main(int argc, char** argv) {
     const std::string where = fmt::format("width {}: ", w);
     while (k < sched.size()) {
       const bool c = t.next_ce();
-      if (c) {
-        const BeatInfo& b = sched[k++];
-        tb->s_side = b.side;
-        tb->s_disp = b.frame >= 0 ? in[b.frame].at(b.x, b.y) : static_cast<uint16_t>(rng());
-        tb->enable = next_out < enable.size() && enable[next_out];
-      } else {  // garbage while the pipeline holds
-        tb->s_side = rng() & 31;
-        tb->s_disp = static_cast<uint16_t>(rng());
-        tb->enable = rng() & 1;
-      }
+      drive_disp(tb.top(), c ? &sched[k++] : nullptr, in, next_out < enable.size() && enable[next_out], rng);
       tb.tick();
       if (!c || !(tb->m_side & kReal)) continue;
       const auto o = t.next_out(tb->m_side, where);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include SM_VTOP_H
-#include "post.hpp"
+#include "disp_stream.hpp"
 #include "sm_block_test.hpp"
 
 using namespace sm;
@@ -44,10 +44,8 @@ DispImage structured_map(std::mt19937& rng, int w, int h, int disp) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.disp = SM_P_DISP;
   BlockTest<SM_VTOP> t{"post-processing filter block test"};
+  const HwConfig hw = verilated_config();
   int w = 37, h = 9;
   // the filter's number (1..3) also offsets the seeds: each filter has its own stimulus
   int filter = 0;
@@ -80,13 +78,7 @@ int main(int argc, char** argv) {
   // documented latency (docs/algorithm.md section 7): RY*W + RX + 2 beats
   const int ry = filter == 2 ? 1 : 2, rx = filter == 1 ? 0 : 1;
   const long latency = static_cast<long>(ry) * w + rx + 2;
-  std::vector<std::vector<long>> beat_of(heights.size());  // frame -> y*w+x -> beat index
-  for (size_t i = 0; i < sched.size(); ++i)
-    if (sched[i].frame >= 0) {
-      auto& v = beat_of[sched[i].frame];
-      v.resize(static_cast<size_t>(w) * heights[sched[i].frame]);
-      v[static_cast<size_t>(sched[i].y) * w + sched[i].x] = static_cast<long>(i);
-    }
+  const auto beat_of = beat_index(sched, w, heights);
 
   auto& tb = t.tb();
   tb->ce = 1;
@@ -100,17 +92,9 @@ int main(int argc, char** argv) {
   size_t k = 0;
   while (k < sched.size()) {
     const bool c = t.next_ce();
-    if (c) {
-      const BeatInfo& b = sched[k++];
-      tb->s_side = b.side;
-      tb->s_disp = b.frame >= 0 ? in[b.frame].at(b.x, b.y) : static_cast<uint16_t>(rng());
-      if (b.frame >= 0 && b.x == 0 && b.y == 0) cur_en = enable[b.frame];
-      tb->enable = cur_en;
-    } else {  // garbage while the pipeline holds
-      tb->s_side = rng() & 31;
-      tb->s_disp = static_cast<uint16_t>(rng());
-      tb->enable = rng() & 1;
-    }
+    const BeatInfo* b = c ? &sched[k++] : nullptr;
+    if (b && b->frame >= 0 && b->x == 0 && b->y == 0) cur_en = enable[b->frame];
+    drive_disp(tb.top(), b, in, cur_en, rng);
     tb.tick();
     if (!c || !(tb->m_side & kReal)) continue;
     const auto o = t.next_out(tb->m_side);

@@ -74,10 +74,7 @@ struct Session {
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_rectify block test"};
   if (auto rc = t.parse(argc, argv)) return *rc;
-  sm::HwConfig hw;
-  hw.max_width = kMaxW;
-  hw.max_height = kMaxH;
-  hw.rect_radius = kR;
+  const sm::HwConfig hw = sm::verilated_config();
 
   std::mt19937 rng(12345);
   std::vector<Session> sessions;

@@ -15,12 +15,9 @@ using sm::test::BeatInfo;
 
 namespace {
 
-constexpr int kDRows = SM_P_D_ROWS;
-constexpr int kDCols = SM_P_D_COLS;
-constexpr int kRUp = SM_P_R_UP;
-constexpr int kRDn = SM_P_R_DN;
-constexpr int kRL = SM_P_R_L;
-constexpr int kRR = SM_P_R_R;
+// the delay of the centre beat and the window's reach up, down, left and right
+constexpr int kDRows = SM_P_D_ROWS, kDCols = SM_P_D_COLS;
+constexpr int kRUp = SM_P_R_UP, kRDn = SM_P_R_DN, kRL = SM_P_R_L, kRR = SM_P_R_R;
 
 struct Segment {
   int height;        // rows of the frame

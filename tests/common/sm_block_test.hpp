@@ -2,17 +2,19 @@
 // "Block-test kernel"): a bench declares a BlockTest, adds its own knobs to cli(), calls
 // parse(), builds its stimulus and expected values, drives the model through tb() with
 // reset() and next_ce(), counts every comparison with check() / fail(), and returns
-// finish(). The RTL parameters are compile-time SM_P_<NAME> definitions (sm_rtl_test);
-// everything else a bench varies is a command-line option, so one binary serves several
-// ctest entries.
+// finish(). The RTL parameters are compile-time SM_P_<NAME> definitions (sm_rtl_test;
+// sm::verilated_config() turns them into the model's HwConfig); everything else a bench
+// varies is a command-line option, so one binary serves several ctest entries.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -21,19 +23,9 @@
 #include "beat_schedule.hpp"
 #include "sm_coverage.hpp"
 #include "sm_tb.hpp"
+#include "sm_vconfig.hpp"  // sm::verilated_config(): the model's HwConfig
 
 namespace sm::test {
-
-namespace detail {
-template <class T>
-auto reset_of(T& t, int) -> decltype((t.aresetn)) {
-  return t.aresetn;
-}
-template <class T>
-auto reset_of(T& t, long) -> decltype((t.rst_n)) {
-  return t.rst_n;
-}
-}  // namespace detail
 
 template <class Top>
 class BlockTest {
@@ -83,9 +75,9 @@ class BlockTest {
   // then high: for benches whose clock does more than Testbench::tick().
   template <class Tick>
   void reset_by(int cycles, Tick&& tick) {
-    detail::reset_of(tb().top(), 0) = 0;
+    sm::detail::reset_of(tb().top(), 0) = 0;
     for (int i = 0; i < cycles; ++i) tick();
-    detail::reset_of(tb().top(), 0) = 1;
+    sm::detail::reset_of(tb().top(), 0) = 1;
   }
   // The same with plain ticks; `each` runs before every reset clock, for benches that
   // drive garbage during reset.
@@ -152,11 +144,25 @@ class BlockTest {
   template <class Msg>
   void fail(Msg&& msg) {
     ++failed_;
-    if (failed_ > max_report_) return;
+    if (failed_ > max_report_ && !each_kind_) return;
+    std::string s;
     if constexpr (std::is_invocable_v<Msg>)
-      report(msg());
+      s = msg();
     else
-      report(std::string(std::forward<Msg>(msg)));
+      s = std::string(std::forward<Msg>(msg));
+    const bool fresh = each_kind_ && new_kind(s);
+    if (failed_ <= max_report_ || fresh)
+      fmt::print("{} {}\n", failed_ == 1 ? "FIRST FAILURE:" : "FAIL:", s);
+    else
+      ++hidden_;
+  }
+  // Beyond --max-report, still print the first failure of every kind (its message with
+  // the digits taken out): in a long randomised run a flood of one rule must not hide
+  // another. For benches whose messages are a fixed set of rules; `first` is the default
+  // of --max-report (call before parse()).
+  void report_each_kind(long first) {
+    each_kind_ = true;
+    max_report_ = first;
   }
   long passed() const { return passed_; }
   long failed() const { return failed_; }
@@ -164,13 +170,19 @@ class BlockTest {
   // The summary line "<label>: N passed, M failed<note>" and the exit code: 0 only when
   // nothing failed and something was checked (a bench that compared nothing is broken).
   int finish(const std::string& label, const std::string& note = "") {
-    if (failed_ > max_report_) fmt::print("({} more failures not shown)\n", failed_ - max_report_);
+    const long hidden = each_kind_ ? hidden_ : failed_ - max_report_;
+    if (hidden > 0) fmt::print("({} more failures not shown)\n", hidden);
     fmt::print("{}: {} passed, {} failed{}\n", label, passed_, failed_, note);
     return failed_ == 0 && passed_ > 0 ? 0 : 1;
   }
 
  private:
-  void report(const std::string& s) const { fmt::print("{} {}\n", failed_ == 1 ? "FIRST FAILURE:" : "FAIL:", s); }
+  bool new_kind(const std::string& s) {
+    std::string kind;
+    for (char c : s)
+      if (!std::isdigit(static_cast<unsigned char>(c))) kind += c;
+    return kinds_.insert(kind).second;
+  }
 
   CLI::App cli_;
   std::string trace_;
@@ -180,6 +192,9 @@ class BlockTest {
   std::unique_ptr<CeGen> ce_;
   std::unique_ptr<OutputOrder> order_;
   long passed_ = 0, failed_ = 0;
+  bool each_kind_ = false;
+  std::set<std::string> kinds_;  // of the failures printed, with each_kind_
+  long hidden_ = 0;
 };
 
 }  // namespace sm::test
