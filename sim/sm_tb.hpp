@@ -47,14 +47,17 @@ template <class T>
 auto clock_of(T& t, long) -> decltype((t.clk)) {
   return t.clk;
 }
-// The same for the active-low reset: `rst_n`, or `aresetn` (AXI).
+// The active-low reset: `aresetn` on the AXI top level, `rst_n` on blocks.
+template <class T, class = void>
+struct has_aresetn : std::false_type {};
 template <class T>
-auto reset_of(T& t, int) -> decltype((t.aresetn)) {
-  return t.aresetn;
-}
+struct has_aresetn<T, std::void_t<decltype(std::declval<T&>().aresetn)>> : std::true_type {};
 template <class T>
-auto reset_of(T& t, long) -> decltype((t.rst_n)) {
-  return t.rst_n;
+auto& reset_of(T& t) {
+  if constexpr (has_aresetn<T>::value)
+    return t.aresetn;
+  else
+    return t.rst_n;
 }
 #if VM_TRACE
 // The trace file class of a model: VerilatedVcdC for --trace, VerilatedFstC for

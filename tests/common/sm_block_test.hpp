@@ -64,9 +64,10 @@ class BlockTest {
   Top* operator->() { return tb().operator->(); }
   void tick() { tb().tick(); }
   // Ends the current model (its coverage is written, as a further .dat) so that the next
-  // tb() starts a new one: for benches made of independent runs. A trace stays with the
-  // first model.
+  // tb() starts a new one: for benches made of independent runs. A model that has not
+  // been clocked yet is kept, so a --trace opened by parse() records the first run.
   void new_model() {
+    if (tb_ && tb_->cycles() == 0) return;
     cov_.reset();
     tb_.reset();
   }
@@ -75,9 +76,9 @@ class BlockTest {
   // then high: for benches whose clock does more than Testbench::tick().
   template <class Tick>
   void reset_by(int cycles, Tick&& tick) {
-    sm::detail::reset_of(tb().top(), 0) = 0;
+    sm::detail::reset_of(tb().top()) = 0;
     for (int i = 0; i < cycles; ++i) tick();
-    sm::detail::reset_of(tb().top(), 0) = 1;
+    sm::detail::reset_of(tb().top()) = 1;
   }
   // The same with plain ticks; `each` runs before every reset clock, for benches that
   // drive garbage during reset.
