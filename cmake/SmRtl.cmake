@@ -202,24 +202,33 @@ endfunction()
 
 # sm_rtl_test(NAME <test> TOP <module> SOURCES <tb.cpp ...> [PARAMS ...] [LABELS ...]
 #             [ARGS ...] [TRACE] [TIMEOUT s])
-#   One Verilated block test at one parameter point, registered with ctest.
+# sm_rtl_test(NAME <test> RUN <test of a binary> [ARGS ...] [LABELS ...] [TIMEOUT s])
+#   One Verilated block test at one parameter point, registered with ctest: the RTL
+#   parameters become SM_P_<NAME> definitions, ARGS the bench's command line (its
+#   width, heights, seed, ...: tests/common/sm_block_test.hpp). With RUN, another run
+#   of the binary an earlier sm_rtl_test built (same parameters, other ARGS).
 function(sm_rtl_test)
-  cmake_parse_arguments(T "TRACE" "NAME;TOP;TIMEOUT" "SOURCES;PARAMS;LABELS;ARGS" ${ARGN})
-  add_executable(${T_NAME} ${T_SOURCES})
-  # the project's warnings on the bench (Verilator's headers and output are system headers)
-  set_source_files_properties(${T_SOURCES} PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
-  target_include_directories(${T_NAME} PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
-                                               ${CMAKE_SOURCE_DIR}/sim ${SM_GEN_DIR})
-  target_link_libraries(${T_NAME} PRIVATE sm_model fmt::fmt)
-  set(tr)
-  if(T_TRACE)
-    set(tr TRACE)
+  cmake_parse_arguments(T "TRACE" "NAME;TOP;TIMEOUT;RUN" "SOURCES;PARAMS;LABELS;ARGS" ${ARGN})
+  if(T_RUN)
+    add_test(NAME ${T_NAME} COMMAND ${T_RUN} ${T_ARGS})
+  else()
+    add_executable(${T_NAME} ${T_SOURCES})
+    # the project's warnings on the bench (Verilator's headers and output are system headers)
+    set_source_files_properties(${T_SOURCES} PROPERTIES COMPILE_OPTIONS "${SM_WARNINGS}")
+    target_include_directories(${T_NAME} PRIVATE ${CMAKE_SOURCE_DIR}/tests/common
+                                                 ${CMAKE_SOURCE_DIR}/sim ${SM_GEN_DIR})
+    # CLI11: the bench's own knobs are options (tests/common/sm_block_test.hpp)
+    target_link_libraries(${T_NAME} PRIVATE sm_model fmt::fmt CLI11::CLI11)
+    set(tr)
+    if(T_TRACE)
+      set(tr TRACE)
+    endif()
+    sm_verilated(TARGET ${T_NAME} TOP ${T_TOP} PARAMS ${T_PARAMS} ${tr})
+    # Block tests run for seconds; their generated C++ (tens of MB at the paper point)
+    # compiles several times faster at -O1 than at -O3.
+    target_compile_options(${T_NAME} PRIVATE -O1)
+    add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})
   endif()
-  sm_verilated(TARGET ${T_NAME} TOP ${T_TOP} PARAMS ${T_PARAMS} ${tr})
-  # Block tests run for seconds; their generated C++ (tens of MB at the paper point)
-  # compiles several times faster at -O1 than at -O3.
-  target_compile_options(${T_NAME} PRIVATE -O1)
-  add_test(NAME ${T_NAME} COMMAND ${T_NAME} ${T_ARGS})
   if(NOT T_LABELS)
     set(T_LABELS rtl)
   endif()

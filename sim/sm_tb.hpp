@@ -47,6 +47,18 @@ template <class T>
 auto clock_of(T& t, long) -> decltype((t.clk)) {
   return t.clk;
 }
+// The active-low reset: `aresetn` on the AXI top level, `rst_n` on blocks.
+template <class T, class = void>
+struct has_aresetn : std::false_type {};
+template <class T>
+struct has_aresetn<T, std::void_t<decltype(std::declval<T&>().aresetn)>> : std::true_type {};
+template <class T>
+auto& reset_of(T& t) {
+  if constexpr (has_aresetn<T>::value)
+    return t.aresetn;
+  else
+    return t.rst_n;
+}
 #if VM_TRACE
 // The trace file class of a model: VerilatedVcdC for --trace, VerilatedFstC for
 // --trace-fst. The model's header does not say which: Verilator 5.006 declares trace()
@@ -132,10 +144,17 @@ class Testbench {
 
   // One clock period: falling half then rising edge.
   void tick() {
+    tick([] {});
+  }
+  // The same with `between_edges` run after the falling half is evaluated: a bench models
+  // a synchronous read port there, answering the address the rising edge will register.
+  template <class F>
+  void tick(F&& between_edges) {
     auto& clk = detail::clock_of(*top_, 0);
     clk = 0;
     top_->eval();
     dump(2 * cycles_);
+    between_edges();
     clk = 1;
     top_->eval();
     dump(2 * cycles_ + 1);

@@ -1,9 +1,5 @@
 # Support-weight aggregation (docs/algorithm.md section 5): model unit tests and block tests.
-add_executable(test_aggregate_model ${CMAKE_CURRENT_LIST_DIR}/test_aggregate_model.cpp)
-target_link_libraries(test_aggregate_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
-target_include_directories(test_aggregate_model PRIVATE ${OpenCV_INCLUDE_DIRS})
-target_compile_options(test_aggregate_model PRIVATE ${SM_WARNINGS})
-catch_discover_tests(test_aggregate_model PROPERTIES LABELS unit)
+sm_unit_test(test_aggregate_model LIBS sm_model ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS} DISCOVER)
 
 # Block tests: odd width 37, three frames back to back, 30 % idle cycles.
 set(_agg_tb ${CMAKE_CURRENT_LIST_DIR}/tb_sw_aggregate.cpp)
@@ -22,7 +18,6 @@ sm_rtl_test(NAME tb_sw_aggregate_paper TOP sm_sw_aggregate SOURCES ${_agg_tb}
 # MAX_WIDTH 50 (not a power of two: the cost line buffer in two banks, sm_sw_foldlb
 # g_two, at a power-of-two F and at F 3).
 # Fields: name; SW; DISP; PU; COST_SHIFT; active width; seed; MAX_WIDTH.
-set(_agg_fold)
 foreach(_p "sw5_pu16;5;16;16;1;37;2;64" "sw5_pu8;5;16;8;1;37;5;64" "sw3_pu4;3;16;4;2;37;6;64"
            "sw5_pu2;5;16;2;1;23;7;64" "sw3_pu1;3;16;1;2;19;8;64" "sw7_pu4;7;16;4;1;29;9;64"
            "sw5_d12_pu4;5;12;4;2;31;10;64" "w50_pu4;5;16;4;1;50;14;50" "w50_d12_pu4;5;12;4;2;47;15;50")
@@ -37,7 +32,6 @@ foreach(_p "sw5_pu16;5;16;16;1;37;2;64" "sw5_pu8;5;16;8;1;37;5;64" "sw3_pu4;3;16
   sm_rtl_test(NAME tb_sw_aggregate_${_n} TOP sm_sw_aggregate SOURCES ${_agg_tb}
               PARAMS MAX_WIDTH=${_mw} DISP=${_d} CENSUS=7 SW=${_sw} COST_SHIFT=${_cs} PU=${_pu}
               ARGS --width ${_w} --heights 9 4 11 --seed ${_seed})
-  list(APPEND _agg_fold tb_sw_aggregate_${_n})
 endforeach()
 # The zynq point (320 wide, DISP 128, CENSUS 15, SW 5) at PU 16 and 8, the full line
 # with 50 % idle on the PU 16 binary.
@@ -47,14 +41,8 @@ sm_rtl_test(NAME tb_sw_aggregate_zynq_pu16 TOP sm_sw_aggregate SOURCES ${_agg_tb
 sm_rtl_test(NAME tb_sw_aggregate_zynq_pu8 TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 SW=5 COST_SHIFT=2 PU=8
             ARGS --width 317 --heights 6 5 --seed 12 LABELS "rtl;slow")
-add_test(NAME tb_sw_aggregate_zynq_pu16_w320
-         COMMAND tb_sw_aggregate_zynq_pu16 --width 320 --heights 7 6 --seed 13 --idle 50)
-set_tests_properties(tb_sw_aggregate_zynq_pu16_w320 PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
-foreach(_t tb_sw_aggregate_sw3 tb_sw_aggregate_sw5 tb_sw_aggregate_paper ${_agg_fold}
-           tb_sw_aggregate_zynq_pu16 tb_sw_aggregate_zynq_pu8)
-  target_link_libraries(${_t} PRIVATE CLI11::CLI11)
-endforeach()
+sm_rtl_test(NAME tb_sw_aggregate_zynq_pu16_w320 RUN tb_sw_aggregate_zynq_pu16
+            ARGS --width 320 --heights 7 6 --seed 13 --idle 50 LABELS "rtl;slow")
 # Full MAX_WIDTH line (last column of the line buffer) with the paper-point binary.
-add_test(NAME tb_sw_aggregate_paper_w320
-         COMMAND tb_sw_aggregate_paper --width 320 --heights 7 6 --seed 4 --idle 50)
-set_tests_properties(tb_sw_aggregate_paper_w320 PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
+sm_rtl_test(NAME tb_sw_aggregate_paper_w320 RUN tb_sw_aggregate_paper
+            ARGS --width 320 --heights 7 6 --seed 4 --idle 50 LABELS "rtl;slow")

@@ -23,11 +23,9 @@ sm_rtl_test(NAME tb_cost TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.c
 
 # Paper configuration, few rows, odd width below MAX_WIDTH.
 sm_rtl_test(NAME tb_census_paper TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_census.cpp
-            PARAMS MAX_WIDTH=320 CENSUS=15 LABELS rtl slow)
-target_compile_definitions(tb_census_paper PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
+            PARAMS MAX_WIDTH=320 CENSUS=15 ARGS --width 301 --heights 20 2 7 LABELS rtl slow)
 sm_rtl_test(NAME tb_cost_paper TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-            PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 LABELS rtl slow)
-target_compile_definitions(tb_cost_paper PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
+            PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 ARGS --width 301 --heights 20 3 5 LABELS rtl slow)
 
 # Folded sm_cost (F = DISP / PU clocks per beat, ce at most every F clocks, inputs held):
 # PU = DISP explicitly (the parallel branch), F = 2 (the early-ce hold multiplexer), 4, 8
@@ -43,16 +41,12 @@ sm_rtl_test(NAME tb_cost_odd_pu1 TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/t
             PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5 PU=1)
 foreach(pu 16 8)
   sm_rtl_test(NAME tb_cost_zynq_pu${pu} TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-              PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 PU=${pu} LABELS rtl slow)
-  target_compile_definitions(tb_cost_zynq_pu${pu} PRIVATE SM_TB_WIDTH=301 SM_TB_H0=20)
+              PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 PU=${pu} ARGS --width 301 --heights 20 3 5
+              LABELS rtl slow)
 endforeach()
 
 # Model unit tests.
-add_executable(test_census_model ${CMAKE_CURRENT_LIST_DIR}/test_census_model.cpp)
-target_link_libraries(test_census_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
-target_compile_options(test_census_model PRIVATE ${SM_WARNINGS})
-add_test(NAME test_census_model COMMAND test_census_model)
-set_tests_properties(test_census_model PROPERTIES LABELS unit TIMEOUT 120)
+sm_unit_test(test_census_model LIBS sm_model ${OpenCV_LIBS} TIMEOUT 120)
 
 # The bit-plane to lane-order transpose on its own: padded planes and lanes, two plane
 # blocks, the paper configuration's 8 x 128, the degenerate 1 x 1, and 128 x 8 (lanes to
@@ -80,7 +74,6 @@ function(sm_bitheap_test name nc l)
   math(EXPR bits "${nc} * 32")
   sm_rtl_test(NAME tb_bitheap_${name} TOP sm_bitheap SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_bitheap.cpp
               PARAMS NC=${nc} L=${l} "H0=${bits}'h${hex}" ARGS --heights ${ARGN})
-  target_link_libraries(tb_bitheap_${name} PRIVATE CLI11::CLI11)
 endfunction()
 sm_bitheap_test(agg 13 128 25 25 25 25 25 25 25 25 0 0 0 0 0)
 sm_bitheap_test(pop 8 5 75 75 0 0 0 0 0 0)

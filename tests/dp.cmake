@@ -1,17 +1,12 @@
 # Trellis DP (docs/algorithm.md section 6): model unit tests and block tests of sm_dp.
-add_executable(test_dp_model ${CMAKE_CURRENT_LIST_DIR}/test_dp_model.cpp)
-target_link_libraries(test_dp_model PRIVATE sm_model Catch2::Catch2)
-target_compile_options(test_dp_model PRIVATE ${SM_WARNINGS})
-catch_discover_tests(test_dp_model PROPERTIES LABELS unit)
+sm_unit_test(test_dp_model LIBS sm_model DISCOVER)
 
 # Small point (CW = 4 is CENSUS 7 >> COST_SHIFT 2): odd width and full width.
 sm_rtl_test(NAME tb_dp TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=16 ARGS --width 37 --rows 9 --frames 3)
-add_test(NAME tb_dp_w64 COMMAND tb_dp --width 64 --rows 7 --frames 2 --seed 7)
-set_tests_properties(tb_dp_w64 PROPERTIES LABELS rtl TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_w64 RUN tb_dp ARGS --width 64 --rows 7 --frames 2 --seed 7)
 # Minimum active width S + P + 1 = 11.
-add_test(NAME tb_dp_wmin COMMAND tb_dp --width 11 --rows 6 --frames 2 --seed 3)
-set_tests_properties(tb_dp_wmin PROPERTIES LABELS rtl TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_wmin RUN tb_dp ARGS --width 11 --rows 6 --frames 2 --seed 3)
 # Neither MAX_WIDTH nor DISP a power of two (CW = 3 is CENSUS 5 >> 2).
 sm_rtl_test(NAME tb_dp_odd TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=50 DISP=10 CW=3 ARGS --width 23 --rows 8 --frames 3)
@@ -20,14 +15,13 @@ sm_rtl_test(NAME tb_dp_odd TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
 # the pointer width's 8 and equal to the skew (2, 4) or deeper (3, 5).
 sm_rtl_test(NAME tb_dp_ring TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=50 DISP=10 CW=3 RING_MIN=2 ARGS --width 29 --rows 8 --frames 3)
-add_test(NAME tb_dp_ring16 COMMAND tb_dp_ring --width 50 --rows 5 --frames 2 --seed 11)
-set_tests_properties(tb_dp_ring16 PROPERTIES LABELS rtl TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_ring16 RUN tb_dp_ring ARGS --width 50 --rows 5 --frames 2 --seed 11)
 # Paper configuration.
 sm_rtl_test(NAME tb_dp_paper TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CW=6 ARGS --width 320 --rows 8 --frames 3
             LABELS "rtl;slow")
-add_test(NAME tb_dp_paper_wmin COMMAND tb_dp_paper --width 67 --rows 6 --frames 3 --seed 4)
-set_tests_properties(tb_dp_paper_wmin PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_paper_wmin RUN tb_dp_paper
+            ARGS --width 67 --rows 6 --frames 3 --seed 4 LABELS "rtl;slow")
 
 # Folded (PU < DISP, F = DISP/PU clocks per beat, ce at most every F clocks, input held
 # between ces): DISP 16 at PU 8, 4, 2 (F 2, 4, 8), odd and minimum widths, random ce
@@ -35,14 +29,12 @@ set_tests_properties(tb_dp_paper_wmin PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
 # PU 6); the zynq point (DISP 128, CW 6 = CENSUS 15, PU 16 and 8).
 sm_rtl_test(NAME tb_dp_pu8 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=8 ARGS --width 37 --rows 9 --frames 3)
-add_test(NAME tb_dp_pu8_w64 COMMAND tb_dp_pu8 --width 64 --rows 6 --frames 3 --seed 5 --idle 60)
-set_tests_properties(tb_dp_pu8_w64 PROPERTIES LABELS rtl TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_pu8_w64 RUN tb_dp_pu8 ARGS --width 64 --rows 6 --frames 3 --seed 5 --idle 60)
 sm_rtl_test(NAME tb_dp_pu4 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=4 ARGS --width 41 --rows 8 --frames 3 --seed 2)
 sm_rtl_test(NAME tb_dp_pu2 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=64 DISP=16 CW=4 PU=2 ARGS --width 37 --rows 8 --frames 3 --seed 9)
-add_test(NAME tb_dp_pu2_wmin COMMAND tb_dp_pu2 --width 11 --rows 6 --frames 3 --seed 13 --idle 0)
-set_tests_properties(tb_dp_pu2_wmin PROPERTIES LABELS rtl TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_pu2_wmin RUN tb_dp_pu2 ARGS --width 11 --rows 6 --frames 3 --seed 13 --idle 0)
 sm_rtl_test(NAME tb_dp_odd_pu2 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=50 DISP=10 CW=3 PU=2 ARGS --width 23 --rows 8 --frames 3 --seed 6)
 sm_rtl_test(NAME tb_dp_pu6 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
@@ -50,8 +42,8 @@ sm_rtl_test(NAME tb_dp_pu6 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
 sm_rtl_test(NAME tb_dp_zynq16 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CW=6 PU=16 ARGS --width 320 --rows 5 --frames 3
             LABELS "rtl;slow")
-add_test(NAME tb_dp_zynq16_wmin COMMAND tb_dp_zynq16 --width 67 --rows 6 --frames 3 --seed 4)
-set_tests_properties(tb_dp_zynq16_wmin PROPERTIES LABELS "rtl;slow" TIMEOUT 600)
+sm_rtl_test(NAME tb_dp_zynq16_wmin RUN tb_dp_zynq16
+            ARGS --width 67 --rows 6 --frames 3 --seed 4 LABELS "rtl;slow")
 sm_rtl_test(NAME tb_dp_zynq8 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CW=6 PU=8 ARGS --width 251 --rows 4 --frames 3 --seed 12
             LABELS "rtl;slow")

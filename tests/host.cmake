@@ -12,26 +12,15 @@ sm_host_test(tb_axil_regs_paper sm_axil_regs tb_axil_regs.cpp
              PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABELS rtl slow)
 sm_host_test(tb_seq sm_seq tb_seq.cpp PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 FLUSH_ROWS=3)
 sm_host_test(tb_seq_paper sm_seq tb_seq.cpp PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 FLUSH_ROWS=28
-             ARGS paper LABELS rtl slow)
+             ARGS --paper LABELS rtl slow)
 sm_host_test(tb_outfmt sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=64 FIFO_DEPTH=8)
 sm_host_test(tb_outfmt_paper sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=320 FIFO_DEPTH=256
-             ARGS paper LABELS rtl slow)
+             ARGS --paper LABELS rtl slow)
 
 # Register map against independent truth: sm::Regs defaults, the spec's grid size, layout.
-add_executable(test_regmap ${SM_HOST_TESTS}/test_regmap.cpp)
-target_include_directories(test_regmap PRIVATE ${SM_GEN_DIR} ${SM_HOST_TESTS}/common)
-target_link_libraries(test_regmap PRIVATE sm_model Catch2::Catch2)
-target_compile_definitions(test_regmap PRIVATE SM_RTL_DIR="${SM_RTL_DIR}")
-target_compile_options(test_regmap PRIVATE ${SM_WARNINGS})
-add_dependencies(test_regmap sm_regmap_gen_files)
-add_test(NAME test_regmap COMMAND test_regmap)
-set_tests_properties(test_regmap PROPERTIES LABELS unit)
+sm_unit_test(test_regmap LIBS sm_model INCLUDES ${SM_GEN_DIR} ${SM_HOST_TESTS}/common
+             DEFINES SM_RTL_DIR="${SM_RTL_DIR}" DEPENDS sm_regmap_gen_files)
 
 # The sequencer's framing rules (model/seq.hpp) against hand-written streams; the fault
 # classes' bit order against the register map.
-add_executable(test_seq_model ${SM_HOST_TESTS}/test_seq_model.cpp)
-target_include_directories(test_seq_model PRIVATE ${SM_GEN_DIR})
-target_link_libraries(test_seq_model PRIVATE sm_model Catch2::Catch2)
-target_compile_options(test_seq_model PRIVATE ${SM_WARNINGS})
-add_dependencies(test_seq_model sm_regmap_gen_files)
-catch_discover_tests(test_seq_model PROPERTIES LABELS unit)
+sm_unit_test(test_seq_model LIBS sm_model INCLUDES ${SM_GEN_DIR} DEPENDS sm_regmap_gen_files DISCOVER)

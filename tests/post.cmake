@@ -1,29 +1,19 @@
 # Post-processing (docs/algorithm.md sections 7-8): model unit tests and block tests.
-add_executable(test_post_model ${CMAKE_CURRENT_LIST_DIR}/test_post_model.cpp)
-target_link_libraries(test_post_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
-target_include_directories(test_post_model PRIVATE ${OpenCV_INCLUDE_DIRS})
-target_compile_options(test_post_model PRIVATE ${SM_WARNINGS})
-catch_discover_tests(test_post_model PROPERTIES LABELS unit)
+sm_unit_test(test_post_model LIBS sm_model ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS} DISCOVER)
 
-set(_post_filters vmed med3 med53)
-foreach(i RANGE 1 3)
-  math(EXPR _j "${i} - 1")
-  list(GET _post_filters ${_j} _f)
-  sm_rtl_test(NAME tb_post_${_f} TOP sm_post_${_f}
-              SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
-              PARAMS MAX_WIDTH=64 DISP=16 ARGS 37 9)
-  target_compile_definitions(tb_post_${_f} PRIVATE SM_FILTER=${i})
-  sm_rtl_test(NAME tb_post_${_f}_paper TOP sm_post_${_f}
-              SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
-              PARAMS MAX_WIDTH=320 DISP=128 ARGS 320 6 LABELS "rtl;slow")
-  target_compile_definitions(tb_post_${_f}_paper PRIVATE SM_FILTER=${i})
+foreach(_f vmed med3 med53)
+  sm_rtl_test(NAME tb_post_${_f} TOP sm_post_${_f} SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
+              PARAMS MAX_WIDTH=64 DISP=16 ARGS --filter ${_f} --width 37 --height 9)
+  sm_rtl_test(NAME tb_post_${_f}_paper TOP sm_post_${_f} SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
+              PARAMS MAX_WIDTH=320 DISP=128 ARGS --filter ${_f} --width 320 --height 6 LABELS "rtl;slow")
 endforeach()
 
 sm_rtl_test(NAME tb_objects TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
-            PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=16 ARGS 37 23)
+            PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=16
+            ARGS --width 37 --height 23)
 sm_rtl_test(NAME tb_objects_paper TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
             PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABEL_SLOTS=64
-            ARGS 320 40 LABELS "rtl;slow")
+            ARGS --width 320 --height 40 LABELS "rtl;slow")
 
 # Band filter F0 (sm_post_band) against the model's post_band: odd and tiny widths one
 # after the other without a reset, frames of at most K rows among them.
@@ -33,6 +23,3 @@ sm_rtl_test(NAME tb_post_band_k8 TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_D
             PARAMS MAX_WIDTH=64 DISP=16 K=8 ARGS --widths 23,64,3 --height 13)
 sm_rtl_test(NAME tb_post_band_paper TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp
             PARAMS MAX_WIDTH=320 DISP=128 K=8 ARGS --widths 319,320,17 --height 20 LABELS "rtl;slow")
-foreach(_t tb_post_band tb_post_band_k8 tb_post_band_paper)
-  target_link_libraries(${_t} PRIVATE CLI11::CLI11)
-endforeach()

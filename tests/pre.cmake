@@ -8,12 +8,7 @@ sm_rtl_test(NAME tb_rectify_paper TOP sm_rectify
             SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_rectify.cpp
             PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 RECT_RADIUS=15 LABELS "rtl;slow" TIMEOUT 300)
 
-add_executable(test_pre_model ${CMAKE_CURRENT_LIST_DIR}/test_pre_model.cpp)
-target_link_libraries(test_pre_model PRIVATE sm_model Catch2::Catch2 ${OpenCV_LIBS})
-target_include_directories(test_pre_model PRIVATE ${OpenCV_INCLUDE_DIRS})
-target_compile_options(test_pre_model PRIVATE ${SM_WARNINGS})
-add_test(NAME test_pre_model COMMAND test_pre_model)
-set_tests_properties(test_pre_model PROPERTIES LABELS unit)
+sm_unit_test(test_pre_model LIBS sm_model ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS})
 
 # Calibration tool on a real chessboard set, only when its folder is given
 # (-DSM_CHESSBOARD_DIR=../shared/datasets/chessboard): the default suite never depends on

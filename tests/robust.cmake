@@ -12,18 +12,19 @@ foreach(v "tb_faults;vtop_small" "tb_faults_fold;vtop_small_fold")
   list(GET v 1 lib)
   add_executable(${exe} ${CMAKE_SOURCE_DIR}/tests/tb_faults.cpp)
   target_include_directories(${exe} PRIVATE ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOURCE_DIR}/tests/common ${SM_GEN_DIR})
-  target_link_libraries(${exe} PRIVATE ${lib} sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
+  target_link_libraries(${exe} PRIVATE ${lib} sm_model sm_toolio fmt::fmt CLI11::CLI11 ${OpenCV_LIBS})
 endforeach()
 # The main run: ~1000 input steps mixing every fault class (a few seconds).
-add_test(NAME robust_faults COMMAND tb_faults ${SM_SCENE_SMALL_DIR} 1000 20240611 nosoft)
+add_test(NAME robust_faults COMMAND tb_faults --scene ${SM_SCENE_SMALL_DIR} --steps 1000 --seed 20240611
+                                            --no-soft-reset)
 # A second seed: different fault positions.
-add_test(NAME robust_faults_seed2 COMMAND tb_faults ${SM_SCENE_SMALL_DIR} 400 7 nosoft)
+add_test(NAME robust_faults_seed2 COMMAND tb_faults --scene ${SM_SCENE_SMALL_DIR} --steps 400 --seed 7 --no-soft-reset)
 # Same mix plus CONTROL.SOFT_RESET mid-frame. Fails while rtl/sm_top.v declares rst_n
 # twice (line 80 `wire rst_n = aresetn;` wins in Verilator, so the soft reset never
 # reaches the sequencer, the pipeline or the output formatter).
-add_test(NAME robust_faults_soft_reset COMMAND tb_faults ${SM_SCENE_SMALL_DIR} 400 11)
+add_test(NAME robust_faults_soft_reset COMMAND tb_faults --scene ${SM_SCENE_SMALL_DIR} --steps 400 --seed 11)
 # The folded small configuration (4 clocks per pixel): a fault or a soft reset while a
 # pixel is half-way through its clocks recovers like any other.
-add_test(NAME robust_faults_fold COMMAND tb_faults_fold ${SM_SCENE_SMALL_DIR} 400 5)
+add_test(NAME robust_faults_fold COMMAND tb_faults_fold --scene ${SM_SCENE_SMALL_DIR} --steps 400 --seed 5)
 set_tests_properties(robust_faults robust_faults_seed2 robust_faults_soft_reset robust_faults_fold
                      PROPERTIES LABELS "robust" TIMEOUT 900)

@@ -6,7 +6,7 @@ endif()
 function(sm_top_test name lib)
   add_executable(${name} ${CMAKE_SOURCE_DIR}/tests/tb_top.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOURCE_DIR}/tests/common ${SM_GEN_DIR})
-  target_link_libraries(${name} PRIVATE ${lib} sm_model sm_toolio fmt::fmt ${OpenCV_LIBS})
+  target_link_libraries(${name} PRIVATE ${lib} sm_model sm_toolio fmt::fmt CLI11::CLI11 ${OpenCV_LIBS})
 endfunction()
 sm_top_test(tb_top_small vtop_small)
 sm_top_test(tb_top_small_fold vtop_small_fold)
@@ -16,9 +16,9 @@ sm_top_test(tb_top_vga vtop_vga)
 
 set(_w ${CMAKE_BINARY_DIR}/waves)
 file(MAKE_DIRECTORY ${_w})
-add_test(NAME system_small_stress COMMAND tb_top_small ${SM_SCENE_SMALL_DIR} stress)
-add_test(NAME system_small_vcd COMMAND tb_top_small ${SM_SCENE_SMALL_DIR} vcd ${_w}/system_small.vcd)
-add_test(NAME system_small_budget COMMAND tb_top_small ${SM_SCENE_SMALL_DIR} budget)
+add_test(NAME system_small_stress COMMAND tb_top_small --scene ${SM_SCENE_SMALL_DIR} --mode stress)
+add_test(NAME system_small_vcd COMMAND tb_top_small --scene ${SM_SCENE_SMALL_DIR} --mode vcd --vcd ${_w}/system_small.vcd)
+add_test(NAME system_small_budget COMMAND tb_top_small --scene ${SM_SCENE_SMALL_DIR} --mode budget)
 # Calibration round trip: a small pair whose right camera is rotated and shifted; its
 # calibration registers (rectifier grids) go over AXI4-Lite before the frame.
 set(_rot ${CMAKE_BINARY_DIR}/scene_small_rot)
@@ -26,19 +26,19 @@ add_custom_command(OUTPUT ${_rot}/calib.json ${_rot}/left.png ${_rot}/right.png
   COMMAND sm_scene --width 64 --height 48 --levels 16 --seed 3 --objects 3 --rot-deg 1.5 --vshift 1.5 --out ${_rot}
   DEPENDS sm_scene COMMENT "Generating a distorted small stereo scene")
 add_custom_target(sm_scene_small_rot ALL DEPENDS ${_rot}/calib.json)
-add_test(NAME system_small_calib COMMAND tb_top_small ${_rot} calib ${_rot}/calib.json)
-add_test(NAME system_paper_budget COMMAND tb_top_paper ${SM_SCENE_DIR} budget)
+add_test(NAME system_small_calib COMMAND tb_top_small --scene ${_rot} --mode calib --calib ${_rot}/calib.json)
+add_test(NAME system_paper_budget COMMAND tb_top_paper --scene ${SM_SCENE_DIR} --mode budget)
 # The folded datapath (PU < DISP): the small configuration at 4 clocks per pixel under
 # stress and at camera timing (plus a continuous camera faster than the core, held by
 # tready), and the zynq configuration's budget: the built-in scene at 30 frames/s camera
 # timing on a 100 MHz core clock.
-add_test(NAME system_small_fold_stress COMMAND tb_top_small_fold ${SM_SCENE_SMALL_DIR} stress)
-add_test(NAME system_small_fold_budget COMMAND tb_top_small_fold ${SM_SCENE_SMALL_DIR} budget)
-add_test(NAME system_zynq_budget COMMAND tb_top_zynq ${SM_SCENE_DIR} budget 100)
+add_test(NAME system_small_fold_stress COMMAND tb_top_small_fold --scene ${SM_SCENE_SMALL_DIR} --mode stress)
+add_test(NAME system_small_fold_budget COMMAND tb_top_small_fold --scene ${SM_SCENE_SMALL_DIR} --mode budget)
+add_test(NAME system_zynq_budget COMMAND tb_top_zynq --scene ${SM_SCENE_DIR} --mode budget --mhz 100)
 # The vga configuration (the zynq one at 640x480): one frame of a 640x480 scene at 30
 # frames/s camera timing, on the slowest core clock the pacing rule allows (16 x the
 # camera's pixel clock).
-add_test(NAME system_vga_frame COMMAND tb_top_vga ${SM_SCENE_VGA_DIR} frame)
+add_test(NAME system_vga_frame COMMAND tb_top_vga --scene ${SM_SCENE_VGA_DIR} --mode frame)
 set_tests_properties(system_small_stress system_small_vcd system_small_budget system_small_calib
                      system_small_fold_stress system_small_fold_budget
                      PROPERTIES LABELS "system" TIMEOUT 600)
@@ -47,12 +47,8 @@ set_tests_properties(system_paper_budget system_zynq_budget system_vga_frame PRO
 
 # stereo_sim's input modes (--left/--right, --sequence, --video) and their errors, on the
 # small configuration (each run checks the RTL against the model itself).
-add_executable(test_sim_inputs ${CMAKE_SOURCE_DIR}/tests/test_sim_inputs.cpp)
-target_link_libraries(test_sim_inputs PRIVATE sm_toolio Catch2::Catch2 nlohmann_json::nlohmann_json ${OpenCV_LIBS})
-target_include_directories(test_sim_inputs PRIVATE ${CMAKE_SOURCE_DIR}/tests/common)
-target_compile_options(test_sim_inputs PRIVATE ${SM_WARNINGS})
-target_compile_definitions(test_sim_inputs PRIVATE SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/sim_inputs_tmp"
-                                                   SM_STEREO_SIM_SMALL="$<TARGET_FILE:stereo_sim_small>")
-add_dependencies(test_sim_inputs stereo_sim_small)
-add_test(NAME system_sim_inputs COMMAND test_sim_inputs)
-set_tests_properties(system_sim_inputs PROPERTIES LABELS "system" TIMEOUT 600)
+sm_unit_test(test_sim_inputs TEST system_sim_inputs LIBS sm_toolio nlohmann_json::nlohmann_json ${OpenCV_LIBS}
+             INCLUDES ${CMAKE_SOURCE_DIR}/tests/common
+             DEFINES SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/sim_inputs_tmp"
+                     SM_STEREO_SIM_SMALL="$<TARGET_FILE:stereo_sim_small>"
+             DEPENDS stereo_sim_small LABELS system TIMEOUT 600)

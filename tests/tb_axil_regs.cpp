@@ -15,47 +15,27 @@
 
 #include <fmt/format.h>
 
-#include "calib_file.hpp"
-#include <verilated.h>
-
 #include SM_VTOP_H
+#include "calib_file.hpp"
+#include "sm_block_test.hpp"
 #include "sm_regmap.hpp"
 #include "sm_types.hpp"
-#include "sm_coverage.hpp"
 
 namespace rm = sm::regmap;
 using Top = SM_VTOP;
+using Bench = sm::test::BlockTest<Top>;
 
 namespace {
-
-int g_pass = 0, g_fail = 0;
-bool check(bool ok, const std::string& what) {
-  if (ok) {
-    ++g_pass;
-  } else {
-    if (g_fail < 10) fmt::print("FAIL: {}\n", what);
-    ++g_fail;
-  }
-  return ok;
-}
-
-sm::HwConfig hw_config() {
-  sm::HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.max_height = SM_P_MAX_HEIGHT;
-  hw.disp = SM_P_DISP;
-  hw.max_objects = SM_P_MAX_OBJECTS;
-  return hw;
-}
 
 // The object block's read port as the register file expects it: registered, data of
 // obj_rd_idx one clock later.
 uint32_t obj_word(uint32_t idx) { return 0x5A000000u ^ (idx * 0x00010203u) ^ (idx << 20); }
 
+// The register file's surroundings on the kernel's model: the object read port, the
+// error pulses, the grid and soft-reset outputs, and a randomised AXI4-Lite master.
 struct Dut {
-  std::unique_ptr<VerilatedContext> ctx{new VerilatedContext};
-  std::unique_ptr<Top> top;
-  sm::CoverageOnExit cov{ctx.get()};  // after top: written before top is deleted
+  Bench& bench;
+  Top* top;
   std::mt19937 rng{12345};
   uint64_t cycle = 0;
   int frame_starts = 0;
@@ -63,17 +43,11 @@ struct Dut {
   std::deque<std::pair<uint32_t, uint32_t>> grid_writes;  // (waddr, wdata)
   int soft_reset_pulses = 0;
 
-  Dut() {
-    ctx->randReset(0);
-    top.reset(new Top(ctx.get()));
-  }
+  explicit Dut(Bench& b) : bench(b), top(&b.tb().top()) {}
   void tick() {
     top->err_pulse = err_drive;
-    top->aclk = 0;
-    top->eval();
-    const uint32_t next_obj = obj_word(top->obj_rd_idx);
-    top->aclk = 1;
-    top->eval();
+    uint32_t next_obj = 0;
+    bench.tb().tick([&] { next_obj = obj_word(top->obj_rd_idx); });
     top->obj_rd_data = next_obj;
     top->frame_start = 0;
     err_drive = 0;
@@ -109,7 +83,7 @@ struct Dut {
       const bool w_hs = top->s_axil_wvalid && top->s_axil_wready;
       const bool b_hs = top->s_axil_bvalid && top->s_axil_bready;
       const unsigned resp = top->s_axil_bresp;
-      if (b_hs && !(aw_done && w_done)) check(false, "B before AW and W");
+      if (b_hs && !(aw_done && w_done)) bench.check(false, "B before AW and W");
       tick();
       aw_done |= aw_hs;
       w_done |= w_hs;
@@ -118,7 +92,7 @@ struct Dut {
         return resp;
       }
     }
-    check(false, fmt::format("write 0x{:x} timed out", addr));
+    bench.check(false, fmt::format("write 0x{:x} timed out", addr));
     return 3;
   }
   uint32_t read(uint32_t addr, unsigned* resp) {
@@ -135,7 +109,7 @@ struct Dut {
       const bool r_hs = top->s_axil_rvalid && top->s_axil_rready;
       const uint32_t d = top->s_axil_rdata;
       *resp = top->s_axil_rresp;
-      if (r_hs && !ar_done) check(false, "R before AR");
+      if (r_hs && !ar_done) bench.check(false, "R before AR");
       tick();
       ar_done |= ar_hs;
       if (r_hs) {
@@ -143,7 +117,7 @@ struct Dut {
         return d;
       }
     }
-    check(false, fmt::format("read 0x{:x} timed out", addr));
+    bench.check(false, fmt::format("read 0x{:x} timed out", addr));
     return 0;
   }
 };
@@ -269,11 +243,11 @@ void check_shadows(Dut& d, const Model& m, const std::string& when) {
     if (!f.shadow) continue;
     const int64_t want = as_signed_field(m.shadow.at(f.name), f);
     const int64_t got = shadow_port(*d.top, f.name);
-    check(got == want, fmt::format("{}: shadow {} expected {} got {}", when, f.name, want, got));
+    d.bench.check(got == want, fmt::format("{}: shadow {} expected {} got {}", when, f.name, want, got));
   }
-  check(d.top->enable == m.fval.at("CONTROL.ENABLE"), when + ": enable port");
-  check(d.top->host_width == m.fval.at("WIDTH.VALUE"), when + ": host_width port");
-  check(d.top->host_height == m.fval.at("HEIGHT.VALUE"), when + ": host_height port");
+  d.bench.check(d.top->enable == m.fval.at("CONTROL.ENABLE"), when + ": enable port");
+  d.bench.check(d.top->host_width == m.fval.at("WIDTH.VALUE"), when + ": host_width port");
+  d.bench.check(d.top->host_height == m.fval.at("HEIGHT.VALUE"), when + ": host_height port");
 }
 
 const rm::Reg& reg_at(uint32_t addr) {
@@ -287,20 +261,20 @@ void read_all(Dut& d, const Model& m, const std::string& when) {
     unsigned resp = 9;
     const uint32_t got = d.read(r.addr, &resp);
     const uint32_t want = m.read_value(r, d.frame_starts);
-    check(resp == 0, fmt::format("{}: read {} resp {}", when, r.name, resp));
-    check(got == want, fmt::format("{}: read {} expected 0x{:08x} got 0x{:08x}", when, r.name, want, got));
+    d.bench.check(resp == 0, fmt::format("{}: read {} resp {}", when, r.name, resp));
+    d.bench.check(got == want, fmt::format("{}: read {} expected 0x{:08x} got 0x{:08x}", when, r.name, want, got));
   }
 }
 
 }  // namespace
 
-int main() {
-  const sm::HwConfig hw = hw_config();
-  Dut d;
+int main(int argc, char** argv) {
+  Bench t{"sm_axil_regs block test"};
+  if (auto rc = t.parse(argc, argv)) return *rc;
+  const sm::HwConfig hw = sm::verilated_config();
+  Dut d{t};
   Model m(hw);
-  d.top->aresetn = 0;
-  for (int i = 0; i < 4; ++i) d.tick();
-  d.top->aresetn = 1;
+  t.reset_by(4, [&] { d.tick(); });
   d.tick();
 
   // Every shadow field must be mapped to a port (fails on a new json field).
@@ -316,10 +290,10 @@ int main() {
 #define SM_X(NAME, member) same = same && m.fval.at(#NAME ".VALUE") == static_cast<int64_t>(def.member);
     SM_REGMAP_VALUE_REGS(SM_X)
 #undef SM_X
-    check(same, "reset values differ from sm::Regs::defaults");
+    t.check(same, "reset values differ from sm::Regs::defaults");
     uint64_t sw = 0;
     for (int k = 0; k < 32; ++k) sw |= static_cast<uint64_t>(def.sw_table[k]) << (2 * k);
-    check(static_cast<uint64_t>(d.top->cfg_sw_table) == sw, "SW_TABLE reset differs from defaults");
+    t.check(static_cast<uint64_t>(d.top->cfg_sw_table) == sw, "SW_TABLE reset differs from defaults");
   }
 
   // 2. walking ones and random values on every writable register; shadows must not move
@@ -338,16 +312,17 @@ int main() {
       bool soft = false;
       const bool ok = m.write(r, v, strb, d.frame_starts, &soft);
       const unsigned resp = d.write(r.addr, v, strb);
-      check(resp == (ok ? 0u : 2u), fmt::format("write {} = 0x{:x} strb {:x}: resp {}", r.name, v, strb, resp));
+      t.check(resp == (ok ? 0u : 2u), fmt::format("write {} = 0x{:x} strb {:x}: resp {}", r.name, v, strb, resp));
       unsigned rresp = 9;
       const uint32_t got = d.read(r.addr, &rresp);
       const uint32_t want = m.read_value(r, d.frame_starts);
-      check(rresp == 0 && got == want, fmt::format("{} after writing 0x{:x} strb {:x}: expected 0x{:08x} got 0x{:08x}",
-                                                   r.name, v, strb, want, got));
+      t.check(
+          rresp == 0 && got == want,
+          fmt::format("{} after writing 0x{:x} strb {:x}: expected 0x{:08x} got 0x{:08x}", r.name, v, strb, want, got));
       // CLAMPED flag as the model says (then clear it with W1C)
       const uint32_t fl = d.read(rm::kERR_FLAGS, &rresp);
-      check(fl == m.flags,
-            fmt::format("ERR_FLAGS after {} = 0x{:x}: expected 0x{:x} got 0x{:x}", r.name, v, m.flags, fl));
+      t.check(fl == m.flags,
+              fmt::format("ERR_FLAGS after {} = 0x{:x}: expected 0x{:x} got 0x{:x}", r.name, v, m.flags, fl));
       if (m.flags) {
         bool s = false;
         m.write(reg_at(rm::kERR_FLAGS), 0xff, 0xf, d.frame_starts, &s);
@@ -378,12 +353,12 @@ int main() {
     unsigned resp = 0;
     if (rd) {
       d.read(a, &resp);
-      check(resp == 2, fmt::format("read of 0x{:x}: expected SLVERR, got {}", a, resp));
+      t.check(resp == 2, fmt::format("read of 0x{:x}: expected SLVERR, got {}", a, resp));
     }
     if (wr) {
       const size_t before = d.grid_writes.size();
-      check(d.write(a, rng()) == 2, fmt::format("write of 0x{:x}: expected SLVERR", a));
-      check(d.grid_writes.size() == before, fmt::format("write of 0x{:x} was forwarded", a));
+      t.check(d.write(a, rng()) == 2, fmt::format("write of 0x{:x}: expected SLVERR", a));
+      t.check(d.grid_writes.size() == before, fmt::format("write of 0x{:x} was forwarded", a));
     }
   };
   for (uint32_t a = 0; a < rm::kObjBase; a += 4)
@@ -403,14 +378,14 @@ int main() {
     unsigned resp = 9;
     const uint32_t got = d.read(a, &resp);
     if (valid) {
-      check(resp == 0 && got == obj_word(idx),
-            fmt::format("object word {}: expected 0x{:08x} got 0x{:08x} resp {}", idx, obj_word(idx), got, resp));
-      check(d.write(a, 1) == 2, fmt::format("write to object word {} not SLVERR", idx));
+      t.check(resp == 0 && got == obj_word(idx),
+              fmt::format("object word {}: expected 0x{:08x} got 0x{:08x} resp {}", idx, obj_word(idx), got, resp));
+      t.check(d.write(a, 1) == 2, fmt::format("write to object word {} not SLVERR", idx));
     } else {
-      check(resp == 2, fmt::format("object index {}: expected SLVERR", idx));
+      t.check(resp == 2, fmt::format("object index {}: expected SLVERR", idx));
     }
   }
-  check(rm::obj_addr(1, 2) == rm::kObjBase + 4 * (rm::kObjFirstIdx + rm::kObjWords + 2), "obj_addr()");
+  t.check(rm::obj_addr(1, 2) == rm::kObjBase + 4 * (rm::kObjFirstIdx + rm::kObjWords + 2), "obj_addr()");
 
   // 6. grid window: forwarded writes, bad points, partial strobes, reads. A point is the
   // rectifier's grid address {gy, gx} with a power-of-two row (model/calib_file.hpp).
@@ -429,12 +404,12 @@ int main() {
     const int point = point_of(gx, gy);
     const uint32_t data = rng();
     d.grid_writes.clear();
-    check(d.write(rm::grid_addr(cam, bank, point), data) == 0, "grid write resp");
+    t.check(d.write(rm::grid_addr(cam, bank, point), data) == 0, "grid write resp");
     const uint32_t want_addr =
         (static_cast<uint32_t>(cam) << (pb + 1)) | (static_cast<uint32_t>(bank) << pb) | static_cast<uint32_t>(point);
-    check(d.grid_writes.size() == 1 && d.grid_writes[0].first == want_addr && d.grid_writes[0].second == data,
-          fmt::format("grid write cam {} bank {} point {}: forwarded {} writes, addr 0x{:x} (want 0x{:x})", cam, bank,
-                      point, d.grid_writes.size(), d.grid_writes.empty() ? 0 : d.grid_writes[0].first, want_addr));
+    t.check(d.grid_writes.size() == 1 && d.grid_writes[0].first == want_addr && d.grid_writes[0].second == data,
+            fmt::format("grid write cam {} bank {} point {}: forwarded {} writes, addr 0x{:x} (want 0x{:x})", cam, bank,
+                        point, d.grid_writes.size(), d.grid_writes.empty() ? 0 : d.grid_writes[0].first, want_addr));
   }
   for (int i = 0; i < 20; ++i) {
     // outside the grid: a column past the last point, a row past the last, or above PB bits
@@ -450,7 +425,7 @@ int main() {
         rm::grid_addr(0, 1, point_of(static_cast<int>(rng() % gw_pts), static_cast<int>(rng() % gh_pts)));
     expect_err(good, true, false);  // write-only window
     d.grid_writes.clear();
-    check(d.write(good, 5, 0x7) == 2 && d.grid_writes.empty(), "partial grid write accepted");
+    t.check(d.write(good, 5, 0x7) == 2 && d.grid_writes.empty(), "partial grid write accepted");
   }
 
   // 7. error pulses: flags, counters, W1C, CLEAR_ERRORS, saturation
@@ -491,7 +466,7 @@ int main() {
     m.write(reg_at(rm::kCONTROL), v, 0xf, d.frame_starts, &soft);
     d.write(rm::kCONTROL, v);
     for (int i = 0; i < 5; ++i) d.tick();
-    check(soft && d.soft_reset_pulses == 1, fmt::format("soft reset pulses: {}", d.soft_reset_pulses));
+    t.check(soft && d.soft_reset_pulses == 1, fmt::format("soft reset pulses: {}", d.soft_reset_pulses));
   }
   read_all(d, m, "after soft reset");
   // 9. enable and grid bank flip: enable at once, bank at the next frame
@@ -506,6 +481,5 @@ int main() {
     read_all(d, m, "frame counter");
   }
 
-  fmt::print("tb_axil_regs: {} passed, {} failed\n", g_pass, g_fail);
-  return g_fail ? 1 : 0;
+  return t.finish(fmt::format("tb_axil_regs MAX_WIDTH={} DISP={}", hw.max_width, hw.disp));
 }

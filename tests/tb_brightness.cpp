@@ -4,19 +4,14 @@
 // the sof beat only -- garbage on every other beat checks that they are latched there.
 #include <fmt/format.h>
 
-#include <cstdio>
 #include <random>
 #include <vector>
 
-#include "beat_schedule.hpp"
-#include "pre.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
 #include SM_VTOP_H
+#include "pre.hpp"
+#include "sm_block_test.hpp"
 
 using sm::test::BeatInfo;
-using sm::test::CeGen;
-using sm::test::OutputOrder;
 
 namespace {
 struct Params {
@@ -25,9 +20,13 @@ struct Params {
 };
 }  // namespace
 
-int main() {
-  const int w = 37;
-  const std::vector<int> heights = {9, 5, 12, 7, 6, 8};
+int main(int argc, char** argv) {
+  sm::test::BlockTest<SM_VTOP> t{"sm_brightness block test"};
+  int w = 37;
+  std::vector<int> heights = {9, 5, 12, 7, 6, 8};
+  t.cli().add_option("--width", w, "active width");
+  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  if (auto rc = t.parse(argc, argv)) return *rc;
   std::mt19937 rng(2024), garbage(77);
   std::uniform_int_distribution<int> pix(0, 255), gain(0, 1023), off(-256, 255);
   // Frame 0 identity, 1 saturates high (gain 4x, +255), 2 saturates low (-256), the rest
@@ -48,19 +47,13 @@ int main() {
     want_r.push_back(sm::brightness(r, prm[f].gain_r, prm[f].off_r));
   }
 
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  auto& top = tb.top();
-  top.rst_n = 0;
+  auto& top = t.tb().top();
   top.ce = 1;
-  for (int i = 0; i < 3; ++i) tb.tick();
-  top.rst_n = 1;
+  t.reset(3);
 
   const auto sched = sm::test::make_schedule(w, heights, 2, 1);
-  OutputOrder order(w, heights);
-  CeGen ce_gen(5, 35);
-  long passed = 0, failed = 0;
-  bool first = true;
+  t.expect_frames(w, heights);
+  t.ce_schedule(5, 35);
   size_t bi = 0;
   auto garbage_params = [&] {
     top.gain_l = garbage() & 1023;
@@ -69,8 +62,7 @@ int main() {
     top.offset_r = garbage() & 511;
   };
   while (bi < sched.size()) {
-    const bool ce = ce_gen.next();
-    top.ce = ce;
+    const bool ce = t.next_ce();
     garbage_params();
     if (ce) {
       const BeatInfo& b = sched[bi++];
@@ -89,31 +81,16 @@ int main() {
       top.s_left = garbage() & 255;
       top.s_right = garbage() & 255;
     }
-    tb.tick();
+    t.tick();
     if (!ce || !(top.m_side & sm::test::kReal)) continue;
-    BeatInfo o;
-    try {
-      o = order.next(top.m_side);
-    } catch (const std::exception& e) {
-      std::printf("FAIL: %s\n", e.what());
-      return 1;
-    }
-    const int el = want_l[o.frame].at(o.x, o.y), er = want_r[o.frame].at(o.x, o.y);
-    if (el == top.m_left && er == top.m_right) {
-      ++passed;
-    } else {
-      ++failed;
-      if (first) {
-        first = false;
-        std::printf("first mismatch: frame %d x %d y %d expected %d/%d got %d/%d\n", o.frame, o.x, o.y, el, er,
-                    top.m_left, top.m_right);
-      }
-    }
+    const auto o = t.next_out(top.m_side);
+    if (!o) break;
+    const int el = want_l[o->frame].at(o->x, o->y), er = want_r[o->frame].at(o->x, o->y);
+    t.check(el == top.m_left && er == top.m_right, [&] {
+      return fmt::format("frame {} x {} y {} expected {}/{} got {}/{}", o->frame, o->x, o->y, el, er, top.m_left,
+                         top.m_right);
+    });
   }
-  if (!order.done()) {
-    std::printf("FAIL: not every pixel came out\n");
-    return 1;
-  }
-  fmt::print("tb_brightness: {} passed, {} failed\n", passed, failed);
-  return failed == 0 ? 0 : 1;
+  t.all_out();
+  return t.finish("tb_brightness");
 }

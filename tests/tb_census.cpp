@@ -8,22 +8,14 @@
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
 #include "census.hpp"
+#include "sm_block_test.hpp"
 #include "sm_port.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
 
 namespace {
 
 constexpr int kMaxWidth = SM_P_MAX_WIDTH;
 constexpr int kCensus = SM_P_CENSUS;
-#ifndef SM_TB_WIDTH
-#define SM_TB_WIDTH 37
-#endif
-#ifndef SM_TB_H0
-#define SM_TB_H0 13
-#endif
 
 std::string hex(const sm::CensusVec& v) { return fmt::format("{:016x}{:016x}{:016x}{:016x}", v[3], v[2], v[1], v[0]); }
 
@@ -36,14 +28,15 @@ sm::Image8 random_image(int w, int h, std::mt19937& rng) {
 
 }  // namespace
 
-int main() {
-  const int w = SM_TB_WIDTH;
-  static_assert(kMaxWidth >= SM_TB_WIDTH, "test width above MAX_WIDTH");
+int main(int argc, char** argv) {
+  sm::test::BlockTest<SM_VTOP> t{"sm_census block test"};
+  int w = 37;
+  std::vector<int> heights = {13, 2, 7};  // H = 2 is shorter than the window
+  t.cli().add_option("--width", w, "active width")->check(CLI::Range(1, kMaxWidth));
+  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  if (auto rc = t.parse(argc, argv)) return *rc;
   const int r = (kCensus - 1) / 2;
-  const std::vector<int> heights = {SM_TB_H0, 2, 7};  // H = 2 is shorter than the window
-  sm::HwConfig hw;
-  hw.max_width = kMaxWidth;
-  hw.census = kCensus;
+  const sm::HwConfig hw = sm::verilated_config();
   const int cb = hw.census_bits();
 
   std::mt19937 rng(1234);
@@ -57,72 +50,48 @@ int main() {
   }
   const auto sched = sm::test::make_schedule(w, heights, r + 2);
 
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  sm::test::CeGen ce_gen(0xce11u, 30);
-  sm::test::OutputOrder order(w, heights);
-  tb->width = w;
-  tb->ce = 1;
-  tb->s_side = 0;
-  tb->rst_n = 0;
-  for (int i = 0; i < 3; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.ce_schedule(0xce11u, 30);
+  t.expect_frames(w, heights);
+  t->width = w;
+  t->ce = 1;
+  t->s_side = 0;
+  t.reset(3);
 
-  long passed = 0, failed = 0;
   uint8_t last_side = 0;
   for (size_t n = 0; n < sched.size();) {
-    const bool ce = ce_gen.next();
-    tb->ce = ce;
+    const bool ce = t.next_ce();
     if (ce && sched[n].frame >= 0) {
       const auto& b = sched[n];
-      tb->s_side = b.side;
-      tb->s_left = left[b.frame].at(b.x, b.y);
-      tb->s_right = right[b.frame].at(b.x, b.y);
+      t->s_side = b.side;
+      t->s_left = left[b.frame].at(b.x, b.y);
+      t->s_right = right[b.frame].at(b.x, b.y);
     } else {
       // virtual beat (its sideband is real) or an idle cycle (all garbage)
-      tb->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
-      tb->s_left = static_cast<uint8_t>(rng());
-      tb->s_right = static_cast<uint8_t>(rng());
+      t->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
+      t->s_left = static_cast<uint8_t>(rng());
+      t->s_right = static_cast<uint8_t>(rng());
     }
-    tb.tick();
+    t.tick();
     if (!ce) {
-      if (tb->m_side != last_side) {
-        fmt::print("FAIL: m_side changed without ce\n");
-        ++failed;
-      }
+      if (t->m_side != last_side) t.fail("m_side changed without ce");
       continue;
     }
     ++n;
-    last_side = tb->m_side;
-    if (!(tb->m_side & sm::test::kReal)) continue;
-    sm::test::BeatInfo p;
-    try {
-      p = order.next(tb->m_side);
-    } catch (const std::exception& e) {
-      fmt::print("FAIL: {}\n", e.what());
-      ++failed;
-      break;
-    }
-    const auto gl = sm::test::get_port_u64<4>(tb->m_cl, cb);
-    const auto gr = sm::test::get_port_u64<4>(tb->m_cr, cb);
-    const auto& el = cl[p.frame].at(p.x, p.y);
-    const auto& er = cr[p.frame].at(p.x, p.y);
-    const int eleft = left[p.frame].at(p.x, p.y);
-    if (gl != el || gr != er || tb->m_left != eleft) {
-      if (failed == 0)
-        fmt::print(
-            "FIRST MISMATCH frame {} x {} y {}:\n  cl expected {} got {}\n  cr expected {} "
-            "got {}\n  left expected {} got {}\n",
-            p.frame, p.x, p.y, hex(el), hex(gl), hex(er), hex(gr), eleft, tb->m_left);
-      ++failed;
-    } else {
-      ++passed;
-    }
+    last_side = t->m_side;
+    if (!(t->m_side & sm::test::kReal)) continue;
+    const auto p = t.next_out(t->m_side);
+    if (!p) break;
+    const auto gl = sm::test::get_port_u64<4>(t->m_cl, cb);
+    const auto gr = sm::test::get_port_u64<4>(t->m_cr, cb);
+    const auto& el = cl[p->frame].at(p->x, p->y);
+    const auto& er = cr[p->frame].at(p->x, p->y);
+    const int eleft = left[p->frame].at(p->x, p->y);
+    t.check(gl == el && gr == er && t->m_left == eleft, [&] {
+      return fmt::format(
+          "frame {} x {} y {}:\n  cl expected {} got {}\n  cr expected {} got {}\n  left expected {} got {}", p->frame,
+          p->x, p->y, hex(el), hex(gl), hex(er), hex(gr), eleft, t->m_left);
+    });
   }
-  if (!order.done()) {
-    fmt::print("FAIL: not every pixel came out\n");
-    ++failed;
-  }
-  fmt::print("tb_census MAX_WIDTH={} CENSUS={} W={}: {} passed, {} failed\n", kMaxWidth, kCensus, w, passed, failed);
-  return failed == 0 && passed > 0 ? 0 : 1;
+  t.all_out();
+  return t.finish(fmt::format("tb_census MAX_WIDTH={} CENSUS={} W={}", kMaxWidth, kCensus, w));
 }

@@ -12,30 +12,15 @@
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
 #include "census.hpp"
+#include "sm_block_test.hpp"
 #include "sm_port.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
 
 namespace {
 
 constexpr int kMaxWidth = SM_P_MAX_WIDTH;
 constexpr int kCensus = SM_P_CENSUS;
 constexpr int kDisp = SM_P_DISP;
-#ifdef SM_P_PU
-constexpr int kPu = SM_P_PU;
-#else
-constexpr int kPu = kDisp;
-#endif
-static_assert(kDisp % kPu == 0, "PU must divide DISP");
-constexpr int kFold = kDisp / kPu;  // clocks per beat
-#ifndef SM_TB_WIDTH
-#define SM_TB_WIDTH 37
-#endif
-#ifndef SM_TB_H0
-#define SM_TB_H0 9
-#endif
 
 sm::CensusVec garbage(std::mt19937& rng) {
   auto w = [&] { return (static_cast<uint64_t>(rng()) << 32) | rng(); };
@@ -44,14 +29,20 @@ sm::CensusVec garbage(std::mt19937& rng) {
 
 }  // namespace
 
-int main() {
-  const int w = SM_TB_WIDTH;
-  static_assert(kMaxWidth >= SM_TB_WIDTH, "test width above MAX_WIDTH");
-  const std::vector<int> heights = {SM_TB_H0, 3, 5};
-  sm::HwConfig hw;
-  hw.max_width = kMaxWidth;
-  hw.census = kCensus;
-  hw.disp = kDisp;
+int main(int argc, char** argv) {
+  sm::test::BlockTest<SM_VTOP> t{"sm_cost block test"};
+  int w = 37;
+  std::vector<int> heights = {9, 3, 5};
+  t.cli().add_option("--width", w, "active width")->check(CLI::Range(1, kMaxWidth));
+  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  if (auto rc = t.parse(argc, argv)) return *rc;
+  const sm::HwConfig hw = sm::verilated_config();
+  const int pu = hw.levels_per_clock();
+  if (kDisp % pu != 0) {
+    fmt::print(stderr, "tb_cost: PU {} does not divide DISP {}\n", pu, kDisp);
+    return 2;
+  }
+  const int fold = kDisp / pu;  // clocks per beat
   const int cb = hw.census_bits();
   int hwb = 0;  // HW = clog2(CB + 1)
   while ((1 << hwb) < cb + 1) ++hwb;
@@ -75,29 +66,29 @@ int main() {
   }
   const auto sched = sm::test::make_schedule(w, heights, 1);
 
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  sm::test::CeGen ce_gen(0xc057u, 30, kFold);
-  sm::test::OutputOrder order(w, heights);
-  tb->width = w;
-  tb->ce = 1;
-  tb->s_side = 0;
-  tb->rst_n = 0;
-  for (int i = 0; i < 3; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.ce_schedule(0xc057u, 30, fold);
+  t.expect_frames(w, heights);
+  t->width = w;
+  t->ce = 1;
+  t->s_side = 0;
+  t.reset(3);
 
-  long passed = 0, failed = 0;
   // Folded: the inputs of beat n, drawn once and held on every clock up to its ce.
   size_t held = sched.size();
   uint8_t held_side = 0, held_left = 0;
   sm::CensusVec held_cl{}, held_cr{};
-  int warm = kFold - 1;
+  int warm = fold - 1;
   for (size_t n = 0; n < sched.size();) {
     // Folded: the reset starts the sub-steps of the first beat like a ce; its ce comes
     // F clocks later at the earliest.
-    const bool ce = warm > 0 ? (--warm, false) : ce_gen.next();
-    tb->ce = ce;
-    if (kFold > 1) {
+    bool ce = false;
+    if (warm > 0) {
+      --warm;
+      t->ce = 0;
+    } else {
+      ce = t.next_ce();
+    }
+    if (fold > 1) {
       if (held != n) {
         const auto& b = sched[n];
         held = n;
@@ -112,57 +103,39 @@ int main() {
           held_left = static_cast<uint8_t>(rng());
         }
       }
-      tb->s_side = held_side;
-      sm::test::set_port_u64(tb->s_cl, held_cl, cb);
-      sm::test::set_port_u64(tb->s_cr, held_cr, cb);
-      tb->s_left = held_left;
+      t->s_side = held_side;
+      sm::test::set_port_u64(t->s_cl, held_cl, cb);
+      sm::test::set_port_u64(t->s_cr, held_cr, cb);
+      t->s_left = held_left;
     } else if (ce && sched[n].frame >= 0) {
       const auto& b = sched[n];
-      tb->s_side = b.side;
-      sm::test::set_port_u64(tb->s_cl, cl[b.frame].at(b.x, b.y), cb);
-      sm::test::set_port_u64(tb->s_cr, cr[b.frame].at(b.x, b.y), cb);
-      tb->s_left = left[b.frame].at(b.x, b.y);
+      t->s_side = b.side;
+      sm::test::set_port_u64(t->s_cl, cl[b.frame].at(b.x, b.y), cb);
+      sm::test::set_port_u64(t->s_cr, cr[b.frame].at(b.x, b.y), cb);
+      t->s_left = left[b.frame].at(b.x, b.y);
     } else {
-      tb->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
-      sm::test::set_port_u64(tb->s_cl, garbage(rng), cb);
-      sm::test::set_port_u64(tb->s_cr, garbage(rng), cb);
-      tb->s_left = static_cast<uint8_t>(rng());
+      t->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
+      sm::test::set_port_u64(t->s_cl, garbage(rng), cb);
+      sm::test::set_port_u64(t->s_cr, garbage(rng), cb);
+      t->s_left = static_cast<uint8_t>(rng());
     }
-    tb.tick();
+    t.tick();
     if (!ce) continue;
     ++n;
-    if (!(tb->m_side & sm::test::kReal)) continue;
-    sm::test::BeatInfo p;
-    try {
-      p = order.next(tb->m_side);
-    } catch (const std::exception& e) {
-      fmt::print("FAIL: {}\n", e.what());
-      ++failed;
-      break;
+    if (!(t->m_side & sm::test::kReal)) continue;
+    const auto p = t.next_out(t->m_side);
+    if (!p) break;
+    // one check per pixel: the pixel passes through, then every level's cost
+    std::string what;
+    if (t->m_left != left[p->frame].at(p->x, p->y))
+      what = fmt::format("left expected {} got {}", left[p->frame].at(p->x, p->y), t->m_left);
+    for (int d = 0; d < kDisp && what.empty(); ++d) {
+      const unsigned got = sm::test::plane_bits(t->m_cost, d, hwb, kDisp);
+      const unsigned exp = cost[p->frame].at(p->x, p->y, d);
+      if (got != exp) what = fmt::format("d {}: expected {} got {}", d, exp, got);
     }
-    bool ok = tb->m_left == left[p.frame].at(p.x, p.y);
-    if (!ok && failed == 0)
-      fmt::print("FIRST MISMATCH frame {} x {} y {}: left expected {} got {}\n", p.frame, p.x, p.y,
-                 left[p.frame].at(p.x, p.y), tb->m_left);
-    for (int d = 0; d < kDisp && ok; ++d) {
-      const unsigned got = sm::test::plane_bits(tb->m_cost, d, hwb, kDisp);
-      const unsigned exp = cost[p.frame].at(p.x, p.y, d);
-      if (got != exp) {
-        if (failed == 0)
-          fmt::print("FIRST MISMATCH frame {} x {} y {} d {}: expected {} got {}\n", p.frame, p.x, p.y, d, exp, got);
-        ok = false;
-      }
-    }
-    if (ok)
-      ++passed;
-    else
-      ++failed;
+    t.check(what.empty(), [&] { return fmt::format("frame {} x {} y {} {}", p->frame, p->x, p->y, what); });
   }
-  if (!order.done()) {
-    fmt::print("FAIL: not every pixel came out\n");
-    ++failed;
-  }
-  fmt::print("tb_cost MAX_WIDTH={} CENSUS={} DISP={} PU={} W={}: {} passed, {} failed\n", kMaxWidth, kCensus, kDisp,
-             kPu, w, passed, failed);
-  return failed == 0 && passed > 0 ? 0 : 1;
+  t.all_out();
+  return t.finish(fmt::format("tb_cost MAX_WIDTH={} CENSUS={} DISP={} PU={} W={}", kMaxWidth, kCensus, kDisp, pu, w));
 }

@@ -11,7 +11,6 @@
 // (CeGen's minimum gap) and, as sm_top guarantees, the next beat's input held from the
 // clock after a ce up to its ce (no garbage on idle clocks), also for the F clocks
 // after reset before the first ce.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -20,11 +19,9 @@
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
 #include "dp.hpp"
+#include "sm_block_test.hpp"
 #include "sm_port.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
 
 namespace {
 
@@ -81,15 +78,15 @@ void structured_row(sm::CostVolume& v, int y, std::mt19937& rng) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sm_dp block test"};
+  sm::test::BlockTest<SM_VTOP> t{"sm_dp block test"};
   int width = kMaxWidth, rows = 6, frames = 3, idle = 30;
   uint32_t seed = 1;
-  app.add_option("--width", width, "active width");
-  app.add_option("--rows", rows, "rows per frame");
-  app.add_option("--frames", frames, "frames back to back");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--idle", idle, "percent of cycles with ce = 0");
-  CLI11_PARSE(app, argc, argv);
+  t.cli().add_option("--width", width, "active width");
+  t.cli().add_option("--rows", rows, "rows per frame");
+  t.cli().add_option("--frames", frames, "frames back to back");
+  t.cli().add_option("--seed", seed, "random seed");
+  t.cli().add_option("--idle", idle, "percent of cycles with ce = 0");
+  if (auto rc = t.parse(argc, argv)) return *rc;
   if (width < kS + kP + 1 || width > kMaxWidth) {
     fmt::print(stderr, "tb_dp: width {} outside {}..{} (DISP/2 + 3 .. MAX_WIDTH)\n", width, kS + kP + 1, kMaxWidth);
     return 2;
@@ -155,26 +152,22 @@ int main(int argc, char** argv) {
 
   const std::vector<int> heights(frames, rows);
   const auto sched = sm::test::make_schedule(width, heights, 3);
-  sm::test::OutputOrder order(width, heights);
-  sm::test::CeGen ce_gen(seed * 7919u + 1, idle, kF);
-  auto& grng = ce_gen.rng();
-
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
+  t.expect_frames(width, heights);
+  t.ce_schedule(seed * 7919u + 1, idle, kF);
+  auto& grng = t.ce_rng();
+  auto& tb = t.tb();
   std::vector<uint8_t> garbage(kDisp);
   auto random_cost = [&]() {
     for (auto& g : garbage) g = static_cast<uint8_t>(grng() % (cmax + 1));
     return pack(garbage.data());
   };
-  tb->rst_n = 0;
   tb->ce = 1;
   tb->width = width;
   tb->s_side = 0;
   tb->occ = 0;
   tb->occ_edge = 0;
   tb->s_edge = 0;
-  for (int i = 0; i < 4; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.reset(4);
 
   // Edge flag of every beat: the frame's flags; virtual rows random, column 0 always 0.
   std::vector<uint8_t> beat_flag(sched.size());
@@ -224,14 +217,11 @@ int main(int argc, char** argv) {
     for (int i = 0; i < kF; ++i) tb.tick();
   }
 
-  long passed = 0, failed = 0;
   bool order_error = false;
   for (size_t bi = 0; bi < sched.size(); ++bi) {
     const Drive in = (kF > 1 && bi == 0) ? first : beat_input(bi);
     for (;;) {
-      const bool ce = ce_gen.next();
-      tb->ce = ce;
-      if (!ce) {
+      if (!t.next_ce()) {
         if (kF > 1) {  // folded: the beat is held until its ce
           drive(in);
         } else {  // idle cycle: everything random
@@ -248,34 +238,20 @@ int main(int argc, char** argv) {
       tb.tick();
       const uint8_t side = tb->m_side;
       if ((side & sm::test::kReal) && !order_error) {
-        sm::test::BeatInfo o;
-        try {
-          o = order.next(side);
-        } catch (const std::exception& e) {
-          fmt::print("FAIL: {}\n", e.what());
+        const auto o = t.next_out(side);
+        if (!o) {  // the rest of the stream is driven, not compared
           order_error = true;
-          ++failed;
           break;
         }
-        const unsigned exp = want[o.frame].at(o.x, o.y);
+        const unsigned exp = want[o->frame].at(o->x, o->y);
         const unsigned got = tb->m_disp;
-        if (exp == got) {
-          ++passed;
-        } else {
-          if (failed == 0)
-            fmt::print("first mismatch: frame {} x {} y {} expected 0x{:04x} got 0x{:04x}\n", o.frame, o.x, o.y, exp,
-                       got);
-          ++failed;
-        }
+        t.check(exp == got, [&] {
+          return fmt::format("frame {} x {} y {} expected 0x{:04x} got 0x{:04x}", o->frame, o->x, o->y, exp, got);
+        });
       }
       break;
     }
   }
-  if (!order.done()) {
-    fmt::print("FAIL: not every pixel came out\n");
-    ++failed;
-  }
-  fmt::print("tb_dp MAX_WIDTH={} DISP={} CW={} F={} width={}: {} passed, {} failed\n", kMaxWidth, kDisp, kCw, kF, width,
-             passed, failed);
-  return failed == 0 ? 0 : 1;
+  t.all_out();
+  return t.finish(fmt::format("tb_dp MAX_WIDTH={} DISP={} CW={} F={} width={}", kMaxWidth, kDisp, kCw, kF, width));
 }

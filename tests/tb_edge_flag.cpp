@@ -5,7 +5,6 @@
 // (sm::edge_penalties with occ 0, occ_edge 1, on the beat's row), and after ce n the
 // output must hold the flag of beat n + 2 - (ROWS * width + COLS): the beat the DP
 // samples on the ce after next.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,10 +13,8 @@
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
 #include "dp.hpp"
-#include "sm_coverage.hpp"
-#include "sm_tb.hpp"
+#include "sm_block_test.hpp"
 
 namespace {
 constexpr int kMaxWidth = SM_P_MAX_WIDTH;
@@ -26,15 +23,15 @@ constexpr int kCols = SM_P_COLS;
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sm_edge_flag block test"};
+  sm::test::BlockTest<SM_VTOP> t{"sm_edge_flag block test"};
   int width = kMaxWidth, rows = 6, frames = 3, idle = 30;
   uint32_t seed = 1;
-  app.add_option("--width", width, "active width")->check(CLI::Range(16, kMaxWidth));
-  app.add_option("--rows", rows, "rows per frame")->check(CLI::Range(1, 4096));
-  app.add_option("--frames", frames, "frames back to back")->check(CLI::Range(1, 64));
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--idle", idle, "percent of cycles with ce = 0")->check(CLI::Range(0, 95));
-  CLI11_PARSE(app, argc, argv);
+  t.cli().add_option("--width", width, "active width")->check(CLI::Range(16, kMaxWidth));
+  t.cli().add_option("--rows", rows, "rows per frame")->check(CLI::Range(1, 4096));
+  t.cli().add_option("--frames", frames, "frames back to back")->check(CLI::Range(1, 64));
+  t.cli().add_option("--seed", seed, "random seed");
+  t.cli().add_option("--idle", idle, "percent of cycles with ce = 0")->check(CLI::Range(0, 95));
+  if (auto rc = t.parse(argc, argv)) return *rc;
 
   std::mt19937 rng(seed);
   // Pixels of every beat of the schedule, and the frames' thresholds.
@@ -65,28 +62,22 @@ int main(int argc, char** argv) {
     for (int x = 0; x < width; ++x) flag[row0 + static_cast<size_t>(x)] = pen[static_cast<size_t>(x)];
   }
 
-  sm::test::CeGen ce_gen(seed * 7919u + 1, idle);
-  auto& grng = ce_gen.rng();
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  tb->rst_n = 0;
+  t.ce_schedule(seed * 7919u + 1, idle);
+  auto& grng = t.ce_rng();
+  auto& tb = t.tb();
   tb->ce = 1;
   tb->width = static_cast<uint32_t>(width);
-  for (int i = 0; i < 4; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.reset(4);
 
   const long delay = static_cast<long>(kRows) * width + kCols;
-  long passed = 0, failed = 0;
   for (size_t n = 0; n < sched.size(); ++n) {
     const auto& b = sched[n];
-    while (!ce_gen.next()) {  // idle cycle: everything but width random
-      tb->ce = 0;
+    while (!t.next_ce()) {  // idle cycle: everything but width random
       tb->s_side = grng() & 31;
       tb->s_left = grng() & 255;
       tb->edge_t = grng() & 255;
       tb.tick();
     }
-    tb->ce = 1;
     tb->s_side = b.side;
     tb->s_left = pix[n];
     // the frame's threshold is only guaranteed on its sof beat, where sm_edge_flag latches it
@@ -96,17 +87,11 @@ int main(int argc, char** argv) {
     if (k < 0 || flag[static_cast<size_t>(k)] < 0) continue;
     const int want = flag[static_cast<size_t>(k)];
     const int got = tb->m_edge;
-    if (got == want) {
-      ++passed;
-    } else {
-      if (failed == 0)
-        fmt::print("first mismatch after ce {}: beat {} (frame {} x {} y {}) flag {} want {}\n", n, k,
-                   sched[static_cast<size_t>(k)].frame, sched[static_cast<size_t>(k)].x,
-                   sched[static_cast<size_t>(k)].y, got, want);
-      ++failed;
-    }
+    t.check(got == want, [&] {
+      const auto& kb = sched[static_cast<size_t>(k)];
+      return fmt::format("after ce {}: beat {} (frame {} x {} y {}) flag {} want {}", n, k, kb.frame, kb.x, kb.y, got,
+                         want);
+    });
   }
-  fmt::print("tb_edge_flag MAX_WIDTH={} ROWS={} COLS={} width={}: {} passed, {} failed\n", kMaxWidth, kRows, kCols,
-             width, passed, failed);
-  return failed == 0 && passed > 0 ? 0 : 1;
+  return t.finish(fmt::format("tb_edge_flag MAX_WIDTH={} ROWS={} COLS={} width={}", kMaxWidth, kRows, kCols, width));
 }

@@ -14,8 +14,8 @@
 //    sequencer's rules (sm::Sequencer, model/seq.hpp) counted; register reads return
 //    the documented clamp.
 //
-// Usage: tb_faults <scene dir> [frames] [seed] [nosoft]
-//   nosoft: no CONTROL.SOFT_RESET steps (aresetn steps instead)
+// Usage: tb_faults --scene <dir> [--steps N] [--seed S] [--no-soft-reset]
+//   --no-soft-reset: no CONTROL.SOFT_RESET steps (aresetn steps instead)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -37,31 +37,14 @@
 #include "sm_axil.hpp"
 #include "sm_regmap.hpp"
 #include "sm_regs_io.hpp"
-#include "sm_tb.hpp"
-#include "sm_vconfig.hpp"
-#include "sm_coverage.hpp"
 #include SM_VTOP_H
+#include "sm_block_test.hpp"
 
 namespace {
 
 using Top = SM_VTOP;
 
-int failures = 0, passes = 0;
-// Prints the first 20 failures, and the first one of every other kind (the message with
-// its numbers taken out), so a flood of one rule does not hide another.
-bool check(bool ok, const std::string& what) {
-  static std::set<std::string> kinds;
-  if (ok) {
-    ++passes;
-  } else {
-    ++failures;
-    std::string kind;
-    for (char c : what)
-      if (!std::isdigit(static_cast<unsigned char>(c))) kind += c;
-    if (kinds.insert(kind).second || failures <= 20) fmt::print("FAIL: {}\n", what);
-  }
-  return ok;
-}
+using Bench = sm::test::BlockTest<Top>;
 
 // ERR_FLAGS bit order: the sequencer's faults (sm::SeqFault), then the two others.
 constexpr int kOverflow = sm::kNumSeqFaults, kClamped = kOverflow + 1, kNumFlags = kClamped + 1;
@@ -141,7 +124,8 @@ enum class Ready { kAlways, kRandom, kBursty, kSlow };
 
 class FaultTb {
  public:
-  FaultTb(const sm::HwConfig& hw, uint32_t seed) : hw_(hw), rng_(seed), axil_(tb_.top(), [this] { cycle(); }) {}
+  FaultTb(Bench& t, const sm::HwConfig& hw, uint32_t seed)
+      : hw_(hw), t_(t), rng_(seed), axil_(tb_.top(), [this] { cycle(); }) {}
 
   sm::AxilMaster<Top>& axil() { return axil_; }
   SeqModel& model() { return model_; }
@@ -238,8 +222,8 @@ class FaultTb {
     // Progress: with input offered and the output ready, some stream must move.
     if ((present && ready && !in_hs && !out_hs) && !in_reset_) {
       if (static_cast<uint64_t>(++stuck_) > kStuckBound * fold_) {
-        check(false, fmt::format("no progress for {} cycles at cycle {} (input offered, output ready)", kStuckBound,
-                                 tb_.cycles()));
+        t_.check(false, fmt::format("no progress for {} cycles at cycle {} (input offered, output ready)", kStuckBound,
+                                    tb_.cycles()));
         throw std::runtime_error("deadlock");
       }
     } else if (in_hs || out_hs) {
@@ -285,7 +269,7 @@ class FaultTb {
     size_t pending = 0;
     for (const auto& f : model_.frames)
       if (f.complete()) ++pending;
-    check(pending == 0, fmt::format("{} complete frames still inside the core after the flush", pending));
+    t_.check(pending == 0, fmt::format("{} complete frames still inside the core after the flush", pending));
   }
 
   void areset(int len) {
@@ -360,28 +344,28 @@ class FaultTb {
                                          rows & 0xffff, rows >> 16, out & 0xffff};
     for (int k = 0; k < 7; ++k) {
       const uint32_t want = std::min<uint32_t>(model_.cnt[k], 0xffff);
-      check(got[k] == want, fmt::format("{}: ERR_CNT {} = {}, expected {}", when, fault_name(k), got[k], want));
+      t_.check(got[k] == want, fmt::format("{}: ERR_CNT {} = {}, expected {}", when, fault_name(k), got[k], want));
       const bool fl = (flags >> k) & 1u;
-      check(fl == (model_.ev[k] > 0),
-            fmt::format("{}: ERR_FLAGS.{} = {}, expected {}", when, fault_name(k), fl, model_.ev[k] > 0));
+      t_.check(fl == (model_.ev[k] > 0),
+               fmt::format("{}: ERR_FLAGS.{} = {}, expected {}", when, fault_name(k), fl, model_.ev[k] > 0));
       fault_total_[k] += model_.ev[k];
     }
-    check(((flags >> kClamped) & 1u) == (clamped_ ? 1u : 0u),
-          fmt::format("{}: ERR_FLAGS.CLAMPED = {}, expected {}", when, (flags >> kClamped) & 1u, clamped_));
+    t_.check(((flags >> kClamped) & 1u) == (clamped_ ? 1u : 0u),
+             fmt::format("{}: ERR_FLAGS.CLAMPED = {}, expected {}", when, (flags >> kClamped) & 1u, clamped_));
     // Alternate the two ways of clearing.
     if (rng_() & 1) {
       axil_.write(sm::regmap::kCONTROL, control_word() | (1u << sm::regmap::kCONTROL_CLEAR_ERRORS_LSB));
       flags = axil_.read(sm::regmap::kERR_FLAGS);
-      check(flags == 0, fmt::format("{}: ERR_FLAGS 0x{:x} after CLEAR_ERRORS", when, flags));
-      check(axil_.read(sm::regmap::kERR_CNT_LINE) == 0 && axil_.read(sm::regmap::kERR_CNT_ROWS) == 0,
-            when + ": counters cleared by CLEAR_ERRORS");
+      t_.check(flags == 0, fmt::format("{}: ERR_FLAGS 0x{:x} after CLEAR_ERRORS", when, flags));
+      t_.check(axil_.read(sm::regmap::kERR_CNT_LINE) == 0 && axil_.read(sm::regmap::kERR_CNT_ROWS) == 0,
+               when + ": counters cleared by CLEAR_ERRORS");
       model_.cnt.fill(0);
     } else {
       axil_.write(sm::regmap::kERR_FLAGS, 0xff);
       flags = axil_.read(sm::regmap::kERR_FLAGS);
-      check(flags == 0, fmt::format("{}: ERR_FLAGS 0x{:x} after writing 1s", when, flags));
-      check(axil_.read(sm::regmap::kERR_CNT_LINE) == ((got[1] << 16) | got[0]),
-            when + ": writing ERR_FLAGS keeps the counters");
+      t_.check(flags == 0, fmt::format("{}: ERR_FLAGS 0x{:x} after writing 1s", when, flags));
+      t_.check(axil_.read(sm::regmap::kERR_CNT_LINE) == ((got[1] << 16) | got[0]),
+               when + ": writing ERR_FLAGS keeps the counters");
     }
     model_.ev.fill(0);
     clamped_ = false;
@@ -399,7 +383,7 @@ class FaultTb {
     const uint32_t beat = (static_cast<uint32_t>(t.m_axis_tdata) & 0xffffu) | (t.m_axis_tuser ? 1u << 16 : 0u) |
                           (t.m_axis_tlast ? 1u << 17 : 0u);
     const uint64_t obeat = t.m_axis_obj_tdata | (t.m_axis_obj_tlast ? 1ull << 32 : 0ull);
-    auto fail = [&](const std::string& what) { check(false, fmt::format("cycle {}: {}", tb_.cycles(), what)); };
+    auto fail = [&](const std::string& what) { t_.check(false, fmt::format("cycle {}: {}", tb_.cycles(), what)); };
     if (reset_prev_ && (ov || objv))
       fail(fmt::format("TVALID high in the clock after a reset edge (m_axis {}, m_axis_obj {})", ov, objv));
     if (wait_out_ && (!ov || beat != wait_beat_))
@@ -429,11 +413,11 @@ class FaultTb {
   void out_beat(uint16_t d, bool user, bool last) {
     ++beats_;
     if (!in_frame_) {
-      if (!check(user, fmt::format("output frame {}: first beat without tuser", frames_out_))) {
+      if (!t_.check(user, fmt::format("output frame {}: first beat without tuser", frames_out_))) {
         return;
       }
       if (model_.frames.empty() && pre_.empty()) {
-        check(false, fmt::format("output frame {} started but no input frame is pending", frames_out_));
+        t_.check(false, fmt::format("output frame {} started but no input frame is pending", frames_out_));
         return;
       }
       in_frame_ = true;
@@ -441,11 +425,11 @@ class FaultTb {
       const ExpFrame& e = pre_.empty() ? model_.frames.front() : pre_.front();
       cur_ = sm::DispImage(e.w, e.h);
     } else {
-      check(!user, fmt::format("output frame {}: tuser at x {} y {}", frames_out_, ox_, oy_));
+      t_.check(!user, fmt::format("output frame {}: tuser at x {} y {}", frames_out_, ox_, oy_));
     }
     ExpFrame& f = pre_.empty() ? model_.frames.front() : pre_.front();
-    check(last == (ox_ == f.w - 1),
-          fmt::format("output frame {}: tlast {} at x {} y {} (width {})", frames_out_, last, ox_, oy_, f.w));
+    t_.check(last == (ox_ == f.w - 1),
+             fmt::format("output frame {}: tlast {} at x {} y {} (width {})", frames_out_, last, ox_, oy_, f.w));
     cur_.at(ox_, oy_) = d;
     if (++ox_ < f.w) return;
     ox_ = 0;
@@ -455,7 +439,7 @@ class FaultTb {
     const int w = f.w, h = f.h;
     if (!pre_.empty() && pre_frame_done()) return;
     if (model_.frames.empty() || model_.frames.front().w != w || model_.frames.front().h != h) {
-      check(false, fmt::format("output frame {} ({}x{}) is none of the pending frames", frames_out_, w, h));
+      t_.check(false, fmt::format("output frame {} ({}x{}) is none of the pending frames", frames_out_, w, h));
       return;
     }
     out_frame_done(model_.frames.front());
@@ -471,8 +455,8 @@ class FaultTb {
     while (k < n && m.post.at(k % f.w, k / f.w) == cur_.at(k % f.w, k / f.w)) ++k;
     int bad = 0;
     for (int i = k; i < n; ++i) bad += cur_.at(i % f.w, i / f.w) != 0;
-    check(bad == 0, fmt::format("output frame {} at a soft reset: model up to pixel {}, then {} of {} pixels not 0",
-                                frames_out_, k, bad, n - k));
+    t_.check(bad == 0, fmt::format("output frame {} at a soft reset: model up to pixel {}, then {} of {} pixels not 0",
+                                   frames_out_, k, bad, n - k));
     if (verbose_) fmt::print("  out frame at a soft reset: {} of {} pixels from the model\n", k, n);
     ++frames_out_;
     ++soft_frames_;
@@ -481,7 +465,7 @@ class FaultTb {
   }
 
   void out_frame_done(ExpFrame& f) {
-    if (!check(f.complete(), fmt::format("output frame {} complete before its input", frames_out_))) {
+    if (!t_.check(f.complete(), fmt::format("output frame {} complete before its input", frames_out_))) {
       model_.frames.pop_front();
       return;
     }
@@ -493,7 +477,7 @@ class FaultTb {
           fmt::print("first mismatch: output frame {} ({}x{}, {}) x {} y {}: expected 0x{:04x} got 0x{:04x}\n",
                      frames_out_, f.w, f.h, f.faulty ? "faulty input" : "well-formed input", x, y, m.post.at(x, y),
                      cur_.at(x, y));
-    check(n == 0, fmt::format("output frame {} bit-exact ({} pixels differ)", frames_out_, n));
+    t_.check(n == 0, fmt::format("output frame {} bit-exact ({} pixels differ)", frames_out_, n));
     if (f.faulty) {
       ++faulty_out_;
     } else {
@@ -519,8 +503,8 @@ class FaultTb {
         found = pre_pkts_.front() == pkt_;
         pre_pkts_.pop_front();
       }
-      check(found,
-            fmt::format("object packet ({} words) in progress at a soft reset matches a frame before it", pkt_.size()));
+      t_.check(found, fmt::format("object packet ({} words) in progress at a soft reset matches a frame before it",
+                                  pkt_.size()));
       return;
     }
     pre_pkts_.clear();
@@ -528,24 +512,24 @@ class FaultTb {
     const int id = next_pkt_++;
     for (auto& f : model_.frames)
       if (f.id == id) {
-        if (!check(f.complete(), fmt::format("object packet of frame {} before its input was complete", id))) return;
+        if (!t_.check(f.complete(), fmt::format("object packet of frame {} before its input was complete", id))) return;
         const auto want = sm::object_packet(f.result(hw_).objects, false);
-        check(pkt_ == want,
-              fmt::format("object packet of frame {} ({} words, expected {})", id, pkt_.size(), want.size()));
+        t_.check(pkt_ == want,
+                 fmt::format("object packet of frame {} ({} words, expected {})", id, pkt_.size(), want.size()));
         return;
       }
     if (id < out_id_) {
-      check(pkt_ == done_pkts_[id % kKeep], fmt::format("object packet of frame {} (after the frame)", id));
+      t_.check(pkt_ == done_pkts_[id % kKeep], fmt::format("object packet of frame {} (after the frame)", id));
       return;
     }
-    check(false, fmt::format("object packet {} without a frame", id));
+    t_.check(false, fmt::format("object packet {} without a frame", id));
   }
 
   static constexpr int kStuckBound = 6000;
   sm::HwConfig hw_;
   uint64_t fold_ = static_cast<uint64_t>(hw_.clocks_per_beat());  // clocks per beat
-  sm::Testbench<Top> tb_;
-  sm::CoverageOnExit cov_{tb_->contextp()};  // after tb_: written first
+  Bench& t_;  // the kernel: the model, its coverage, the pass/fail count
+  sm::Testbench<Top>& tb_{t_.tb()};
   std::mt19937 rng_;
   sm::AxilMaster<Top> axil_;
   SeqModel model_;
@@ -597,9 +581,9 @@ std::vector<Pixel> frame_pixels(const sm::Image8& l, const sm::Image8& r, int w,
 }
 
 // The scalar run-time registers (no grids, no CONTROL): what a host changes per frame.
-void write_scalars(sm::AxilMaster<Top>& axil, const sm::Regs& r) {
+void write_scalars(Bench& t, sm::AxilMaster<Top>& axil, const sm::Regs& r) {
   for (const sm::RegWord& w : sm::register_words(r))
-    check(axil.write(w.addr, w.value) == 0, fmt::format("{} write accepted", w.name));
+    t.check(axil.write(w.addr, w.value) == 0, fmt::format("{} write accepted", w.name));
 }
 
 uint32_t clamp_u(uint32_t v, uint32_t lo, uint32_t hi) { return std::min(std::max(v, lo), hi); }
@@ -607,21 +591,27 @@ uint32_t clamp_u(uint32_t v, uint32_t lo, uint32_t hi) { return std::min(std::ma
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    fmt::print(stderr, "usage: tb_faults <scene dir> [frames] [seed]\n");
-    return 2;
-  }
-  const int n_frames = argc > 2 ? std::stoi(argv[2]) : 400;
-  const uint32_t seed = argc > 3 ? static_cast<uint32_t>(std::stoul(argv[3])) : 20240611u;
-  const bool soft_reset = !(argc > 4 && std::string(argv[4]) == "nosoft");
+  Bench bench{"sm_top randomized robustness test"};
+  std::string scene;
+  int n_frames = 400;
+  uint32_t seed = 20240611u;
+  bool no_soft = false;
+  bench.cli().add_option("--scene", scene, "scene folder, at least MAX_WIDTH x MAX_HEIGHT")->required();
+  bench.cli().add_option("--steps", n_frames, "input steps (a frame, faulty or not, and its recovery frame)");
+  bench.cli().add_option("--seed", seed, "random seed");
+  bench.cli().add_flag("--no-soft-reset", no_soft, "aresetn steps instead of CONTROL.SOFT_RESET");
+  // a flood of one rule must not hide another
+  bench.report_each_kind(20);
+  if (auto rc = bench.parse(argc, argv)) return *rc;
+  const bool soft_reset = !no_soft;
   try {
     const sm::HwConfig hw = sm::verilated_config();
-    const sm::tools::Scene sc = sm::tools::load_scene(argv[1]);
+    const sm::tools::Scene sc = sm::tools::load_scene(scene);
     const sm::Image8 sl = sm::tools::to_image8(sc.left), sr = sm::tools::to_image8(sc.right);
     if (sl.w < hw.max_width || sl.h < hw.max_height)
-      throw std::runtime_error(fmt::format("{}: scene {}x{} smaller than the configuration {}x{}", argv[1], sl.w, sl.h,
+      throw std::runtime_error(fmt::format("{}: scene {}x{} smaller than the configuration {}x{}", scene, sl.w, sl.h,
                                            hw.max_width, hw.max_height));
-    FaultTb tb(hw, seed);
+    FaultTb tb(bench, hw, seed);
     auto& rng = tb.rng();
     auto& axil = tb.axil();
     using namespace sm::regmap;
@@ -828,9 +818,9 @@ int main(int argc, char** argv) {
           const uint32_t near = rng() % 600u, tol = rng() % 600u, minpix = rng() % 0x20000u;
           bool expect_clamp = false;
           auto ck = [&](uint32_t addr, uint32_t v, uint32_t want, const char* name) {
-            check(axil.write(addr, v) == 0, fmt::format("{} write accepted", name));
+            bench.check(axil.write(addr, v) == 0, fmt::format("{} write accepted", name));
             const uint32_t got = axil.read(addr);
-            check(got == want, fmt::format("{} write 0x{:x} reads 0x{:x}, expected 0x{:x}", name, v, got, want));
+            bench.check(got == want, fmt::format("{} write 0x{:x} reads 0x{:x}, expected 0x{:x}", name, v, got, want));
           };
           const uint32_t wc = clamp_u(wv, 16, static_cast<uint32_t>(hw.max_width));
           const uint32_t hc = clamp_u(hv, 16, static_cast<uint32_t>(hw.max_height));
@@ -856,11 +846,11 @@ int main(int argc, char** argv) {
           // Bit fields ignore bits outside their fields (no clamp).
           ck(kFILTER_ENABLE, 0xfffffff0u | r.filter_enable, r.filter_enable, "FILTER_ENABLE");
           // Unmapped and read-only addresses answer SLVERR and change nothing.
-          check(axil.write(0x3c, 0x1234) == 2, "write to an unmapped address answers SLVERR");
-          check(axil.write(kSTATUS, 0xffffffffu) == 2, "write to STATUS answers SLVERR");
+          bench.check(axil.write(0x3c, 0x1234) == 2, "write to an unmapped address answers SLVERR");
+          bench.check(axil.write(kSTATUS, 0xffffffffu) == 2, "write to STATUS answers SLVERR");
           unsigned resp = 0;
           axil.read(0x7ffc, &resp);
-          check(resp == 2, "read of an unmapped address answers SLVERR");
+          bench.check(resp == 2, "read of an unmapped address answers SLVERR");
           // Identity grids for a new size (the old ones do not cover it).
           const sm::RectGrid idl = sm::RectGrid::identity(r.width, r.height);
           sm::write_grid(axil, hw, 0, 0, idl);
@@ -964,13 +954,13 @@ int main(int argc, char** argv) {
             // so these values are the next frame start's, while that frame is still in
             // the pipeline.
             const uint32_t n0 = started();
-            write_scalars(axil, r);
+            write_scalars(bench, axil, r);
             tb.model().host = r;
             tb.queue(frame_pixels(sl, sr, r.width, r.height, static_cast<int>(rng() % (hw.max_width - r.width + 1)),
                                   static_cast<int>(rng() % (hw.max_height - r.height + 1))));
             for (int k = 0; k < 100000 && started() == n0; ++k) {
             }
-            check(started() != n0, "registers every frame: the frame started");
+            bench.check(started() != n0, "registers every frame: the frame started");
           }
           tb.run_camera();
           tb.drain();
@@ -1014,13 +1004,12 @@ int main(int argc, char** argv) {
         "\n{} frames out: {} from faulty input, {} well-formed ({} right after a fault), all compared "
         "bit-exactly, {} completed at a soft reset; {} cycles\n",
         tb.frames_out(), tb.faulty_out(), tb.clean_out(), tb.recovered(), tb.soft_frames(), tb.cycles());
-    check(tb.recovered() >= n_frames / 10,
-          fmt::format("{} recovery frames (at least {})", tb.recovered(), n_frames / 10));
-    for (int k = 0; k < 6; ++k) check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", fault_name(k)));
+    bench.check(tb.recovered() >= n_frames / 10,
+                fmt::format("{} recovery frames (at least {})", tb.recovered(), n_frames / 10));
+    for (int k = 0; k < 6; ++k)
+      bench.check(tb.fault_total()[k] > 0, fmt::format("fault class {} exercised", fault_name(k)));
   } catch (const std::exception& e) {
-    fmt::print("FAIL: exception: {}\n", e.what());
-    ++failures;
+    bench.fail(fmt::format("exception: {}", e.what()));
   }
-  fmt::print("{} passed, {} failed\n", passes, failures);
-  return failures ? 1 : 0;
+  return bench.finish(fmt::format("tb_faults steps={} seed={}", n_frames, seed));
 }

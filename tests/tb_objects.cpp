@@ -6,16 +6,13 @@
 // list is published while its predecessor's packet is pending (the lost case).
 #include <fmt/format.h>
 
-#include <cstdlib>
 #include <deque>
 #include <random>
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
 #include "post.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
+#include "sm_block_test.hpp"
 
 using namespace sm;
 using namespace sm::test;
@@ -52,14 +49,13 @@ DispImage random_map(std::mt19937& rng, int w, int h, int disp, int block) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.max_height = SM_P_MAX_HEIGHT;
-  hw.disp = SM_P_DISP;
-  hw.max_objects = SM_P_MAX_OBJECTS;
-  hw.label_slots = SM_P_LABEL_SLOTS;
-  const int w = argc > 1 ? std::atoi(argv[1]) : 37;
-  const int h = argc > 2 ? std::atoi(argv[2]) : 23;
+  const HwConfig hw = verilated_config();
+  BlockTest<SM_VTOP> t{"sm_objects block test"};
+  int w = 37, h = 23;
+  // room for the scenes' boxes
+  t.cli().add_option("--width", w, "active width")->check(CLI::Range(16, hw.max_width));
+  t.cli().add_option("--height", h, "rows of every frame")->check(CLI::Range(7, hw.max_height));
+  if (auto rc = t.parse(argc, argv)) return *rc;
   const unsigned D = hw.disp;
   std::mt19937 rng(4321);
 
@@ -116,25 +112,18 @@ int main(int argc, char** argv) {
   const std::vector<int> heights(in.size(), h);
   const auto sched = make_schedule(w, heights, 2);
 
-  Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  tb->rst_n = 0;
+  auto& tb = t.tb();
   tb->out_rst_n = 0;
   tb->ce = 1;
   tb->width = w;
   tb->height = h;
   tb->s_side = 0;
   tb->m_axis_obj_tready = 0;
-  for (int i = 0; i < 3; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.reset(3);
   tb->out_rst_n = 1;
 
-  CeGen ce(99, 30);
-  long passed = 0, failed = 0;
-  auto fail = [&](const std::string& msg) {
-    if (failed == 0) fmt::print("first mismatch: {}\n", msg);
-    ++failed;
-  };
+  t.ce_schedule(99, 30);
+  auto fail = [&](const std::string& msg) { t.fail(msg); };
   size_t k = 0, lists = 0;
   bool lost_pending = false;
   std::deque<std::vector<uint32_t>> want_pkts;
@@ -146,8 +135,8 @@ int main(int argc, char** argv) {
       fail("timeout waiting for lists/packets");
       break;
     }
-    const bool c = k < sched.size() && ce.next();
-    tb->ce = c;
+    const bool c = k < sched.size() && t.next_ce();
+    if (!c) tb->ce = 0;
     tb->near_thr = rng() & 0xff;
     tb->tol = rng() & 0xff;
     tb->min_pixels = rng() & 0xffff;
@@ -181,7 +170,7 @@ int main(int argc, char** argv) {
                                  i < cur_pkt.size() ? cur_pkt[i] : 0u);
             fail(msg + " (expected/got)");
           } else {
-            ++passed;
+            t.pass();
           }
           want_pkts.pop_front();
         }
@@ -201,7 +190,7 @@ int main(int argc, char** argv) {
         fail(fmt::format("frame {}: count/too_many/table_full expected {}/{}/{} got {}/{}/{}", f, e.objects.size(),
                          e.too_many_objects, e.table_full, tb->obj_count, tb->too_many, tb->table_full));
       else
-        ++passed;
+        t.pass();
       for (size_t i = 0; i < e.objects.size() && i < tb->obj_count; ++i) {
         tb->rd_index = static_cast<uint8_t>(i);
         tb->eval();
@@ -222,7 +211,7 @@ int main(int argc, char** argv) {
                           f, i, o.x0, o.y0, o.x1, o.y1, o.count, o.sum_disp, o.mean_disp, o.max_disp, g.x0, g.y0, g.x1,
                           g.y1, g.count, g.sum_disp, g.mean_disp, g.max_disp));
         else
-          ++passed;
+          t.pass();
       }
       if (f == 0 || f == 2 || f == 5)
         fmt::print("frame {}: {} objects, too_many {}, table_full {}\n", f, e.objects.size(), e.too_many_objects,
@@ -247,6 +236,5 @@ int main(int argc, char** argv) {
   if (!saw_flags[0] || !saw_flags[1] || !saw_flags[2])
     fail(fmt::format("coverage: too_many {} table_full {} one lost packet {}", saw_flags[0], saw_flags[1],
                      saw_flags[2]));
-  fmt::print("{} lists, {} packets; {} passed, {} failed\n", lists, pkts, passed, failed);
-  return failed ? 1 : 0;
+  return t.finish(fmt::format("tb_objects {} lists, {} packets", lists, pkts));
 }

@@ -9,34 +9,19 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
-#include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <verilated.h>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
-#include "sm_coverage.hpp"
+#include "sm_block_test.hpp"
 
-using Top = SM_VTOP;
 using sm::test::BeatInfo;
 
 namespace {
-
-int g_pass = 0, g_fail = 0;
-bool check(bool ok, const std::string& what) {
-  if (ok) {
-    ++g_pass;
-  } else {
-    if (g_fail < 10) fmt::print("FAIL: {}\n", what);
-    ++g_fail;
-  }
-  return ok;
-}
 
 struct Expect {
   int frame, x, y;
@@ -47,7 +32,10 @@ struct Expect {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool paper = argc > 1 && std::string(argv[1]) == "paper";
+  sm::test::BlockTest<SM_VTOP> t{"sm_outfmt block test"};
+  bool paper = false;
+  t.cli().add_flag("--paper", paper, "the paper point's widths and heights (320 and 200 wide)");
+  if (auto rc = t.parse(argc, argv)) return *rc;
   const int W1 = paper ? 320 : 37, W2 = paper ? 200 : 21;
   const std::vector<int> h1 = paper ? std::vector<int>{3, 2} : std::vector<int>{5, 4};
   const std::vector<int> h2 = paper ? std::vector<int>{2} : std::vector<int>{3, 6};
@@ -78,23 +66,14 @@ int main(int argc, char** argv) {
   }
   const size_t total = expect.size();
 
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->randReset(0);
-  auto top = std::make_unique<Top>(ctx.get());
-  sm::CoverageOnExit cov{ctx.get()};
-  auto tick = [&] {
-    top->clk = 0;
-    top->eval();
-    top->clk = 1;
-    top->eval();
-  };
-  top->rst_n = 0;
+  auto* top = &t.tb().top();
+  auto tick = [&] { t.tick(); };
   top->ce = 0;
   top->m_axis_tready = 0;
   top->width = W1;
-  for (int i = 0; i < 4; ++i) tick();
-  top->rst_n = 1;
+  t.reset(4);
 
+  // not next_ce(): ce also waits for room
   sm::test::CeGen ce_gen(5, 30);
   size_t next = 0, got = 0;
   int overflows = 0;
@@ -123,11 +102,11 @@ int main(int argc, char** argv) {
     top->m_axis_tready = static_cast<int>(rng() % 100) >= bp;
     top->eval();
     if (top->m_axis_tvalid && top->m_axis_tready) {
-      if (check(got < total, "more output beats than real input beats")) {
+      if (t.check(got < total, "more output beats than real input beats")) {
         const Expect& e = expect[got];
-        check(top->m_axis_tdata == e.data && top->m_axis_tuser == e.user && top->m_axis_tlast == e.last,
-              fmt::format("frame {} x {} y {}: expected data 0x{:04x} user {} last {}, got 0x{:04x} {} {}", e.frame,
-                          e.x, e.y, e.data, e.user, e.last, top->m_axis_tdata, top->m_axis_tuser, top->m_axis_tlast));
+        t.check(top->m_axis_tdata == e.data && top->m_axis_tuser == e.user && top->m_axis_tlast == e.last,
+                fmt::format("frame {} x {} y {}: expected data 0x{:04x} user {} last {}, got 0x{:04x} {} {}", e.frame,
+                            e.x, e.y, e.data, e.user, e.last, top->m_axis_tdata, top->m_axis_tuser, top->m_axis_tlast));
       }
       ++got;
     }
@@ -135,8 +114,8 @@ int main(int argc, char** argv) {
     tick();
     if (ce) ++next;
   }
-  check(got == total, fmt::format("{} of {} real beats came out", got, total));
-  check(overflows == 0, fmt::format("{} overflow pulses with room respected", overflows));
+  t.check(got == total, fmt::format("{} of {} real beats came out", got, total));
+  t.check(overflows == 0, fmt::format("{} overflow pulses with room respected", overflows));
 
   // Overflow phase: sink stopped, real beats pushed regardless of room.
   top->m_axis_tready = 0;
@@ -154,23 +133,23 @@ int main(int argc, char** argv) {
   for (int i = 0; i < 3; ++i) {
     top->eval();
     if (top->err_overflow) ++overflows;
-    check(!top->room, "room while the FIFO is full");
+    t.check(!top->room, "room while the FIFO is full");
     tick();
   }
-  check(overflows == pushed - kCap, fmt::format("overflow pulses {} expected {}", overflows, pushed - kCap));
+  t.check(overflows == pushed - kCap, fmt::format("overflow pulses {} expected {}", overflows, pushed - kCap));
   int drained = 0;
   top->m_axis_tready = 1;
   for (int i = 0; i < 3 * kCap; ++i) {
     top->eval();
     if (top->m_axis_tvalid) {
-      check(top->m_axis_tdata == drained, fmt::format("overflow phase: word {} is {}", drained, top->m_axis_tdata));
+      t.check(top->m_axis_tdata == drained, fmt::format("overflow phase: word {} is {}", drained, top->m_axis_tdata));
       ++drained;
     }
     tick();
   }
-  check(drained == kCap, fmt::format("drained {} words, capacity {}", drained, kCap));
+  t.check(drained == kCap, fmt::format("drained {} words, capacity {}", drained, kCap));
   top->eval();
-  check(top->room, "room after draining");
+  t.check(top->room, "room after draining");
 
   // Soft-reset phases (restart = the pipeline's reset, the output's own reset stays
   // high): the frame the sink is receiving is completed -- queued pixels, then 0 words --
@@ -199,7 +178,7 @@ int main(int argc, char** argv) {
     const uint8_t side =
         static_cast<uint8_t>(sm::test::kReal | (i == 0 ? sm::test::kSof : 0) | (i % RW == 0 ? sm::test::kSol : 0));
     for (int guard = 0; !top->room; ++guard) {
-      if (!check(guard < 10 * kCap + 10 * RW * RH, "room comes back (soft-reset phases)"))
+      if (!t.check(guard < 10 * kCap + 10 * RW * RH, "room comes back (soft-reset phases)"))
         throw std::runtime_error("no room");
       step(false, 0, 0, ready, false);
     }
@@ -212,7 +191,7 @@ int main(int argc, char** argv) {
     bool ok = seen.size() == want.size();
     for (size_t i = 0; ok && i < want.size(); ++i)
       ok = seen[i].d == want[i] && seen[i].u == (i == 0) && seen[i].l == (static_cast<int>(i) % RW == RW - 1);
-    check(ok, fmt::format("{}: {} beats out, expected {}", what, seen.size(), want.size()));
+    t.check(ok, fmt::format("{}: {} beats out, expected {}", what, seen.size(), want.size()));
     seen.clear();
   };
   auto pixels = [&](int n, uint16_t base) {
@@ -236,7 +215,7 @@ int main(int argc, char** argv) {
       std::vector<uint16_t> want = pixels(k, 0x8100);
       want.resize(RW * RH, 0);
       expect_frame(want, "soft reset inside the sink's frame: padded to W x H");
-      check(top->room, "room after the padded frame");
+      t.check(top->room, "room after the padded frame");
     }
     // R2: the sink holds the first frame's tuser beat; the FIFO holds the rest of it and
     // part of the next frame, which is dropped.
@@ -244,24 +223,24 @@ int main(int argc, char** argv) {
       for (int i = 0; i < RW * RH; ++i) write_px(i, static_cast<uint16_t>(0x8200 + (i & 0xff)), false);
       for (int i = 0; i < NXT; ++i) write_px(i, static_cast<uint16_t>(0x8300 + i), false);
       settle(5, false);
-      check(top->m_axis_tvalid && top->m_axis_tuser, "the first frame's tuser beat is offered");
+      t.check(top->m_axis_tvalid && top->m_axis_tuser, "the first frame's tuser beat is offered");
       step(false, 0, 0, false, true);
       settle(20, false);
-      check(!top->room, "no room while the flush waits for the sink");
+      t.check(!top->room, "no room while the flush waits for the sink");
       int guard = 0;
       while (!top->room && ++guard < 1000) step(false, 0, 0, true, false);
       std::vector<uint16_t> want;
       for (int i = 0; i < RW * RH; ++i) want.push_back(static_cast<uint16_t>(0x8200 + (i & 0xff)));
       expect_frame(want, "soft reset with the sink's frame queued whole: delivered, the next frame dropped");
       settle(20, true);
-      check(seen.empty(), "nothing after the dropped frame");
+      t.check(seen.empty(), "nothing after the dropped frame");
     }
     // R3: no frame on the wire (a beat written but not yet at the FIFO head): dropped.
     {
       write_px(0, 0x8400, true);
       step(false, 0, 0, true, true);
       settle(30, true);
-      check(seen.empty(), "a frame not yet offered is dropped by a soft reset");
+      t.check(seen.empty(), "a frame not yet offered is dropped by a soft reset");
     }
     // After all three, a frame passes intact.
     {
@@ -270,10 +249,8 @@ int main(int argc, char** argv) {
       expect_frame(pixels(RW * RH, 0x8500), "first frame after the soft resets");
     }
   } catch (const std::runtime_error&) {
-    // reported by check()
+    // reported by t.check()
   }
 
-  top->final();
-  fmt::print("tb_outfmt: {} passed, {} failed\n", g_pass, g_fail);
-  return g_fail ? 1 : 0;
+  return t.finish(fmt::format("tb_outfmt FIFO_DEPTH={}", SM_P_FIFO_DEPTH));
 }

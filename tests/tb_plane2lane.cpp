@@ -6,47 +6,30 @@
 #include <fmt/format.h>
 
 #include <cstdint>
-#include <memory>
 #include <random>
 
 #include SM_VTOP_H
-#include <verilated.h>
-
+#include "sm_block_test.hpp"
 #include "sm_port.hpp"
-#include "sm_coverage.hpp"
 
-namespace {
-
-constexpr int kP = SM_P_P;
-constexpr int kL = SM_P_L;
-
-}  // namespace
-
-int main() {
-  auto ctx = std::make_unique<VerilatedContext>();
-  auto top = std::make_unique<SM_VTOP>(ctx.get());
-  sm::CoverageOnExit cov{ctx.get()};
+int main(int argc, char** argv) {
+  constexpr int kP = SM_P_P, kL = SM_P_L;
+  sm::test::BlockTest<SM_VTOP> t{"sm_plane2lane direct test"};
+  if (auto rc = t.parse(argc, argv)) return *rc;
   std::mt19937 rng(0x91a7e5u);
-  long passed = 0, failed = 0;
   for (int round = 0; round < 200; ++round) {
     // sparse, dense and balanced patterns: a wrong bit shows in all of them
     const unsigned density = round % 3 == 0 ? 8 : round % 3 == 1 ? 248 : 128;
-    for (int i = 0; i < kP * kL; ++i) sm::test::set_port_bit(top->planes, i, (rng() & 255) < density);
-    top->eval();
+    for (int i = 0; i < kP * kL; ++i) sm::test::set_port_bit(t->planes, i, (rng() & 255) < density);
+    t->eval();
     for (int l = 0; l < kL; ++l) {
       for (int p = 0; p < kP; ++p) {
-        const bool want = sm::test::port_bits(top->planes, p * kL + l, 1);
-        const bool got = sm::test::port_bits(top->lanes, l * kP + p, 1);
-        if (want == got) {
-          ++passed;
-        } else {
-          if (failed == 0) fmt::print("FIRST MISMATCH round {} lane {} bit {}: {} want {}\n", round, l, p, got, want);
-          ++failed;
-        }
+        const bool want = sm::test::port_bits(t->planes, p * kL + l, 1);
+        const bool got = sm::test::port_bits(t->lanes, l * kP + p, 1);
+        t.check(want == got,
+                [&] { return fmt::format("round {} lane {} bit {}: {} want {}", round, l, p, got, want); });
       }
     }
   }
-  top->final();
-  fmt::print("tb_plane2lane P={} L={}: {} bits passed, {} failed\n", kP, kL, passed, failed);
-  return failed == 0 && passed > 0 ? 0 : 1;
+  return t.finish(fmt::format("tb_plane2lane P={} L={} (bits)", kP, kL));
 }

@@ -5,20 +5,15 @@
 // garbage on idle and virtual beats; the enable switched per frame; widths change after a
 // flush without a reset, so stale memory contents are in the way. Every real output pixel
 // is compared with the model, and its latency (K*W + 1 beats) is checked.
-// Usage: tb_post_band W1[,W2...] H
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
-#include "post.hpp"
-#include "sm_coverage.hpp"
-#include "sm_tb.hpp"
+#include "disp_stream.hpp"
+#include "sm_block_test.hpp"
 
 using namespace sm;
 using namespace sm::test;
@@ -65,37 +60,29 @@ DispImage band_map(std::mt19937& rng, int w, int h, int disp, unsigned dmask) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.disp = SM_P_DISP;
+  const HwConfig hw = verilated_config();
+  BlockTest<SM_VTOP> t{"sm_post_band block test"};
   std::vector<int> widths{37};
   int h = 12;
-  CLI::App app{"sm_post_band block test"};
-  app.add_option("--widths", widths, "active widths, one frame group each, no reset between")
+  t.cli()
+      .add_option("--widths", widths, "active widths, one frame group each, no reset between")
       ->delimiter(',')
       ->check(CLI::Range(2, hw.max_width));
-  app.add_option("--height", h, "rows of the first frame of each group")->check(CLI::Range(1, 4096));
-  CLI11_PARSE(app, argc, argv);
+  t.cli().add_option("--height", h, "rows of the first frame of each group")->check(CLI::Range(1, 4096));
+  if (auto rc = t.parse(argc, argv)) return *rc;
   unsigned dmask = 1;
   while (dmask + 1 < static_cast<unsigned>(hw.disp)) dmask = dmask * 2 + 1;  // 2^clog2(DISP) - 1
   std::mt19937 rng(4321 + kK);
 
-  Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  tb->rst_n = 0;
+  auto& tb = t.tb();
   tb->ce = 1;
   tb->width = widths.empty() ? 2 : widths[0];
   tb->s_side = 0;
-  for (int i = 0; i < 3; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.reset(3);
 
-  CeGen ce(99 + kK, 30);
-  long passed = 0, failed = 0, replaced = 0;
+  t.ce_schedule(99 + kK, 30);
+  long replaced = 0;
   for (const int w : widths) {
-    if (w < 2 || w > SM_P_MAX_WIDTH) {
-      fmt::print("width {} outside 2..{}\n", w, SM_P_MAX_WIDTH);
-      return 1;
-    }
     tb->width = w;
     // heights: the base, at most K (look-ahead past the bottom), 1 and 2 rows, K + 1
     const std::vector<int> heights = {h, kK, 1, h + 3, kK + 1, 2, std::max(1, kK - 1), h};
@@ -123,71 +110,39 @@ int main(int argc, char** argv) {
     const auto sched = make_schedule(w, heights, kK + 2);
     // documented latency (docs/algorithm.md section 7): K*W + 1 beats
     const long latency = static_cast<long>(kK) * w + 1;
-    std::vector<std::vector<long>> beat_of(heights.size());  // frame -> y*w+x -> beat index
-    for (size_t i = 0; i < sched.size(); ++i)
-      if (sched[i].frame >= 0) {
-        auto& v = beat_of[sched[i].frame];
-        v.resize(static_cast<size_t>(w) * heights[sched[i].frame]);
-        v[static_cast<size_t>(sched[i].y) * w + sched[i].x] = static_cast<long>(i);
-      }
+    const auto beat_of = beat_index(sched, w, heights);
 
-    OutputOrder order(w, heights);
+    t.expect_frames(w, heights);
     // The enable is latched with a frame's first centre at the output stage, K rows after
     // its sof entered (past the ends of short frames), so it shows the setting of the next
     // frame to leave, as sm_frame_sel (NEXT = 1) does in sm_top.
     size_t next_out = 0;
     size_t k = 0;
-    const long failed0 = failed;
-    try {
-      while (k < sched.size()) {
-        const bool c = ce.next();
-        tb->ce = c;
-        if (c) {
-          const BeatInfo& b = sched[k++];
-          tb->s_side = b.side;
-          tb->s_disp = b.frame >= 0 ? in[b.frame].at(b.x, b.y) : static_cast<uint16_t>(rng());
-          tb->enable = next_out < enable.size() && enable[next_out];
-        } else {  // garbage while the pipeline holds
-          tb->s_side = rng() & 31;
-          tb->s_disp = static_cast<uint16_t>(rng());
-          tb->enable = rng() & 1;
-        }
-        tb.tick();
-        if (c && (tb->m_side & kReal)) {
-          const BeatInfo o = order.next(tb->m_side);
-          if (tb->m_side & kSof) next_out = static_cast<size_t>(o.frame) + 1;
-          const uint16_t e = want[o.frame].at(o.x, o.y);
-          const size_t pix = static_cast<size_t>(o.y) * w + o.x;
-          const long lat = static_cast<long>(k - 1) - beat_of[o.frame][pix];  // beats since entry
-          if (lat != latency) {
-            if (failed == failed0)
-              fmt::print("width {}: latency at frame {} x {} y {}: {} beats, documented {}\n", w, o.frame, o.x, o.y,
-                         lat, latency);
-            ++failed;
-          } else if (tb->m_disp == e) {
-            ++passed;
-          } else {
-            if (failed == failed0)
-              fmt::print("width {}: first mismatch: frame {} x {} y {} expected {:#06x} got {:#06x}\n", w, o.frame, o.x,
-                         o.y, e, tb->m_disp);
-            ++failed;
-          }
-        }
-      }
-    } catch (const std::exception& ex) {
-      fmt::print("width {}: protocol error: {}\n", w, ex.what());
-      ++failed;
+    const std::string where = fmt::format("width {}: ", w);
+    while (k < sched.size()) {
+      const bool c = t.next_ce();
+      drive_disp(tb.top(), c ? &sched[k++] : nullptr, in, next_out < enable.size() && enable[next_out], rng);
+      tb.tick();
+      if (!c || !(tb->m_side & kReal)) continue;
+      const auto o = t.next_out(tb->m_side, where);
+      if (!o) break;
+      if (tb->m_side & kSof) next_out = static_cast<size_t>(o->frame) + 1;
+      const uint16_t e = want[o->frame].at(o->x, o->y);
+      const size_t pix = static_cast<size_t>(o->y) * w + o->x;
+      const long lat = static_cast<long>(k - 1) - beat_of[o->frame][pix];  // beats since entry
+      if (lat != latency)
+        t.fail(fmt::format("{}latency at frame {} x {} y {}: {} beats, documented {}", where, o->frame, o->x, o->y, lat,
+                           latency));
+      else
+        t.check(tb->m_disp == e, [&] {
+          return fmt::format("{}frame {} x {} y {} expected {:#06x} got {:#06x}", where, o->frame, o->x, o->y, e,
+                             tb->m_disp);
+        });
     }
-    if (!order.done()) {
-      fmt::print("width {}: not every pixel came out\n", w);
-      ++failed;
-    }
+    t.all_out(where);
   }
   // the stimulus must exercise the filter: some pixels replaced from above
-  if (replaced == 0) {
-    fmt::print("no pixel replaced by the model: stimulus too weak\n");
-    ++failed;
-  }
-  fmt::print("{} passed, {} failed ({} pixels replaced by the band filter)\n", passed, failed, replaced);
-  return failed ? 1 : 0;
+  if (replaced == 0) t.fail("no pixel replaced by the model: stimulus too weak");
+  return t.finish(fmt::format("tb_post_band MAX_WIDTH={} DISP={} K={}", hw.max_width, hw.disp, kK),
+                  fmt::format(" ({} pixels replaced by the band filter)", replaced));
 }

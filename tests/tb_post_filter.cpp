@@ -1,18 +1,17 @@
-// Block test of one post-processing filter (SM_FILTER = 1, 2 or 3; docs/algorithm.md
+// Block test of one post-processing filter (--filter vmed, med3 or med53; docs/algorithm.md
 // section 7): frames of random and structured disparity maps, back to back, random ce
 // gaps with garbage on idle and virtual beats, the enable switched per frame; every real
 // output pixel is compared with the model.
 #include <fmt/format.h>
 
-#include <cstdlib>
+#include <map>
 #include <random>
+#include <string>
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
-#include "post.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
+#include "disp_stream.hpp"
+#include "sm_block_test.hpp"
 
 using namespace sm;
 using namespace sm::test;
@@ -45,12 +44,20 @@ DispImage structured_map(std::mt19937& rng, int w, int h, int disp) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  HwConfig hw;
-  hw.max_width = SM_P_MAX_WIDTH;
-  hw.disp = SM_P_DISP;
-  const int w = argc > 1 ? std::atoi(argv[1]) : 37;
-  const int h = argc > 2 ? std::atoi(argv[2]) : 9;
-  std::mt19937 rng(1234 + SM_FILTER);
+  BlockTest<SM_VTOP> t{"post-processing filter block test"};
+  const HwConfig hw = verilated_config();
+  int w = 37, h = 9;
+  // the filter's number (1..3) also offsets the seeds: each filter has its own stimulus
+  int filter = 0;
+  const std::map<std::string, int> filters{{"vmed", 1}, {"med3", 2}, {"med53", 3}};
+  t.cli()
+      .add_option("--filter", filter, "the model's filter, as the Verilated top: vmed, med3 or med53")
+      ->required()
+      ->transform(CLI::CheckedTransformer(filters));
+  t.cli().add_option("--width", w, "active width")->check(CLI::Range(2, hw.max_width));
+  t.cli().add_option("--height", h, "rows of the first frame (the others: +2, -1, +1)")->check(CLI::Range(2, 4096));
+  if (auto rc = t.parse(argc, argv)) return *rc;
+  std::mt19937 rng(1234 + filter);
   const std::vector<int> heights = {h, h + 2, h - 1, h + 1};
   const std::vector<bool> enable = {true, true, false, true};
   std::vector<DispImage> in, want;
@@ -60,82 +67,48 @@ int main(int argc, char** argv) {
     if (f == 2) m = random_map(rng, w, heights[f], 3, 6, 20);  // many ties
     DispImage out = m;
     if (enable[f]) {
-      if (SM_FILTER == 1) out = post_vmedian(m, hw);
-      if (SM_FILTER == 2) out = post_median3(m, hw);
-      if (SM_FILTER == 3) out = post_median53(m, hw);
+      if (filter == 1) out = post_vmedian(m, hw);
+      if (filter == 2) out = post_median3(m, hw);
+      if (filter == 3) out = post_median53(m, hw);
     }
     in.push_back(m);
     want.push_back(out);
   }
   const auto sched = make_schedule(w, heights, 4);
   // documented latency (docs/algorithm.md section 7): RY*W + RX + 2 beats
-  const int ry = SM_FILTER == 2 ? 1 : 2, rx = SM_FILTER == 1 ? 0 : 1;
+  const int ry = filter == 2 ? 1 : 2, rx = filter == 1 ? 0 : 1;
   const long latency = static_cast<long>(ry) * w + rx + 2;
-  std::vector<std::vector<long>> beat_of(heights.size());  // frame -> y*w+x -> beat index
-  for (size_t i = 0; i < sched.size(); ++i)
-    if (sched[i].frame >= 0) {
-      auto& v = beat_of[sched[i].frame];
-      v.resize(static_cast<size_t>(w) * heights[sched[i].frame]);
-      v[static_cast<size_t>(sched[i].y) * w + sched[i].x] = static_cast<long>(i);
-    }
+  const auto beat_of = beat_index(sched, w, heights);
 
-  Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  tb->rst_n = 0;
+  auto& tb = t.tb();
   tb->ce = 1;
   tb->width = w;
   tb->s_side = 0;
-  for (int i = 0; i < 3; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.reset(3);
 
-  CeGen ce(77 + SM_FILTER, 30);
-  OutputOrder order(w, heights);
-  long passed = 0, failed = 0;
+  t.ce_schedule(77 + filter, 30);
+  t.expect_frames(w, heights);
   bool cur_en = true;
   size_t k = 0;
-  try {
-    while (k < sched.size()) {
-      const bool c = ce.next();
-      tb->ce = c;
-      if (c) {
-        const BeatInfo& b = sched[k++];
-        tb->s_side = b.side;
-        tb->s_disp = b.frame >= 0 ? in[b.frame].at(b.x, b.y) : static_cast<uint16_t>(rng());
-        if (b.frame >= 0 && b.x == 0 && b.y == 0) cur_en = enable[b.frame];
-        tb->enable = cur_en;
-      } else {  // garbage while the pipeline holds
-        tb->s_side = rng() & 31;
-        tb->s_disp = static_cast<uint16_t>(rng());
-        tb->enable = rng() & 1;
-      }
-      tb.tick();
-      if (c && (tb->m_side & kReal)) {
-        const BeatInfo o = order.next(tb->m_side);
-        const uint16_t e = want[o.frame].at(o.x, o.y);
-        const size_t pix = static_cast<size_t>(o.y) * w + o.x;
-        const long lat = static_cast<long>(k - 1) - beat_of[o.frame][pix];  // beats since entry
-        if (lat != latency) {
-          if (failed == 0)
-            fmt::print("latency at frame {} x {} y {}: {} beats, documented {}\n", o.frame, o.x, o.y, lat, latency);
-          ++failed;
-        } else if (tb->m_disp == e) {
-          ++passed;
-        } else {
-          if (failed == 0)
-            fmt::print("first mismatch: frame {} x {} y {} expected {:#06x} got {:#06x}\n", o.frame, o.x, o.y, e,
-                       tb->m_disp);
-          ++failed;
-        }
-      }
-    }
-  } catch (const std::exception& ex) {
-    fmt::print("protocol error: {}\n", ex.what());
-    ++failed;
+  while (k < sched.size()) {
+    const bool c = t.next_ce();
+    const BeatInfo* b = c ? &sched[k++] : nullptr;
+    if (b && b->frame >= 0 && b->x == 0 && b->y == 0) cur_en = enable[b->frame];
+    drive_disp(tb.top(), b, in, cur_en, rng);
+    tb.tick();
+    if (!c || !(tb->m_side & kReal)) continue;
+    const auto o = t.next_out(tb->m_side);
+    if (!o) break;
+    const uint16_t e = want[o->frame].at(o->x, o->y);
+    const size_t pix = static_cast<size_t>(o->y) * w + o->x;
+    const long lat = static_cast<long>(k - 1) - beat_of[o->frame][pix];  // beats since entry
+    if (lat != latency)
+      t.fail(fmt::format("latency at frame {} x {} y {}: {} beats, documented {}", o->frame, o->x, o->y, lat, latency));
+    else
+      t.check(tb->m_disp == e, [&] {
+        return fmt::format("frame {} x {} y {} expected {:#06x} got {:#06x}", o->frame, o->x, o->y, e, tb->m_disp);
+      });
   }
-  if (!order.done()) {
-    fmt::print("not every pixel came out\n");
-    ++failed;
-  }
-  fmt::print("{} passed, {} failed\n", passed, failed);
-  return failed ? 1 : 0;
+  t.all_out();
+  return t.finish(fmt::format("tb_post_filter {} MAX_WIDTH={} DISP={} W={}", filter, hw.max_width, hw.disp, w));
 }

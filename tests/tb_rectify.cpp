@@ -9,21 +9,16 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <random>
 #include <vector>
 
-#include "beat_schedule.hpp"
+#include SM_VTOP_H
 #include "calib_file.hpp"
 #include "pre.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
-#include SM_VTOP_H
+#include "sm_block_test.hpp"
 
 using sm::test::BeatInfo;
-using sm::test::CeGen;
-using sm::test::OutputOrder;
 
 namespace {
 
@@ -76,11 +71,10 @@ struct Session {
 
 }  // namespace
 
-int main() {
-  sm::HwConfig hw;
-  hw.max_width = kMaxW;
-  hw.max_height = kMaxH;
-  hw.rect_radius = kR;
+int main(int argc, char** argv) {
+  sm::test::BlockTest<SM_VTOP> t{"sm_rectify block test"};
+  if (auto rc = t.parse(argc, argv)) return *rc;
+  const sm::HwConfig hw = sm::verilated_config();
 
   std::mt19937 rng(12345);
   std::vector<Session> sessions;
@@ -104,20 +98,15 @@ int main() {
     sessions.push_back(s);
   }
 
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  CeGen ce_gen(7, 30);
+  t.ce_schedule(7, 30);
   std::mt19937 garbage(99);
+  auto& tb = t.tb();
   auto& top = tb.top();
-  top.rst_n = 0;
   top.ce = 1;
   top.grid_we = 0;
   top.width = 37;
-  for (int i = 0; i < 4; ++i) tb.tick();
-  top.rst_n = 1;
+  t.reset(4);
 
-  long passed = 0, failed = 0;
-  bool first_fail = true;
   const int gwmax = sm::grid_gwmax(kMaxW), ghmax = sm::grid_ghmax(kMaxH);
 
   for (size_t si = 0; si < sessions.size(); ++si) {
@@ -147,9 +136,9 @@ int main() {
     }
     size_t wi = 0;
     int vx = 0;  // column of the virtual row being streamed during the writes
+    bool stray = false;
     while (wi < writes.size() || vx != 0) {
-      const bool ce = ce_gen.next();
-      top.ce = ce;
+      const bool ce = t.next_ce();
       top.grid_we = wi < writes.size();
       if (top.grid_we) {
         top.grid_waddr = writes[wi].first;
@@ -163,10 +152,12 @@ int main() {
       tb.tick();
       if (ce && ++vx == top.width) vx = 0;
       if (ce && (top.m_side & sm::test::kReal)) {
-        std::printf("FAIL: real output beat during the grid writes of session %zu\n", si);
-        return 1;
+        t.fail(fmt::format("real output beat during the grid writes of session {}", si));
+        stray = true;
+        break;
       }
     }
+    if (stray) break;
     top.grid_we = 0;
     top.width = w;
 
@@ -180,11 +171,11 @@ int main() {
         i += static_cast<size_t>(s.heights[f]) * w;
       }
     }
-    OutputOrder order(w, s.heights);
+    t.expect_frames(w, s.heights);
+    const std::string where = fmt::format("session {}: ", si);
     size_t bi = 0;
     while (bi < sched.size()) {
-      const bool ce = ce_gen.next();
-      top.ce = ce;
+      const bool ce = t.next_ce();
       if (ce) {
         const BeatInfo& b = sched[bi];
         top.s_side = b.side;
@@ -201,31 +192,15 @@ int main() {
       }
       tb.tick();
       if (!ce || !(top.m_side & sm::test::kReal)) continue;
-      BeatInfo o;
-      try {
-        o = order.next(top.m_side);
-      } catch (const std::exception& e) {
-        std::printf("FAIL: session %zu: %s\n", si, e.what());
-        return 1;
-      }
-      const int exp = want[o.frame].at(o.x, o.y);
-      if (exp == top.m_pix) {
-        ++passed;
-      } else {
-        ++failed;
-        if (first_fail) {
-          first_fail = false;
-          std::printf("first mismatch: session %zu frame %d x %d y %d expected %d got %d\n", si, o.frame, o.x, o.y, exp,
-                      top.m_pix);
-        }
-      }
+      const auto o = t.next_out(top.m_side, where);
+      if (!o) break;
+      const int exp = want[o->frame].at(o->x, o->y);
+      t.check(exp == top.m_pix, [&] {
+        return fmt::format("{}frame {} x {} y {} expected {} got {}", where, o->frame, o->x, o->y, exp, top.m_pix);
+      });
     }
-    if (!order.done()) {
-      std::printf("FAIL: session %zu: not every pixel came out\n", si);
-      return 1;
-    }
+    // a stream out of order or short stops the run: the next session would start mid-frame
+    if (!t.all_out(where)) break;
   }
-  fmt::print("tb_rectify MAX_WIDTH={} MAX_HEIGHT={} RECT_RADIUS={}: {} passed, {} failed\n", kMaxW, kMaxH, kR, passed,
-             failed);
-  return failed == 0 ? 0 : 1;
+  return t.finish(fmt::format("tb_rectify MAX_WIDTH={} MAX_HEIGHT={} RECT_RADIUS={}", kMaxW, kMaxH, kR));
 }

@@ -6,33 +6,19 @@
 // exactly FLUSH_ROWS before a width change and after the last frame; fault pulses must
 // match the model's counts; a continuous stream with ce = beat_valid never sees tready low.
 #include <cstdint>
-#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <verilated.h>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
 #include "seq.hpp"
-#include "sm_coverage.hpp"
+#include "sm_block_test.hpp"
 
-using Top = SM_VTOP;
+using Bench = sm::test::BlockTest<SM_VTOP>;
 
 namespace {
-
-int g_pass = 0, g_fail = 0;
-bool check(bool ok, const std::string& what) {
-  if (ok) {
-    ++g_pass;
-  } else {
-    if (g_fail < 12) fmt::print("FAIL: {}\n", what);
-    ++g_fail;
-  }
-  return ok;
-}
 
 // A piece of camera stream sent with one host setting.
 struct Segment {
@@ -78,28 +64,21 @@ struct RunOut {
 constexpr int kFlush = SM_P_FLUSH_ROWS;
 constexpr int kMaxW = SM_P_MAX_WIDTH;
 
-RunOut run(const std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, uint32_t seed) {
+// Each run starts from a new model (its own coverage file).
+RunOut run(Bench& t, const std::vector<Segment>& segs, int idle_percent, int ce_idle_percent, uint32_t seed) {
   RunOut out;
-  auto ctx = std::make_unique<VerilatedContext>();
-  ctx->randReset(0);
-  auto top = std::make_unique<Top>(ctx.get());
-  sm::CoverageOnExit cov{ctx.get()};
+  t.new_model();
+  auto* top = &t.tb().top();
   std::mt19937 rng(seed);
+  // not next_ce(): ce also waits for beat_valid
   sm::test::CeGen room(seed * 7 + 1, ce_idle_percent);
-  auto tick = [&] {
-    top->clk = 0;
-    top->eval();
-    top->clk = 1;
-    top->eval();
-  };
-  top->rst_n = 0;
+  auto tick = [&] { t.tick(); };
   top->s_axis_tvalid = 0;
   top->ce = 0;
   top->enable = 1;
   top->host_width = segs.empty() ? kMaxW : segs[0].w;
   top->host_height = segs.empty() ? 16 : segs[0].h;
-  for (int i = 0; i < 4; ++i) tick();
-  top->rst_n = 1;
+  t.reset(4);
   // One clock: drive inputs, decide ce, record, tick.
   auto cycle = [&](bool valid, const sm::CamPixel* p) -> bool {
     top->s_axis_tvalid = valid;
@@ -141,12 +120,11 @@ RunOut run(const std::vector<Segment>& segs, int idle_percent, int ce_idle_perce
     for (int i = 0; i < s.vblank; ++i) cycle(false, nullptr);
   }
   for (int i = 0; i < drain; ++i) cycle(false, nullptr);
-  top->final();
   return out;
 }
 
 // Checks the beats of one run against the model.
-void verify(const std::string& name, const std::vector<Segment>& segs, const RunOut& o) {
+void verify(Bench& t, const std::string& name, const std::vector<Segment>& segs, const RunOut& o) {
   std::vector<sm::SeqInput> all;
   for (const auto& s : segs)
     for (const auto& p : s.px) all.push_back({p, {static_cast<uint16_t>(s.w), static_cast<uint16_t>(s.h), s.enable}});
@@ -154,88 +132,88 @@ void verify(const std::string& name, const std::vector<Segment>& segs, const Run
   const auto& F = m.frames;
   fmt::print("{}: {} frames, {} beats, fault pulses {} {} {} {} {} {} (short long missing extra few many)\n", name,
              F.size(), o.beats.size(), o.err[0], o.err[1], o.err[2], o.err[3], o.err[4], o.err[5]);
-  check(o.starts.size() == F.size(),
-        fmt::format("{}: {} frame_start pulses, model has {} frames", name, o.starts.size(), F.size()));
+  t.check(o.starts.size() == F.size(),
+          fmt::format("{}: {} frame_start pulses, model has {} frames", name, o.starts.size(), F.size()));
   for (size_t f = 0; f < std::min(F.size(), o.starts.size()); ++f)
-    check(o.starts[f] == std::make_pair(F[f].w, F[f].h),
-          fmt::format("{}: frame {} latched {}x{}, model {}x{}", name, f, o.starts[f].first, o.starts[f].second, F[f].w,
-                      F[f].h));
+    t.check(o.starts[f] == std::make_pair(F[f].w, F[f].h),
+            fmt::format("{}: frame {} latched {}x{}, model {}x{}", name, f, o.starts[f].first, o.starts[f].second,
+                        F[f].w, F[f].h));
   for (size_t e = 0; e < sm::kNumSeqFaults; ++e)
-    check(o.err[e] == m.faults[e],
-          fmt::format("{}: error class {}: {} pulses, model {}", name, e, o.err[e], m.faults[e]));
+    t.check(o.err[e] == m.faults[e],
+            fmt::format("{}: error class {}: {} pulses, model {}", name, e, o.err[e], m.faults[e]));
 
   // Walk the beats row by row.
   size_t b = 0;
   int frame = -1, row = 0, vrows_since = 0, ftag = -1;
   int last_w = -1;
-  bool first_mismatch = true;
   while (b < o.beats.size()) {
     const Beat& s0 = o.beats[b];
-    if (!check(s0.side & sm::test::kSol, fmt::format("{}: beat {} should start a row", name, b))) return;
+    if (!t.check(s0.side & sm::test::kSol, fmt::format("{}: beat {} should start a row", name, b))) return;
     const bool real = s0.side & sm::test::kReal;
     const bool sof = s0.side & sm::test::kSof;
     const int tag = s0.side >> 3;
     if (real && sof) {  // a new frame
       if (frame >= 0)
-        check(row == F[static_cast<size_t>(frame)].h, fmt::format("{}: frame {} had {} rows", name, frame, row));
+        t.check(row == F[static_cast<size_t>(frame)].h, fmt::format("{}: frame {} had {} rows", name, frame, row));
       ++frame;
-      if (!check(frame < static_cast<int>(F.size()), fmt::format("{}: more frames than the model", name))) return;
+      if (!t.check(frame < static_cast<int>(F.size()), fmt::format("{}: more frames than the model", name))) return;
       if (last_w >= 0 && F[static_cast<size_t>(frame)].w != last_w)
-        check(vrows_since == kFlush,
-              fmt::format("{}: width change before frame {} after {} virtual rows", name, frame, vrows_since));
-      check(tag == (frame & 3), fmt::format("{}: frame {} ftag {}", name, frame, tag));
+        t.check(vrows_since == kFlush,
+                fmt::format("{}: width change before frame {} after {} virtual rows", name, frame, vrows_since));
+      t.check(tag == (frame & 3), fmt::format("{}: frame {} ftag {}", name, frame, tag));
       ftag = tag;
       row = 0;
       vrows_since = 0;
       last_w = F[static_cast<size_t>(frame)].w;
     } else if (real) {
-      if (!check(frame >= 0 && row < F[static_cast<size_t>(frame)].h,
-                 fmt::format("{}: real row without sof (frame {}, row {})", name, frame, row)))
+      if (!t.check(frame >= 0 && row < F[static_cast<size_t>(frame)].h,
+                   fmt::format("{}: real row without sof (frame {}, row {})", name, frame, row)))
         return;
     } else {
-      check(frame >= 0 && row == F[static_cast<size_t>(frame)].h,
-            fmt::format("{}: virtual row inside or before a frame (frame {}, row {})", name, frame, row));
-      check(tag == ftag, fmt::format("{}: virtual row ftag {} after frame ftag {}", name, tag, ftag));
+      t.check(frame >= 0 && row == F[static_cast<size_t>(frame)].h,
+              fmt::format("{}: virtual row inside or before a frame (frame {}, row {})", name, frame, row));
+      t.check(tag == ftag, fmt::format("{}: virtual row ftag {} after frame ftag {}", name, tag, ftag));
       ++vrows_since;
-      check(vrows_since <= kFlush, fmt::format("{}: {} virtual rows after frame {}", name, vrows_since, frame));
+      t.check(vrows_since <= kFlush, fmt::format("{}: {} virtual rows after frame {}", name, vrows_since, frame));
     }
     const int w = last_w;
-    if (!check(b + static_cast<size_t>(w) <= o.beats.size(), fmt::format("{}: truncated row", name))) return;
+    if (!t.check(b + static_cast<size_t>(w) <= o.beats.size(), fmt::format("{}: truncated row", name))) return;
     for (int x = 0; x < w; ++x) {
       const Beat& bt = o.beats[b + static_cast<size_t>(x)];
       const uint8_t want_side =
           static_cast<uint8_t>((tag << 3) | (real ? 1 : 0) | (x == 0 ? 4 : 0) | (real && x == 0 && row == 0 ? 2 : 0));
-      if (!check(bt.side == want_side, fmt::format("{}: frame {} row {} x {}: side {:x} expected {:x}", name, frame,
-                                                   row, x, bt.side, want_side)))
+      if (!t.check(bt.side == want_side, fmt::format("{}: frame {} row {} x {}: side {:x} expected {:x}", name, frame,
+                                                     row, x, bt.side, want_side)))
         return;
       if (real) {
         const sm::SeqFrame& mf = F[static_cast<size_t>(frame)];
-        if (!check(row * w + x < mf.beats,
-                   fmt::format("{}: frame {} x {} y {}: beyond the model's {} beats", name, frame, x, row, mf.beats)))
+        if (!t.check(row * w + x < mf.beats,
+                     fmt::format("{}: frame {} x {} y {}: beyond the model's {} beats", name, frame, x, row, mf.beats)))
           return;
         const uint16_t want = mf.data(x, row);
         const uint16_t got = static_cast<uint16_t>(bt.left | (bt.right << 8));
-        if (!check(got == want, fmt::format("{}: frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", name, frame, x,
-                                            row, want, got)) &&
-            first_mismatch) {
-          first_mismatch = false;
-        }
+        t.check(got == want,
+                fmt::format("{}: frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", name, frame, x, row, want, got));
       }
     }
     b += static_cast<size_t>(w);
     if (real) ++row;
   }
-  check(frame + 1 == static_cast<int>(F.size()), fmt::format("{}: {} frames out, model {}", name, frame + 1, F.size()));
+  t.check(frame + 1 == static_cast<int>(F.size()),
+          fmt::format("{}: {} frames out, model {}", name, frame + 1, F.size()));
   if (!F.empty()) {
-    check(row == F.back().h, fmt::format("{}: last frame incomplete", name));
-    check(vrows_since == kFlush, fmt::format("{}: {} virtual rows after the last frame", name, vrows_since));
+    t.check(row == F.back().h, fmt::format("{}: last frame incomplete", name));
+    t.check(vrows_since == kFlush, fmt::format("{}: {} virtual rows after the last frame", name, vrows_since));
   }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool paper = argc > 1 && std::string(argv[1]) == "paper";
+  Bench t{"sm_seq block test"};
+  bool paper = false;
+  t.cli().add_flag("--paper", paper, "the paper point's widths and heights (320 and 160 wide)");
+  if (auto rc = t.parse(argc, argv)) return *rc;
   const int W = paper ? 320 : 37, H = paper ? 3 : 6;
   const int W2 = paper ? 160 : 21;
 
@@ -250,8 +228,8 @@ int main(int argc, char** argv) {
       g.vblank = f == 1 ? 0 : W * 2;
       s.push_back(g);
     }
-    const RunOut o = run(s, 20, 30, 1);
-    verify("blanking", s, o);
+    const RunOut o = run(t, s, 20, 30, 1);
+    verify(t, "blanking", s, o);
   }
   {  // 2. continuous stream, ce = beat_valid: tready never low
     std::vector<Segment> s(1);
@@ -261,9 +239,9 @@ int main(int argc, char** argv) {
       auto p = good(W, H);
       s[0].px.insert(s[0].px.end(), p.begin(), p.end());
     }
-    const RunOut o = run(s, 0, 0, 2);
-    verify("continuous", s, o);
-    check(o.stall_cycles == 0, fmt::format("continuous: tready low for {} cycles", o.stall_cycles));
+    const RunOut o = run(t, s, 0, 0, 2);
+    verify(t, "continuous", s, o);
+    t.check(o.stall_cycles == 0, fmt::format("continuous: tready low for {} cycles", o.stall_cycles));
   }
   {  // 3. faults
     std::vector<Segment> s;
@@ -287,8 +265,8 @@ int main(int argc, char** argv) {
     seg(lines({-(W + 3), W, W, W, W, W + 1}));  // long first line without tlast
     seg(lines({1, W, W, W, W, W}));             // one-pixel line
     seg(good(W, H));
-    const RunOut o = run(s, 15, 25, 3);
-    verify("faults", s, o);
+    const RunOut o = run(t, s, 15, 25, 3);
+    verify(t, "faults", s, o);
   }
   {  // 4. width changes and enable
     std::vector<Segment> s;
@@ -310,10 +288,9 @@ int main(int argc, char** argv) {
     seg(W, H, true, false, 0);  // width change, no blanking: flush rows are inserted
     seg(W, H, false, true, 0);  // disabled: dropped silently
     seg(W, H, true, true, W);
-    const RunOut o = run(s, 10, 20, 4);
-    verify("width/enable", s, o);
+    const RunOut o = run(t, s, 10, 20, 4);
+    verify(t, "width/enable", s, o);
   }
 
-  fmt::print("tb_seq: {} passed, {} failed\n", g_pass, g_fail);
-  return g_fail ? 1 : 0;
+  return t.finish(fmt::format("tb_seq MAX_WIDTH={} FLUSH_ROWS={}", kMaxW, kFlush));
 }

@@ -8,7 +8,6 @@
 // clock after a ce up to its own ce, as the previous stage's output register would be.
 #include SM_VTOP_H
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -20,10 +19,8 @@
 #include <vector>
 
 #include "aggregate.hpp"
-#include "beat_schedule.hpp"
+#include "sm_block_test.hpp"
 #include "sm_port.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
 
 namespace {
 
@@ -115,18 +112,16 @@ uint64_t pack_table(const std::array<uint8_t, 32>& t) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"sm_sw_aggregate block test"};
+  sm::test::BlockTest<SM_VTOP> t{"sm_sw_aggregate block test"};
   int width = 37;
   std::vector<int> heights{9, 6, 11};
   uint32_t seed = 1;
   int idle = 30;
-  std::string trace;
-  app.add_option("--width", width, "active width")->check(CLI::Range(kSw, kMaxWidth));
-  app.add_option("--heights", heights, "rows of each frame, sent back to back");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--idle", idle, "percent of cycles with ce low")->check(CLI::Range(0, 95));
-  app.add_option("--trace", trace, "write a VCD file (model built with --trace only)");
-  CLI11_PARSE(app, argc, argv);
+  t.cli().add_option("--width", width, "active width")->check(CLI::Range(kSw, kMaxWidth));
+  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  t.cli().add_option("--seed", seed, "random seed");
+  t.cli().add_option("--idle", idle, "percent of cycles with ce low")->check(CLI::Range(0, 95));
+  if (auto rc = t.parse(argc, argv)) return *rc;
 
   // Each frame's table is put on sw_table when its first beat enters (as the shadow
   // registers would be); the stage latches it R rows + R columns later, so the next frame
@@ -165,11 +160,9 @@ int main(int argc, char** argv) {
   for (size_t i = 0; i < sched.size(); ++i)
     if (sched[i].frame >= 0 && sched[i].x == 0 && sched[i].y == 0) frame_start[static_cast<size_t>(sched[i].frame)] = i;
 
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  if (!trace.empty() && !tb.open_trace(trace)) fmt::print("note: model built without tracing, --trace ignored\n");
-  sm::test::CeGen ceg(seed * 7919u + 1u, idle, kFold);
-  std::mt19937& grng = ceg.rng();
+  auto& tb = t.tb();
+  t.ce_schedule(seed * 7919u + 1u, idle, kFold);
+  std::mt19937& grng = t.ce_rng();
   const int cost_bits = kDisp * hwid, agg_bits = kDisp * cw;
   Bits cost_in = make_bits(cost_bits);
 
@@ -182,21 +175,14 @@ int main(int argc, char** argv) {
   };
 
   tb->width = static_cast<uint32_t>(width);
-  tb->rst_n = 0;
   tb->ce = 1;
-  for (int i = 0; i < 3; ++i) {
-    garbage();
-    tb.tick();
-  }
-  tb->rst_n = 1;
+  t.reset(3, garbage);
 
-  sm::test::OutputOrder order(width, heights);
-  long passed = 0, failed = 0;
-  bool reported = false;
+  t.expect_frames(width, heights);
   uint64_t table_now = pack_table(frames[0].table);  // the shadow register's value
   // The inputs of beat t (random costs and pixel on virtual beats).
-  auto drive = [&](size_t t) {
-    const auto& b = sched[t];
+  auto drive = [&](size_t n) {
+    const auto& b = sched[n];
     tb->s_side = b.side;
     if (b.frame >= 0) {
       const Frame& f = frames[static_cast<size_t>(b.frame)];
@@ -213,64 +199,42 @@ int main(int argc, char** argv) {
     }
     tb->sw_table = table_now;
   };
-  for (size_t t = 0; t < sched.size(); ++t) {
+  for (size_t n = 0; n < sched.size(); ++n) {
     if (kFold > 1) {
       // held from the clock after the previous ce up to this beat's ce
-      drive(t);
-      while (!ceg.next()) {
-        tb->ce = 0;
-        tb.tick();
-      }
+      drive(n);
+      while (!t.next_ce()) tb.tick();
     } else {
-      while (!ceg.next()) {
-        tb->ce = 0;
+      while (!t.next_ce()) {
         garbage();
         tb.tick();
       }
-      drive(t);
+      drive(n);
     }
-    tb->ce = 1;
     tb.tick();
 
     const uint8_t side = tb->m_side;
     if (!(side & sm::test::kReal)) continue;
-    sm::test::BeatInfo o;
-    try {
-      o = order.next(side);
-    } catch (const std::exception& e) {
-      fmt::print("FAIL: {}\n", e.what());
-      ++failed;
-      break;
-    }
-    const size_t want_t = frame_start[static_cast<size_t>(o.frame)] + static_cast<size_t>(o.y) * width + o.x +
+    const auto o = t.next_out(side);
+    if (!o) break;
+    const size_t want_n = frame_start[static_cast<size_t>(o->frame)] + static_cast<size_t>(o->y) * width + o->x +
                           static_cast<size_t>(kR) * width + kR + (kPipe - 1);
-    if (t != want_t) {
-      fmt::print("FAIL: pixel (frame {}, x {}, y {}) left after beat {}, expected {}\n", o.frame, o.x, o.y, t, want_t);
-      ++failed;
+    if (n != want_n) {
+      t.fail(
+          fmt::format("pixel (frame {}, x {}, y {}) left after beat {}, expected {}", o->frame, o->x, o->y, n, want_n));
       break;
     }
     const Bits got = sm::test::get_port_words(tb->m_agg, agg_bits);
-    const Frame& f = frames[static_cast<size_t>(o.frame)];
-    bool ok = true;
-    for (int d = 0; d < kDisp && ok; ++d) {
+    const Frame& f = frames[static_cast<size_t>(o->frame)];
+    std::string what;  // one check per pixel, the first wrong level reported
+    for (int d = 0; d < kDisp && what.empty(); ++d) {
       const uint32_t g = get_field(got, d * cw, cw);
-      const uint32_t e = f.expect.at(o.x, o.y, d);
-      if (g != e) {
-        ok = false;
-        if (!reported)
-          fmt::print("first mismatch: frame {} x {} y {} level {}: expected {}, got {}\n", o.frame, o.x, o.y, d, e, g);
-        reported = true;
-      }
+      const uint32_t e = f.expect.at(o->x, o->y, d);
+      if (g != e) what = fmt::format("level {}: expected {}, got {}", d, e, g);
     }
-    ok ? ++passed : ++failed;
+    t.check(what.empty(), [&] { return fmt::format("frame {} x {} y {} {}", o->frame, o->x, o->y, what); });
   }
-  if (!order.done()) {
-    fmt::print("FAIL: not every pixel left the block\n");
-    ++failed;
-  }
-  fmt::print(
-      "sm_sw_aggregate MAX_WIDTH={} DISP={} CENSUS={} SW={} COST_SHIFT={} PU={} width={}: "
-      "{} passed, {} failed\n",
-      kMaxWidth, kDisp, kCensus, kSw, kCostShift, kDisp / kFold, width, passed, failed);
-  return failed == 0 ? 0 : 1;
+  t.all_out();
+  return t.finish(fmt::format("sm_sw_aggregate MAX_WIDTH={} DISP={} CENSUS={} SW={} COST_SHIFT={} PU={} width={}",
+                              kMaxWidth, kDisp, kCensus, kSw, kCostShift, kDisp / kFold, width));
 }

@@ -2,18 +2,18 @@
 // the AXI4-Stream video input with random idle cycles and random output back-pressure,
 // every output pixel and object packet compared with the reference model.
 //
-// Usage: tb_top <scene dir> [mode]
-//   mode "stress"   : random idle cycles and back-pressure, 3 frames, register change
-//                     between frames (default)
-//   mode "budget [MHz]": 2 frames with the camera timing of 30 frames/s on a core clock
-//                     of MHz (default: the camera's pixel clock times DISP / PU, the
-//                     slowest the pacing rule allows): no input stall, frame period
-//                     within the camera's; then a continuous camera, faster than the
-//                     core when DISP / PU > 1: held by tready, counted, nothing dropped
-//   mode "frame [MHz]": one frame with the camera timing of 30 frames/s, as budget's
-//                     first part (the one-frame check of a large configuration)
-//   mode "vcd FILE" : writes a windowed VCD and checks it holds the stream signals
-//   mode "calib FILE": loads the calibration JSON into the registers first
+// Usage: tb_top --scene <dir> [--mode <mode>] [--mhz MHz] [--vcd FILE] [--calib FILE]
+//   stress   : random idle cycles and back-pressure, 3 frames, register change between
+//              frames (default)
+//   budget   : 2 frames with the camera timing of 30 frames/s on a core clock of --mhz
+//              (default: the camera's pixel clock times DISP / PU, the slowest the pacing
+//              rule allows): no input stall, frame period within the camera's; then a
+//              continuous camera, faster than the core when DISP / PU > 1: held by
+//              tready, counted, nothing dropped
+//   frame    : one frame with the camera timing of 30 frames/s, as budget's first part
+//              (the one-frame check of a large configuration)
+//   vcd      : writes a windowed VCD to --vcd and checks it holds the stream signals
+//   calib    : loads the calibration JSON --calib into the registers first
 #include <fmt/format.h>
 
 #include <cmath>
@@ -26,9 +26,8 @@
 #include "toolio/sm_io.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
-#include "sm_vconfig.hpp"
-#include "sm_coverage.hpp"
 #include SM_VTOP_H
+#include "sm_block_test.hpp"
 
 namespace {
 
@@ -37,22 +36,14 @@ namespace {
 // scene, where most pixels are near an edge) measures 14.8 %.
 double max_bad_percent(const sm::HwConfig& hw) { return hw.census >= 15 ? 8.0 : 20.0; }
 
-int failures = 0, passes = 0;
-void check(bool ok, const std::string& what) {
-  if (ok) {
-    ++passes;
-  } else {
-    ++failures;
-    fmt::print("FAIL: {}\n", what);
-  }
-}
+using Bench = sm::test::BlockTest<SM_VTOP>;
 
 // Compares the IP's frames with the model; returns the number of differing pixels.
-int compare(const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm::Image8>>& frames,
+int compare(Bench& t, const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm::Image8>>& frames,
             const std::vector<sm::Regs>& regs, const sm::HwConfig& hw) {
   int bad = 0;
-  check(res.framing_error.empty(), "output framing: " + res.framing_error);
-  check(res.frames.size() == frames.size(), fmt::format("{} frames out of {}", res.frames.size(), frames.size()));
+  t.check(res.framing_error.empty(), "output framing: " + res.framing_error);
+  t.check(res.frames.size() == frames.size(), fmt::format("{} frames out of {}", res.frames.size(), frames.size()));
   for (size_t f = 0; f < frames.size() && f < res.frames.size(); ++f) {
     const auto m = sm::run_pipeline(frames[f].first, frames[f].second, hw, regs[f], false);
     int n = 0;
@@ -61,11 +52,11 @@ int compare(const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm
         if (m.post.at(x, y) != res.frames[f].at(x, y) && n++ == 0)
           fmt::print("first mismatch frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}\n", f, x, y, m.post.at(x, y),
                      res.frames[f].at(x, y));
-    check(n == 0, fmt::format("frame {} bit-exact ({} pixels differ)", f, n));
+    t.check(n == 0, fmt::format("frame {} bit-exact ({} pixels differ)", f, n));
     bad += n;
     const auto want = sm::object_packet(m.objects, false);
-    check(f < res.object_packets.size() && res.object_packets[f].words == want,
-          fmt::format("frame {} object packet", f));
+    t.check(f < res.object_packets.size() && res.object_packets[f].words == want,
+            fmt::format("frame {} object packet", f));
   }
   return bad;
 }
@@ -73,15 +64,24 @@ int compare(const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    fmt::print(stderr, "usage: tb_top <scene dir> [stress|budget [MHz]|frame [MHz]|vcd FILE|calib FILE]\n");
+  Bench t{"sm_top system test"};
+  std::string scene, mode = "stress", vcd, calib;
+  double mhz = 0.0;
+  t.cli().add_option("--scene", scene, "scene folder (left.png, right.png, ground truth)")->required();
+  t.cli()
+      .add_option("--mode", mode, "stress, budget, frame, vcd or calib")
+      ->check(CLI::IsMember({"stress", "budget", "frame", "vcd", "calib"}));
+  t.cli().add_option("--mhz", mhz, "budget, frame: core clock in MHz (0: the slowest the pacing allows)");
+  t.cli().add_option("--vcd", vcd, "vcd: the VCD file to write");
+  t.cli().add_option("--calib", calib, "calib: the calibration JSON");
+  if (auto rc = t.parse(argc, argv)) return *rc;
+  if ((mode == "vcd" && vcd.empty()) || (mode == "calib" && calib.empty())) {
+    fmt::print(stderr, "tb_top: --mode {} needs --{}\n", mode, mode);
     return 2;
   }
-  const std::string mode = argc > 2 ? argv[2] : "stress";
-  const std::string arg = argc > 3 ? argv[3] : "";
   try {
     const sm::HwConfig hw = sm::verilated_config();
-    const sm::tools::Scene sc = sm::tools::load_scene(argv[1]);
+    const sm::tools::Scene sc = sm::tools::load_scene(scene);
     const sm::Image8 l = sm::tools::to_image8(sc.left), r = sm::tools::to_image8(sc.right);
     if (l.w > hw.max_width || l.h > hw.max_height)
       throw std::runtime_error(fmt::format("scene {}x{} larger than the configuration", l.w, l.h));
@@ -90,11 +90,9 @@ int main(int argc, char** argv) {
     regs.height = l.h;
     regs.grid_l = sm::RectGrid::identity(l.w, l.h);
     regs.grid_r = regs.grid_l;
-    if (mode == "calib") apply_calib(sm::load_calib(arg), regs);
+    if (mode == "calib") apply_calib(sm::load_calib(calib), regs);
 
-    sm::Testbench<SM_VTOP> tb;
-    sm::CoverageOnExit cov{tb->contextp()};
-    sm::SimEngine<SM_VTOP> sim(tb);
+    sm::SimEngine<SM_VTOP> sim(t.tb());
     sim.reset();
     sm::write_registers(sim.axil(), regs, hw);
     sm::CameraTiming timing;
@@ -116,7 +114,7 @@ int main(int argc, char** argv) {
       timing.backpressure_percent = 30;
       timing.seed = 12345;
       const auto res = sim.run(frames, l.w, l.h, timing);
-      compare(res, frames, per_frame, hw);
+      compare(t, res, frames, per_frame, hw);
     } else if (mode == "budget" || mode == "frame") {
       // budget: two frames, so that the period between them is measured; frame: one
       // (the one-frame check of a large configuration)
@@ -125,22 +123,23 @@ int main(int argc, char** argv) {
       per_frame.assign(n, regs);
       timing.continuous = false;  // 30 frames/s camera timing, output always ready
       const int fold = hw.clocks_per_beat();
-      timing.set_core(fold, arg.empty() ? 0.0 : std::stod(arg), l.w, l.h);
+      timing.set_core(fold, mhz, l.w, l.h);
       const double ratio = timing.aclk_per_camera_clock(l.w, l.h);
       const auto res = sim.run(frames, l.w, l.h, timing);
-      compare(res, frames, per_frame, hw);
-      check(res.input_stall_cycles == 0, fmt::format("camera never stalled ({} stall cycles)", res.input_stall_cycles));
+      compare(t, res, frames, per_frame, hw);
+      t.check(res.input_stall_cycles == 0,
+              fmt::format("camera never stalled ({} stall cycles)", res.input_stall_cycles));
       const auto camera_period = static_cast<uint64_t>(
           std::ceil(static_cast<double>((l.w + timing.hblank) * (l.h + timing.vblank_lines)) * ratio));
       const uint64_t frame_cycles = res.stats[0].last_out_cycle - res.stats[0].sof_in_cycle + 1;
       uint64_t period = 0;
       if (n == 2) {
         period = res.stats[1].last_out_cycle - res.stats[0].last_out_cycle;
-        check(period <= camera_period,
-              fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
+        t.check(period <= camera_period,
+                fmt::format("frame period {} cycles within the camera's {}", period, camera_period));
         const double seconds = frame_cycles / timing.aclk_hz(l.w, l.h);
-        check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,
-              fmt::format("{} cycles per frame fit the 30 fps budget", frame_cycles));
+        t.check(seconds < 1.0 / 30.0 + 1e-12 || period <= camera_period,
+                fmt::format("{} cycles per frame fit the 30 fps budget", frame_cycles));
       }
       fmt::print(
           "{}: DISP / PU = {} clocks per pixel, core clock {:.3f} MHz: {} cycles sof->last pixel, period {} "
@@ -155,7 +154,7 @@ int main(int argc, char** argv) {
       if (!sc.gt.empty()) {
         const double bad = sm::tools::bad1(sm::tools::disp_to_float(res.frames[0]), sc.gt, sc.nonocc).bad_pct();
         fmt::print("bad-1.0 vs ground truth: {:.2f} %\n", bad);
-        check(bad < max_bad_percent(hw), fmt::format("bad-1.0 {:.2f} % below {} %", bad, max_bad_percent(hw)));
+        t.check(bad < max_bad_percent(hw), fmt::format("bad-1.0 {:.2f} % below {} %", bad, max_bad_percent(hw)));
       }
       if (mode == "budget") {
         // Continuous stream, a pixel every clock: F*W*H cycles per frame in steady state.
@@ -165,52 +164,49 @@ int main(int argc, char** argv) {
         cont.continuous = true;
         cont.clocks_per_pixel = fold;
         const auto rc = sim.run(frames, l.w, l.h, cont);
-        compare(rc, frames, per_frame, hw);
+        compare(t, rc, frames, per_frame, hw);
         const uint64_t cperiod = rc.stats[1].last_out_cycle - rc.stats[0].last_out_cycle;
         const uint64_t want = static_cast<uint64_t>(fold) * l.w * l.h;
-        check(cperiod == want, fmt::format("continuous stream: frame period {} == F*W*H {}", cperiod, want));
+        t.check(cperiod == want, fmt::format("continuous stream: frame period {} == F*W*H {}", cperiod, want));
         if (fold == 1)
-          check(rc.input_stall_cycles == 0, fmt::format("continuous stream never stalled ({})", rc.input_stall_cycles));
+          t.check(rc.input_stall_cycles == 0,
+                  fmt::format("continuous stream never stalled ({})", rc.input_stall_cycles));
         else
-          check(rc.input_stall_cycles >= static_cast<uint64_t>(fold - 1) * l.w * l.h,
-                fmt::format("continuous stream faster than the core held by tready ({} stall cycles, at least {})",
-                            rc.input_stall_cycles, static_cast<uint64_t>(fold - 1) * l.w * l.h));
+          t.check(rc.input_stall_cycles >= static_cast<uint64_t>(fold - 1) * l.w * l.h,
+                  fmt::format("continuous stream faster than the core held by tready ({} stall cycles, at least {})",
+                              rc.input_stall_cycles, static_cast<uint64_t>(fold - 1) * l.w * l.h));
       }
     } else if (mode == "vcd") {
       frames = {{l, r}};
       per_frame = {regs};
       timing.continuous = true;
       sm::VcdWindow vw;
-      vw.path = arg;
+      vw.path = vcd;
       vw.frame = 0;
       vw.line = 2;
       vw.lines = 2;
       const auto res = sim.run(frames, l.w, l.h, timing, vw);
-      compare(res, frames, per_frame, hw);
-      std::ifstream f(arg);
+      compare(t, res, frames, per_frame, hw);
+      std::ifstream f(vcd);
       std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-      check(text.rfind("$date", 0) == 0 || text.find("$timescale") != std::string::npos, "VCD header");
-      check(text.find("$enddefinitions") != std::string::npos, "VCD definitions end");
+      t.check(text.rfind("$date", 0) == 0 || text.find("$timescale") != std::string::npos, "VCD header");
+      t.check(text.find("$enddefinitions") != std::string::npos, "VCD definitions end");
       for (const char* sig : {"s_axis_tdata", "s_axis_tvalid", "s_axis_tready", "m_axis_tdata", "m_axis_tvalid",
                               "m_axis_tuser", "m_axis_tlast"})
-        check(text.find(sig) != std::string::npos, fmt::format("VCD has {}", sig));
+        t.check(text.find(sig) != std::string::npos, fmt::format("VCD has {}", sig));
       size_t stamps = 0;
       for (size_t p = text.find("\n#"); p != std::string::npos; p = text.find("\n#", p + 1)) ++stamps;
-      check(stamps >= static_cast<size_t>(2 * l.w) && stamps <= static_cast<size_t>(2 * 2 * l.w + 4),
-            fmt::format("VCD window holds {} time stamps for 2 lines", stamps));
+      t.check(stamps >= static_cast<size_t>(2 * l.w) && stamps <= static_cast<size_t>(2 * 2 * l.w + 4),
+              fmt::format("VCD window holds {} time stamps for 2 lines", stamps));
     } else if (mode == "calib") {
       frames = {{l, r}};
       per_frame = {regs};
       timing.continuous = true;
       const auto res = sim.run(frames, l.w, l.h, timing);
-      compare(res, frames, per_frame, hw);
-    } else {
-      throw std::runtime_error("unknown mode " + mode);
+      compare(t, res, frames, per_frame, hw);
     }
   } catch (const std::exception& e) {
-    fmt::print("error: {}\n", e.what());
-    ++failures;
+    t.fail(fmt::format("error: {}", e.what()));
   }
-  fmt::print("{} passed, {} failed\n", passes, failures);
-  return failures ? 1 : 0;
+  return t.finish(fmt::format("tb_top {}", mode));
 }

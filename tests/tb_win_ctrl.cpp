@@ -9,20 +9,15 @@
 #include <vector>
 
 #include SM_VTOP_H
-#include "beat_schedule.hpp"
-#include "sm_tb.hpp"
-#include "sm_coverage.hpp"
+#include "sm_block_test.hpp"
 
 using sm::test::BeatInfo;
 
 namespace {
 
-constexpr int kDRows = SM_P_D_ROWS;
-constexpr int kDCols = SM_P_D_COLS;
-constexpr int kRUp = SM_P_R_UP;
-constexpr int kRDn = SM_P_R_DN;
-constexpr int kRL = SM_P_R_L;
-constexpr int kRR = SM_P_R_R;
+// the delay of the centre beat and the window's reach up, down, left and right
+constexpr int kDRows = SM_P_D_ROWS, kDCols = SM_P_D_COLS;
+constexpr int kRUp = SM_P_R_UP, kRDn = SM_P_R_DN, kRL = SM_P_R_L, kRR = SM_P_R_R;
 
 struct Segment {
   int height;        // rows of the frame
@@ -56,31 +51,27 @@ std::vector<BeatInfo> build(int w, const std::vector<Segment>& segs, std::vector
 
 }  // namespace
 
-int main() {
-  const int w = 37;
+int main(int argc, char** argv) {
+  sm::test::BlockTest<SM_VTOP> t{"sm_win_ctrl direct test"};
+  int w = 37;
+  t.cli().add_option("--width", w, "active width");
+  if (auto rc = t.parse(argc, argv)) return *rc;
   std::vector<int> heights;
   // H = 1 and 2 are shorter than the window; 0 virtual rows puts frames back to back.
   const auto sched = build(w, {{6, 0}, {1, 0}, {2, 1}, {9, 0}, {3, 2}, {kDRows + 1, 0}, {5, kDRows + 2}}, &heights);
-  sm::Testbench<SM_VTOP> tb;
-  sm::CoverageOnExit cov{tb->contextp()};
-  sm::test::CeGen ce_gen(0x5eed1u, 30);
+  auto& tb = t.tb();
+  t.ce_schedule(0x5eed1u, 30);
   std::mt19937 rng(7);
   tb->width = w;
   tb->ce = 1;
   tb->s_side = 0;
-  tb->rst_n = 0;
-  for (int i = 0; i < 3; ++i) tb.tick();
-  tb->rst_n = 1;
+  t.reset(3);
 
   const long delay = static_cast<long>(kDRows) * w + kDCols;
-  long passed = 0, failed = 0;
-  auto fail = [&](long n, const std::string& what) {
-    if (failed == 0) fmt::print("FIRST MISMATCH at beat {}: {}\n", n, what);
-    ++failed;
-  };
+  // one check per beat; its first wrong output is the one reported
+  auto fail = [&](long n, const std::string& what) { t.fail(fmt::format("at beat {}: {}", n, what)); };
   for (long n = 0; n < static_cast<long>(sched.size());) {
-    const bool ce = ce_gen.next();
-    tb->ce = ce;
+    const bool ce = t.next_ce();
     // garbage on the sideband while ce is low: it must not move the state
     tb->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
     tb->eval();
@@ -121,12 +112,10 @@ int main() {
           ok = false;
         }
       }
-      if (ok) ++passed;
+      if (ok) t.pass();
       ++n;
     }
     tb.tick();
   }
-  fmt::print("tb_win_ctrl D_ROWS={} D_COLS={} R={}/{}/{}/{}: {} passed, {} failed\n", kDRows, kDCols, kRUp, kRDn, kRL,
-             kRR, passed, failed);
-  return failed == 0 && passed > 0 ? 0 : 1;
+  return t.finish(fmt::format("tb_win_ctrl D_ROWS={} D_COLS={} R={}/{}/{}/{}", kDRows, kDCols, kRUp, kRDn, kRL, kRR));
 }
