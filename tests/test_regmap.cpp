@@ -127,7 +127,7 @@ TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
   REQUIRE(!text.empty());
   CHECK(text.find("localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 +\n"
                   "                          (DISP / 2 + 64 + 1 + 15) / 16 + 1;") != std::string::npos);
-  CHECK(text.find("if (FLUSH_ROWS >= 64) begin : g_bad_flush") != std::string::npos);
+  CHECK(text.find("`SM_BAD_PARAM(g_bad_flush, FLUSH_ROWS >= 64,") != std::string::npos);
   sm::HwConfig hw;
   CHECK(hw.flush_rows() == 53);  // paper configuration: 11 rows of margin
   CHECK_NOTHROW(hw.validate());

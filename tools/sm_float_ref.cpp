@@ -43,7 +43,7 @@ int run(int argc, char** argv) {
                  "2^cost-shift when shift is on); one pair: the first")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+      ->default_str(fmt::format("{}", fmt::join(pen, ",")));
   app.add_option("--post", post, "post filters: chain (the model's F0-F3), med5x5, none")->capture_default_str();
   app.add_option("--levels", p.levels, "disparity levels")->check(CLI::Range(2, 256))->capture_default_str();
   app.add_option("--census", p.census, "census window side")->check(CLI::Range(3, 15))->capture_default_str();
@@ -56,7 +56,7 @@ int run(int argc, char** argv) {
   app.add_option("--sw-table", table, "2-bit weight codes 0..3 by |dI| >> 3 of the 'table' simplification (up to 32)")
       ->delimiter(',')
       ->check(CLI::Range(0, 3))
-      ->capture_default_str();
+      ->default_str(fmt::format("{}", fmt::join(table, ",")));
   app.add_option("--disp-file", disp_file, "one pair: disparity file (.pfm or 16-bit .png, x16)");
   app.add_option("--json", json_path, "dataset: write the results as JSON");
   app.add_flag("-q,--quiet", quiet, "no progress lines");

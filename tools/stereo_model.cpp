@@ -68,7 +68,7 @@ int run(int argc, char** argv) {
   auto* o_swt = app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated (1..32)")
                     ->delimiter(',')
                     ->check(CLI::Range(0, 3))
-                    ->capture_default_str();
+                    ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   try {
     app.parse(argc, argv);
