@@ -39,13 +39,15 @@ struct Dut {
   std::mt19937 rng{12345};
   uint64_t cycle = 0;
   int frame_starts = 0;
-  uint8_t err_drive = 0;                                  // err_pulse for the next clock
+  uint8_t err_drive = 0;  // err_pulse for the next clock
+  uint8_t err_hold = 0;   // err_pulse on every clock
+  int last_bwait = 0;     // clocks the last write's B waited: the clocks after its register update
   std::deque<std::pair<uint32_t, uint32_t>> grid_writes;  // (waddr, wdata)
   int soft_reset_pulses = 0;
 
   explicit Dut(Bench& b) : bench(b), top(&b.tb().top()) {}
   void tick() {
-    top->err_pulse = err_drive;
+    top->err_pulse = err_drive | err_hold;
     uint32_t next_obj = 0;
     bench.tb().tick([&] { next_obj = obj_word(top->obj_rd_idx); });
     top->obj_rd_data = next_obj;
@@ -89,6 +91,7 @@ struct Dut {
       w_done |= w_hs;
       if (b_hs) {
         top->s_axil_awvalid = top->s_axil_wvalid = top->s_axil_bready = 0;
+        last_bwait = bwait;
         return resp;
       }
     }
@@ -457,6 +460,20 @@ int main(int argc, char** argv) {
   m.flags |= 0x41;
   m.cnt[0] = m.cnt[6] = 0xffff;
   read_all(d, m, "after saturation");
+  // An error in the very clock of CLEAR_ERRORS wins over the clear: its flag stays set and
+  // its counter restarts at 1. The pulse is held through the whole write, so the counter
+  // then reads 1 + the clocks after the register update (the clocks B waited).
+  {
+    bool s = false;
+    const uint32_t v = 0x8 | 1 | static_cast<uint32_t>(m.fval.at("CONTROL.GRID_BANK") << 2);
+    m.write(reg_at(rm::kCONTROL), v, 0xf, d.frame_starts, &s);
+    d.err_hold = 0x02;
+    d.write(rm::kCONTROL, v);
+    d.err_hold = 0;
+    m.flags |= 0x02;
+    m.cnt[1] = 1 + static_cast<uint32_t>(d.last_bwait);
+    read_all(d, m, "after CLEAR_ERRORS with an error in the same clock");
+  }
 
   // 8. soft reset: a one-clock pulse, reads 0, registers keep their values
   d.soft_reset_pulses = 0;
