@@ -20,24 +20,21 @@ module sm_edge_clamp #(
     `SM_BAD_PARAM(g_bad_n, N < 3 || N % 2 == 0, ("sm_edge_clamp: N (%0d) must be odd, >= 3", N))
   endgenerate
 
-  wire [N-1:0] first, last;  // one-hot: first inside position before, last after the centre
+  // One-hot: the first inside position before the centre (only 1..R can be it) and the
+  // last one after it (only R..N-2); positions that can never be it get no bit at all.
+  wire [R:1]   first;
+  wire [N-2:R] last;
   genvar i;
   generate
-    for (i = 0; i < N; i = i + 1) begin : g_pos
-      if (i >= 1 && i <= R) begin : g_first
-        assign first[i] = ok[i] & ~ok[i-1];
-      end else begin : g_no_first
-        assign first[i] = 1'b0;
-      end
-      if (i >= R && i <= N - 2) begin : g_last
-        assign last[i] = ok[i] & ~ok[i+1];
-      end else begin : g_no_last
-        assign last[i] = 1'b0;
-      end
+    for (i = 1; i <= R; i = i + 1) begin : g_first
+      assign first[i] = ok[i] & ~ok[i-1];
+    end
+    for (i = R; i <= N - 2; i = i + 1) begin : g_last
+      assign last[i] = ok[i] & ~ok[i+1];
     end
   endgenerate
-  wire lo = |(first & bits);
-  wire hi = |(last & bits);
+  wire lo = |(first & bits[R:1]);
+  wire hi = |(last & bits[N-2:R]);
   generate
     for (i = 0; i < N; i = i + 1) begin : g_sel
       if (i < R) begin : g_lo

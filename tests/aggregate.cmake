@@ -1,17 +1,23 @@
 # Support-weight aggregation (docs/algorithm.md section 5): model unit tests and block tests.
 sm_unit_test(test_aggregate_model LIBS sm_model ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS} DISCOVER)
 
-# Block tests: odd width 37, three frames back to back, 30 % idle cycles.
+# Block tests: odd width 37, three frames back to back, 30 % idle cycles, then a frame of
+# raw costs all at the port's maximum (--max-cost-frame).
 set(_agg_tb ${CMAKE_CURRENT_LIST_DIR}/tb_sw_aggregate.cpp)
 sm_rtl_test(NAME tb_sw_aggregate_sw3 TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 SW=3 COST_SHIFT=2
-            ARGS --width 37 --heights 9 6 11)
+            ARGS --width 37 --heights 9 6 11 --max-cost-frame)
 sm_rtl_test(NAME tb_sw_aggregate_sw5 TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 SW=5 COST_SHIFT=1
-            ARGS --width 37 --heights 9 4 11 --seed 2)
+            ARGS --width 37 --heights 9 4 11 --seed 2 --max-cost-frame)
 sm_rtl_test(NAME tb_sw_aggregate_paper TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 SW=5 COST_SHIFT=2
-            ARGS --width 317 --heights 6 5 --seed 3 LABELS "rtl;slow")
+            ARGS --width 317 --heights 6 5 --seed 3 --max-cost-frame LABELS "rtl;slow")
+# A cost width of 6 at a small point (CENSUS 11, COST_SHIFT 1: costs up to 60, the port's
+# maximum 63): the max-cost frame's windows whose normalised cost rounds above 63 saturate.
+sm_rtl_test(NAME tb_sw_aggregate_sat TOP sm_sw_aggregate SOURCES ${_agg_tb}
+            PARAMS MAX_WIDTH=64 DISP=16 CENSUS=11 SW=5 COST_SHIFT=1
+            ARGS --width 41 --heights 9 7 --seed 21 --max-cost-frame)
 # Folded datapath (PU < DISP, F = DISP / PU clocks per beat, issue 20): DISP 16 at
 # PU 16 (F 1, the parallel branch named explicitly), 8, 4, 2 and 1, a non-power-of-two
 # F (DISP 12, PU 4), SW 3, 5 and 7, odd widths, random ce gaps on top of the pacing;
@@ -31,16 +37,16 @@ foreach(_p "sw5_pu16;5;16;16;1;37;2;64" "sw5_pu8;5;16;8;1;37;5;64" "sw3_pu4;3;16
   list(GET _p 7 _mw)
   sm_rtl_test(NAME tb_sw_aggregate_${_n} TOP sm_sw_aggregate SOURCES ${_agg_tb}
               PARAMS MAX_WIDTH=${_mw} DISP=${_d} CENSUS=7 SW=${_sw} COST_SHIFT=${_cs} PU=${_pu}
-              ARGS --width ${_w} --heights 9 4 11 --seed ${_seed})
+              ARGS --width ${_w} --heights 9 4 11 --seed ${_seed} --max-cost-frame)
 endforeach()
 # The zynq point (320 wide, DISP 128, CENSUS 15, SW 5) at PU 16 and 8, the full line
 # with 50 % idle on the PU 16 binary.
 sm_rtl_test(NAME tb_sw_aggregate_zynq_pu16 TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 SW=5 COST_SHIFT=2 PU=16
-            ARGS --width 317 --heights 6 5 --seed 11 LABELS "rtl;slow")
+            ARGS --width 317 --heights 6 5 --seed 11 --max-cost-frame LABELS "rtl;slow")
 sm_rtl_test(NAME tb_sw_aggregate_zynq_pu8 TOP sm_sw_aggregate SOURCES ${_agg_tb}
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 SW=5 COST_SHIFT=2 PU=8
-            ARGS --width 317 --heights 6 5 --seed 12 LABELS "rtl;slow")
+            ARGS --width 317 --heights 6 5 --seed 12 --max-cost-frame LABELS "rtl;slow")
 sm_rtl_test(NAME tb_sw_aggregate_zynq_pu16_w320 RUN tb_sw_aggregate_zynq_pu16
             ARGS --width 320 --heights 7 6 --seed 13 --idle 50 LABELS "rtl;slow")
 # Full MAX_WIDTH line (last column of the line buffer) with the paper-point binary.

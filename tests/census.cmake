@@ -19,13 +19,13 @@ sm_rtl_test(NAME tb_census TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ce
 sm_rtl_test(NAME tb_census_3 TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_census.cpp
             PARAMS MAX_WIDTH=64 CENSUS=3)
 sm_rtl_test(NAME tb_cost TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-            PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7)
+            PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 ARGS --max-cost-frame)
 
 # Paper configuration, few rows, odd width below MAX_WIDTH.
 sm_rtl_test(NAME tb_census_paper TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_census.cpp
             PARAMS MAX_WIDTH=320 CENSUS=15 ARGS --width 301 --heights 20 2 7 LABELS rtl slow)
 sm_rtl_test(NAME tb_cost_paper TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-            PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 ARGS --width 301 --heights 20 3 5 LABELS rtl slow)
+            PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 ARGS --width 301 --heights 20 3 5 --max-cost-frame LABELS rtl slow)
 
 # Folded sm_cost (F = DISP / PU clocks per beat, ce at most every F clocks, inputs held):
 # PU = DISP explicitly (the parallel branch), F = 2 (the early-ce hold multiplexer), 4, 8
@@ -33,15 +33,15 @@ sm_rtl_test(NAME tb_cost_paper TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_
 # and level count); the zynq point at PU 16 and 8.
 foreach(pu 16 8 4 2 1)
   sm_rtl_test(NAME tb_cost_pu${pu} TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-              PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 PU=${pu})
+              PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 PU=${pu} ARGS --max-cost-frame)
 endforeach()
 sm_rtl_test(NAME tb_cost_odd_pu4 TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-            PARAMS MAX_WIDTH=48 DISP=12 CENSUS=5 PU=4)
+            PARAMS MAX_WIDTH=48 DISP=12 CENSUS=5 PU=4 ARGS --max-cost-frame)
 sm_rtl_test(NAME tb_cost_odd_pu1 TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-            PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5 PU=1)
+            PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5 PU=1 ARGS --max-cost-frame)
 foreach(pu 16 8)
   sm_rtl_test(NAME tb_cost_zynq_pu${pu} TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-              PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 PU=${pu} ARGS --width 301 --heights 20 3 5
+              PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 PU=${pu} ARGS --width 301 --heights 20 3 5 --max-cost-frame
               LABELS rtl slow)
 endforeach()
 
@@ -82,4 +82,4 @@ sm_bitheap_test(uneven 6 1 7 0 4 2 1 0)
 
 # sm_cost with a level count that is not a multiple of 8 (padded lanes in the transpose)
 sm_rtl_test(NAME tb_cost_odd TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
-            PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5)
+            PARAMS MAX_WIDTH=48 DISP=13 CENSUS=5 ARGS --max-cost-frame)

@@ -14,6 +14,12 @@ sm_rtl_test(NAME tb_objects TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_
 sm_rtl_test(NAME tb_objects_paper TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
             PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABEL_SLOTS=64
             ARGS --width 320 --height 40 LABELS "rtl;slow")
+# The whole paper frame: coordinates, counts and sums up to their widest values.
+sm_rtl_test(NAME tb_objects_paper_full RUN tb_objects_paper ARGS --width 320 --height 240 LABELS "rtl;slow")
+# LABEL_SLOTS not a power of two: the label banks sit at an offset, not behind a bank bit.
+sm_rtl_test(NAME tb_objects_slots12 TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
+            PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=12
+            ARGS --width 41 --height 19)
 
 # Band filter F0 (sm_post_band) against the model's post_band: odd and tiny widths one
 # after the other without a reset, frames of at most K rows among them.

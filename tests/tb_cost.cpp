@@ -4,9 +4,12 @@
 // garbage. Every level of every real output pixel is compared. Folded (SM_P_PU defined,
 // F = DISP / PU > 1): ce comes at most once every F clocks and the next beat's input
 // (real or garbage) is held from the clock after a ce until its own ce, as sm_top
-// guarantees; at F = 1 idle clocks carry garbage.
+// guarantees; at F = 1 idle clocks carry garbage. --max-cost-frame appends a frame whose
+// left image has isolated peaks (census code all ones) over a flat right image (all zeros),
+// so the popcount trees reach their widest sums.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -35,7 +38,11 @@ int main(int argc, char** argv) {
   std::vector<int> heights = {9, 3, 5};
   t.cli().add_option("--width", w, "active width")->check(CLI::Range(1, kMaxWidth));
   t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  bool max_cost_frame = false;
+  t.cli().add_flag("--max-cost-frame", max_cost_frame,
+                   "append a frame of isolated peaks over a flat right image (largest costs)");
   if (auto rc = t.parse(argc, argv)) return *rc;
+  if (max_cost_frame) heights.push_back(heights.empty() ? kCensus : heights.back());
   const sm::HwConfig hw = sm::verilated_config();
   const int pu = hw.levels_per_clock();
   if (kDisp % pu != 0) {
@@ -55,14 +62,31 @@ int main(int argc, char** argv) {
     const int h = heights[f];
     const int shift = static_cast<int>(3 + 5 * f) % kDisp;
     sm::Image8 l(w, h), r(w, h);
-    for (auto& p : l.px) p = static_cast<uint8_t>(rng());
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        r.at(x, y) = (x + shift < w && rng() % 8) ? l.at(x + shift, y) : static_cast<uint8_t>(rng());
+    if (max_cost_frame && f + 1 == heights.size()) {
+      // A peak every CENSUS pixels is brighter than its whole window: left code all ones;
+      // the flat right image's codes are all zeros, so the peak costs CB at every level.
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const bool peak = x % kCensus == kCensus / 2 && y % kCensus == kCensus / 2;
+          l.at(x, y) = peak ? 255 : static_cast<uint8_t>(rng() % 200);
+          r.at(x, y) = 100;
+        }
+    } else {
+      for (auto& p : l.px) p = static_cast<uint8_t>(rng());
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          r.at(x, y) = (x + shift < w && rng() % 8) ? l.at(x + shift, y) : static_cast<uint8_t>(rng());
+    }
     left.push_back(l);
     cl.push_back(sm::census_transform(l, hw));
     cr.push_back(sm::census_transform(r, hw));
     cost.push_back(sm::hamming_cost(cl.back(), cr.back(), hw));
+    if (max_cost_frame && f + 1 == heights.size()) {
+      const auto& v = cost.back().v;
+      const long at_cb = std::count(v.begin(), v.end(), static_cast<uint8_t>(cb));
+      t.check(at_cb > 0, "the max-cost frame has no cost at CB");
+      fmt::print("max-cost frame: {} costs at CB = {}\n", at_cb, cb);
+    }
   }
   const auto sched = sm::test::make_schedule(w, heights, 1);
 

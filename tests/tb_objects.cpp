@@ -46,6 +46,33 @@ DispImage random_map(std::mt19937& rng, int w, int h, int disp, int block) {
     }
   return m;
 }
+// Combs: arms of random heights and widths standing on a bar, disparities jittered inside
+// the tolerance. The arms get labels of their own and merge where they reach the bar, in
+// every order: the absorbed arm taller or shorter, left or right of the survivor, its
+// maximum above or below the survivor's and the joining pixel's.
+DispImage comb_scene(std::mt19937& rng, int w, int h, unsigned D, unsigned tol) {
+  DispImage m(w, h, make_disp(1, true));
+  for (int k = 0; k < 6; ++k) {
+    const int len = 4 + static_cast<int>(rng() % 14);
+    const int xa = static_cast<int>(rng() % static_cast<unsigned>(std::max(1, w - len)));
+    const int yb = 3 + static_cast<int>(rng() % static_cast<unsigned>(h - 3));
+    const unsigned base = D / 2 + 2 + rng() % std::max(1u, D / 2 - 3 - tol);
+    auto put = [&](int x, int y) {
+      if (x < w && y < h)
+        m.at(x, y) = make_disp(std::min<unsigned>(D - 1, base + static_cast<unsigned>(rng() % (tol + 1))), true);
+    };
+    for (int x = xa; x < xa + len; ++x) put(x, yb);
+    const int arms = 2 + static_cast<int>(rng() % 3);
+    for (int a = 0; a < arms; ++a) {
+      const int ax = xa + static_cast<int>(rng() % static_cast<unsigned>(len));
+      const int top = static_cast<int>(rng() % static_cast<unsigned>(yb));
+      const int aw = 1 + static_cast<int>(rng() % 2);
+      for (int y = top; y < yb; ++y)
+        for (int x = ax; x < ax + aw; ++x) put(x, y);
+    }
+  }
+  return m;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -105,6 +132,8 @@ int main(int argc, char** argv) {
   // 5: boxes again with a different threshold, and a random blocky map after it
   add(box_scene(w, h, D / 4, {{5, 5, w - 6, h - 6, D / 2}, {8, 8, 12, 12, D - 1}}), D / 3, 4, 1);
   add(random_map(rng, w, h, D, 3), D / 2, 1, 3);
+  // 7..9: combs (merge shapes) at three tolerances
+  for (unsigned tol = 1; tol <= 3; ++tol) add(comb_scene(rng, w, h, D, tol), D / 2, tol, 1);
 
   std::vector<ObjectList> want;
   for (size_t f = 0; f < in.size(); ++f) want.push_back(separate_objects(in[f], regs[f], hw));

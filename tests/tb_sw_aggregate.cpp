@@ -6,12 +6,16 @@
 // (SM_P_PU < SM_P_DISP, F = DISP / PU clocks per beat): ce is low on the F - 1 clocks
 // after every high one (sm_top's pacing) and the next beat's input is held from the
 // clock after a ce up to its own ce, as the previous stage's output register would be.
+// --max-cost-frame appends a frame whose raw costs all sit at the port's maximum
+// (2^HW - 1): the widest weighted terms and sums, and -- where the cost width allows it --
+// windows whose normalised cost rounds above 2^CW - 1 and must saturate (sm_sw_level).
 #include SM_VTOP_H
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <cstdint>
 #include <random>
 #include <stdexcept>
@@ -117,11 +121,15 @@ int main(int argc, char** argv) {
   std::vector<int> heights{9, 6, 11};
   uint32_t seed = 1;
   int idle = 30;
+  bool max_cost_frame = false;
   t.cli().add_option("--width", width, "active width")->check(CLI::Range(kSw, kMaxWidth));
   t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
   t.cli().add_option("--seed", seed, "random seed");
   t.cli().add_option("--idle", idle, "percent of cycles with ce low")->check(CLI::Range(0, 95));
+  t.cli().add_flag("--max-cost-frame", max_cost_frame,
+                   "append a frame with every raw cost at the port's maximum (saturation, widest sums)");
   if (auto rc = t.parse(argc, argv)) return *rc;
+  if (max_cost_frame) heights.push_back(heights.empty() ? kR + 1 : heights.back());
 
   // Each frame's table is put on sw_table when its first beat enters (as the shadow
   // registers would be); the stage latches it R rows + R columns later, so the next frame
@@ -145,13 +153,36 @@ int main(int argc, char** argv) {
 
   std::mt19937 rng(seed);
   std::vector<Frame> frames;
-  for (int h : heights) {
+  for (size_t i = 0; i < heights.size(); ++i) {
+    const int h = heights[i];
+    const bool at_max = max_cost_frame && i + 1 == heights.size();
     Frame f;
     f.left = make_left(width, h, rng);
     f.raw = sm::CostVolume(width, h, kDisp);
     std::uniform_int_distribution<int> cost(0, cb);
-    for (auto& v : f.raw.v) v = static_cast<uint8_t>(cost(rng));
+    for (auto& v : f.raw.v) v = static_cast<uint8_t>(at_max ? (1 << hwid) - 1 : cost(rng));
     f.table = make_table(rng);
+    if (at_max) {
+      // Independent of the model: an inside window of costs all at cm = (2^HW - 1) >>
+      // COST_SHIFT has A_raw = cm * wsum, so it saturates exactly when
+      // (cm * wsum * RECIP(wsum) + 2048) >> 12 > 2^CW - 1. Count such windows, and require
+      // one wherever some weight sum can do it, so the saturation is exercised.
+      const uint32_t cm = ((1u << hwid) - 1u) >> kCostShift, omax = (1u << cw) - 1u;
+      auto saturates = [&](uint32_t s) { return ((cm * s * sm::sw_recip(s) + 2048u) >> 12) > omax; };
+      bool possible = false;
+      for (uint32_t s = 1; s <= 4u * kSw * kSw; ++s) possible = possible || saturates(s);
+      long windows = 0;
+      for (int y = kR; y + kR < h; ++y)
+        for (int x = kR; x + kR < width; ++x) {
+          uint32_t s = 0;
+          for (int j = -kR; j <= kR; ++j)
+            for (int k = -kR; k <= kR; ++k)
+              s += sm::sw_weight(f.table, std::abs(f.left.at(x + k, y + j) - f.left.at(x, y)));
+          windows += saturates(s);
+        }
+      fmt::print("max-cost frame: {} inside windows saturate (possible at this point: {})\n", windows, possible);
+      t.check(!possible || windows > 0, "the max-cost frame has no saturating window: choose another --seed");
+    }
     f.expect = sm::sw_aggregate(f.raw, f.left, f.table, hw);
     frames.push_back(std::move(f));
   }
