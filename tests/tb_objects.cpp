@@ -46,10 +46,12 @@ DispImage random_map(std::mt19937& rng, int w, int h, int disp, int block) {
     }
   return m;
 }
-// Combs: arms of random heights and widths standing on a bar, disparities jittered inside
-// the tolerance. The arms get labels of their own and merge where they reach the bar, in
-// every order: the absorbed arm taller or shorter, left or right of the survivor, its
-// maximum above or below the survivor's and the joining pixel's.
+// Combs: arms of random heights and widths standing on a bar, an arm flat at the comb's
+// base depth or jittered, the bar a sawtooth from the base up, all inside the tolerance.
+// The arms get labels of their own and merge where they reach the bar, in every order:
+// the absorbed label taller or shorter, left or right of the survivor, its maximum above
+// or below the survivor's and below the joining pixel's (a bar label deeper than a flat
+// arm, meeting it on a rising tooth).
 DispImage comb_scene(std::mt19937& rng, int w, int h, unsigned D, unsigned tol) {
   DispImage m(w, h, make_disp(1, true));
   for (int k = 0; k < 6; ++k) {
@@ -57,18 +59,19 @@ DispImage comb_scene(std::mt19937& rng, int w, int h, unsigned D, unsigned tol) 
     const int xa = static_cast<int>(rng() % static_cast<unsigned>(std::max(1, w - len)));
     const int yb = 3 + static_cast<int>(rng() % static_cast<unsigned>(h - 3));
     const unsigned base = D / 2 + 2 + rng() % std::max(1u, D / 2 - 3 - tol);
-    auto put = [&](int x, int y) {
-      if (x < w && y < h)
-        m.at(x, y) = make_disp(std::min<unsigned>(D - 1, base + static_cast<unsigned>(rng() % (tol + 1))), true);
+    auto put = [&](int x, int y, unsigned d) {
+      if (x < w && y < h) m.at(x, y) = make_disp(std::min(D - 1, d), true);
     };
-    for (int x = xa; x < xa + len; ++x) put(x, yb);
+    for (int x = xa; x < xa + len; ++x) put(x, yb, base + static_cast<unsigned>(x - xa) % (tol + 1));
     const int arms = 2 + static_cast<int>(rng() % 3);
     for (int a = 0; a < arms; ++a) {
       const int ax = xa + static_cast<int>(rng() % static_cast<unsigned>(len));
       const int top = static_cast<int>(rng() % static_cast<unsigned>(yb));
       const int aw = 1 + static_cast<int>(rng() % 2);
+      const bool jitter = rng() % 2 != 0;
+      const unsigned arm_d = base;
       for (int y = top; y < yb; ++y)
-        for (int x = ax; x < ax + aw; ++x) put(x, y);
+        for (int x = ax; x < ax + aw; ++x) put(x, y, jitter ? base + static_cast<unsigned>(rng() % (tol + 1)) : arm_d);
     }
   }
   return m;
@@ -132,7 +135,11 @@ int main(int argc, char** argv) {
   // 5: boxes again with a different threshold, and a random blocky map after it
   add(box_scene(w, h, D / 4, {{5, 5, w - 6, h - 6, D / 2}, {8, 8, 12, 12, D - 1}}), D / 3, 4, 1);
   add(random_map(rng, w, h, D, 3), D / 2, 1, 3);
-  // 7..9: combs (merge shapes) at three tolerances
+  // 7, 8: register extremes (every bit of the latched threshold, tolerance and minimum
+  // size set, then cleared): nothing is near; then everything is, no component is large enough
+  add(random_map(rng, w, h, D, 2), 255, 255, 0xffff);
+  add(random_map(rng, w, h, D, 2), 0, 128, 0x8000);
+  // 9..11: combs (merge shapes) at three tolerances
   for (unsigned tol = 1; tol <= 3; ++tol) add(comb_scene(rng, w, h, D, tol), D / 2, tol, 1);
 
   std::vector<ObjectList> want;
