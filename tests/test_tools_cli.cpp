@@ -72,6 +72,7 @@ struct Fixture {
     cv::imwrite((in / "narrow.png").string(), narrow);
     std::ofstream((in / "bad.json").string()) << "{ \"occ\": ";
     std::ofstream((in / "unknown.json").string()) << "{ \"occc\": 3 }";
+    std::ofstream((in / "range.json").string()) << "{ \"occ\": 300 }";
   }
   std::string L() const { return (scene / "left.png").string(); }
   std::string R() const { return (scene / "right.png").string(); }
@@ -99,10 +100,15 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
   SECTION("malformed --regs") {
     expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("bad.json")), "malformed JSON");
     expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("unknown.json")), "occc");
+    // a register out of range: the file, the key, the value and the range (set_register's wording)
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("range.json")),
+                 "range.json: 'occ' = 300 is outside 0..255");
   }
   SECTION("illegal parameter") {
     expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 15"), "disp 15");
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --occ 300"), "occ");
+    // the option, the value and the range: the same wording as a register file's key
+    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --occ 300"),
+                 "--occ = 300 is outside 0..255");
   }
   SECTION("missing calibration") {
     expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --calib " + fx.I("none.json")),
