@@ -70,11 +70,7 @@ int run(int argc, char** argv) {
                     ->check(CLI::Range(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
 
   if (out.empty() && colour.empty() && disp_file.empty())
     throw ToolError("no output: give -o, --colour and/or --disp-file");
