@@ -10,16 +10,29 @@
 
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "sm_test_util.hpp"
 
 namespace fs = std::filesystem;
 using namespace sm::tools;
 
 namespace {
-fs::path scratch(const std::string& name) {
-  fs::path d = fs::path(SM_TEST_TMP) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+fs::path scratch(const std::string& name) { return sm::test::fresh_dir(fs::path(SM_TEST_TMP) / name); }
+
+// A disparity file read back (`back`) against what was written (`f`, negative = invalid):
+// CV_32FC1 of the same size, each invalid pixel (and with zero_invalid a 0) negative,
+// every other pixel exact.
+void check_read_back(const cv::Mat& back, const cv::Mat& f, bool zero_invalid) {
+  REQUIRE(back.type() == CV_32FC1);
+  REQUIRE(back.size() == f.size());
+  for (int y = 0; y < f.rows; ++y)
+    for (int x = 0; x < f.cols; ++x) {
+      INFO("x " << x << " y " << y);
+      const float w = f.at<float>(y, x);
+      if (w < 0 || (zero_invalid && w == 0))
+        CHECK(back.at<float>(y, x) < 0);
+      else
+        CHECK(back.at<float>(y, x) == w);
+    }
 }
 }  // namespace
 
@@ -232,20 +245,9 @@ TEST_CASE("disparity files: 16-bit PNG and PFM round trips", "[unit][tools]") {
     CHECK(raw.at<uint16_t>(0, 4) == 127 * 16);
     CHECK(raw.at<uint16_t>(2, 0) == 1600);
     CHECK(raw.at<uint16_t>(2, 1) == 1);
-    const cv::Mat back = read_disparity_file(p);
-    REQUIRE(back.type() == CV_32FC1);
-    REQUIRE(back.size() == f.size());
-    for (int y = 0; y < f.rows; ++y)
-      for (int x = 0; x < f.cols; ++x) {
-        INFO("x " << x << " y " << y);
-        const float w = f.at<float>(y, x);
-        // A valid disparity of exactly 0 is written as 0 and reads back as invalid (the
-        // convention cannot tell them apart); every other value is exact.
-        if (w <= 0)
-          CHECK(back.at<float>(y, x) < 0);
-        else
-          CHECK(back.at<float>(y, x) == w);
-      }
+    // A valid disparity of exactly 0 is written as 0 and reads back as invalid (the
+    // convention cannot tell them apart); every other value is exact.
+    check_read_back(read_disparity_file(p), f, true);
     // Another scale (e.g. KITTI's 256) divides by it.
     CHECK(read_disparity_file(p, 256).at<float>(2, 0) == 6.25f);
   }
@@ -274,18 +276,7 @@ TEST_CASE("disparity files: 16-bit PNG and PFM round trips", "[unit][tools]") {
       CHECK(data[2 * 5 + 3] > 0);
       CHECK(data[2 * 5 + 4] == 127.0f);
     }
-    const cv::Mat back = read_disparity_file(p);
-    REQUIRE(back.type() == CV_32FC1);
-    REQUIRE(back.size() == f.size());
-    for (int y = 0; y < f.rows; ++y)
-      for (int x = 0; x < f.cols; ++x) {
-        INFO("x " << x << " y " << y);
-        const float w = f.at<float>(y, x);
-        if (w < 0)
-          CHECK(back.at<float>(y, x) < 0);
-        else
-          CHECK(back.at<float>(y, x) == w);
-      }
+    check_read_back(read_disparity_file(p), f, false);
   }
   SECTION("errors name the file") {
     CHECK_THROWS_WITH(write_disparity_file((d / "disp.tif").string(), f), Catch::Contains("disp.tif"));
