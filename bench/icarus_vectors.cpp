@@ -30,11 +30,7 @@ int run(int argc, char** argv) {
   app.add_option("--census", hw.census)->capture_default_str();
   app.add_option("--sw", hw.sw)->capture_default_str();
   app.add_option("--rect-radius", hw.rect_radius)->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   sm::tools::quiet_opencv();
   hw.validate();
   const sm::tools::Scene sc = sm::tools::load_scene(scene_dir);

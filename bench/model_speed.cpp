@@ -68,13 +68,8 @@ int run(int argc, char** argv) {
   app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")->check(CLI::Range(0, 255));
   app.add_option("--json", json_path, "write the medians as JSON");
   app.add_flag("--no-opencv", no_opencv, "time the model only");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  if (levels < 4 || levels > 254 || levels % 2)
-    throw sm::tools::ToolError(fmt::format("--levels {}: must be even, 4..254", levels));
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  sm::tools::check_levels("--levels", levels);
   sm::tools::quiet_opencv();
   cv::setNumThreads(1);
 

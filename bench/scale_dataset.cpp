@@ -24,11 +24,7 @@ int run(int argc, char** argv) {
   app.add_option("--out", out, "output folder (one subfolder per scene)")->required();
   app.add_option("--width", width, "target width")->check(CLI::Range(16, 4096))->capture_default_str();
   app.add_option("--height", height, "target height")->check(CLI::Range(16, 4096))->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   sm::tools::quiet_opencv();
   const auto scenes = sm::tools::list_scenes(dataset);
   if (scenes.empty()) throw sm::tools::ToolError(fmt::format("{}: no scene folders", dataset));

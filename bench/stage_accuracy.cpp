@@ -20,13 +20,8 @@ int run(int argc, char** argv) {
   app.add_option("dataset", dataset, "dataset folder or one scene folder")->required();
   app.add_option("--levels", levels, "disparity levels (even, 4..254)")->capture_default_str();
   app.add_option("--json", json_path, "write the table as JSON");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  if (levels < 4 || levels > 254 || levels % 2)
-    throw sm::tools::ToolError(fmt::format("--levels {}: must be even, 4..254", levels));
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  sm::tools::check_levels("--levels", levels);
   sm::tools::quiet_opencv();
   const auto scenes = sm::tools::list_scenes(dataset);
   if (scenes.empty()) throw sm::tools::ToolError(fmt::format("{}: no scene folders", dataset));

@@ -16,18 +16,36 @@ int clog2(long v) {  // ceil(log2(v)), as Verilog's $clog2
 
 int HwConfig::cost_bits() const { return clog2((census_bits() >> cost_shift) + 1); }
 
+namespace {
+struct Param {
+  const char* name;  // sm_top parameter
+  int HwConfig::*member;
+};
+constexpr Param kParams[] = {{"MAX_WIDTH", &HwConfig::max_width},
+                             {"MAX_HEIGHT", &HwConfig::max_height},
+                             {"DISP", &HwConfig::disp},
+                             {"CENSUS", &HwConfig::census},
+                             {"SW", &HwConfig::sw},
+                             {"RECT_RADIUS", &HwConfig::rect_radius},
+                             {"COST_SHIFT", &HwConfig::cost_shift},
+                             {"MAX_OBJECTS", &HwConfig::max_objects},
+                             {"LABEL_SLOTS", &HwConfig::label_slots},
+                             {"BAND_K", &HwConfig::band_k},
+                             {"PU", &HwConfig::pu}};
+}  // namespace
+
+int* HwConfig::field(const std::string& name) {
+  for (const Param& p : kParams)
+    if (name == p.name) return &(this->*p.member);
+  return nullptr;
+}
+
+const int* HwConfig::field(const std::string& name) const { return const_cast<HwConfig*>(this)->field(name); }
+
 std::map<std::string, int> HwConfig::parameters() const {
-  return {{"MAX_WIDTH", max_width},
-          {"MAX_HEIGHT", max_height},
-          {"DISP", disp},
-          {"CENSUS", census},
-          {"SW", sw},
-          {"RECT_RADIUS", rect_radius},
-          {"COST_SHIFT", cost_shift},
-          {"MAX_OBJECTS", max_objects},
-          {"LABEL_SLOTS", label_slots},
-          {"BAND_K", band_k},
-          {"PU", pu}};
+  std::map<std::string, int> m;
+  for (const Param& p : kParams) m[p.name] = this->*p.member;
+  return m;
 }
 
 int HwConfig::flush_rows() const {  // as sm_top.v's FLUSH_ROWS
@@ -39,11 +57,11 @@ void HwConfig::validate() const {
   const auto params = parameters();
   for (const auto& l : defs::kLimits) {
     const int v = params.at(l.name);
-    std::string field = l.name;  // the HwConfig field (and tool option) is the lower-case name
-    for (auto& c : field) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    std::string name = l.name;  // the HwConfig field (and tool option) is the lower-case name
+    for (auto& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     const bool parity_ok = l.parity == defs::Parity::kAny || (v % 2 == 0) == (l.parity == defs::Parity::kEven);
     if (v < l.min || v > l.max || !parity_ok)
-      bad(fmt::format("{} {} must be {}{}..{} ({})", field, v,
+      bad(fmt::format("{} {} must be {}{}..{} ({})", name, v,
                       l.parity == defs::Parity::kAny    ? ""
                       : l.parity == defs::Parity::kEven ? "even, "
                                                         : "odd, ",
@@ -87,6 +105,18 @@ Regs Regs::defaults(const HwConfig& hw) {
   r.grid_l = RectGrid::identity(r.width, r.height);
   r.grid_r = r.grid_l;
   return r;
+}
+
+uint32_t sw_table_word(const Regs& r, int half) {
+  uint32_t w = 0;
+  for (int k = 0; k < 16; ++k)
+    w |= static_cast<uint32_t>(r.sw_table[static_cast<size_t>(16 * half + k)] & 3u) << (2 * k);
+  return w;
+}
+
+void set_sw_table_word(Regs& r, int half, uint32_t word) {
+  for (int k = 0; k < 16; ++k)
+    r.sw_table[static_cast<size_t>(16 * half + k)] = static_cast<uint8_t>((word >> (2 * k)) & 3u);
 }
 
 }  // namespace sm

@@ -95,8 +95,12 @@ struct HwConfig {
   // range of defs::kLimits (rtl/defs.json, the ranges sm_top checks at elaboration), then
   // the rules between parameters.
   void validate() const;
-  // Every field by its sm_top parameter name (the one list of them in C++).
+  // Every field by its sm_top parameter name.
   std::map<std::string, int> parameters() const;
+  // The field of an sm_top parameter name ("DISP" -> &disp), nullptr for any other name
+  // (the one list of the names in C++; parameters() is built from it).
+  int* field(const std::string& name);
+  const int* field(const std::string& name) const;
 };
 
 // Rectification map as a coarse grid of source coordinates (docs/algorithm.md, stage 2).
@@ -138,5 +142,11 @@ struct Regs {
   uint16_t obj_min_pixels = 64;        // objects smaller than this are not reported
   static Regs defaults(const HwConfig& hw);
 };
+
+// Word `half` (0 or 1) of the SW_TABLE0/SW_TABLE1 registers: the 16 two-bit codes
+// sw_table[16 * half + k] in bits 2k+1:2k (the one packing of the table in C++).
+uint32_t sw_table_word(const Regs& r, int half);
+// The reverse: sets sw_table[16 * half .. 16 * half + 15] from the register word.
+void set_sw_table_word(Regs& r, int half, uint32_t word);
 
 }  // namespace sm

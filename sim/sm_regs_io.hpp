@@ -37,15 +37,13 @@ struct RegWord {
 // grids aside).
 inline std::vector<RegWord> register_words(const Regs& r) {
   using namespace regmap;
-  uint64_t table = 0;
-  for (int k = 0; k < 32; ++k) table |= static_cast<uint64_t>(r.sw_table[k] & 3u) << (2 * k);
   // the value registers (sm::Regs member of the register's name; a signed one sign-extends)
   std::vector<RegWord> w;
 #define SM_X(NAME, member) w.push_back({k##NAME, static_cast<uint32_t>(static_cast<int32_t>(r.member)), #NAME});
   SM_REGMAP_VALUE_REGS(SM_X)
 #undef SM_X
-  w.push_back({kSW_TABLE0, static_cast<uint32_t>(table), "SW_TABLE0"});
-  w.push_back({kSW_TABLE1, static_cast<uint32_t>(table >> 32), "SW_TABLE1"});
+  w.push_back({kSW_TABLE0, sw_table_word(r, 0), "SW_TABLE0"});
+  w.push_back({kSW_TABLE1, sw_table_word(r, 1), "SW_TABLE1"});
   std::sort(w.begin(), w.end(), [](const RegWord& a, const RegWord& b) { return a.addr < b.addr; });
   return w;
 }

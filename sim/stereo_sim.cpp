@@ -28,6 +28,7 @@
 #include "calib_file.hpp"
 #include "pipeline.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "sm_coverage.hpp"
@@ -175,15 +176,11 @@ json regs_json(const sm::Regs& r, int grid_bank) {
 json object_json(const sm::ObjectPacket& p) {
   json j = {{"valid", p.valid}, {"count", p.objects.size()}, {"too_many", p.too_many}, {"table_full", p.table_full},
             {"lost", p.lost},   {"objects", json::array()}};
-  for (const auto& o : p.objects)
-    j["objects"].push_back({{"x0", o.x0},
-                            {"y0", o.y0},
-                            {"x1", o.x1},
-                            {"y1", o.y1},
-                            {"pixels", o.count},
-                            {"sum_disp", o.sum_disp},
-                            {"mean_disp", o.mean_disp},
-                            {"nearest_disp", o.max_disp}});
+  for (const auto& o : p.objects) {
+    json b = sm::tools::object_box_json(o);
+    b.update(json{{"pixels", o.count}, {"sum_disp", o.sum_disp}, {"nearest_disp", o.max_disp}});
+    j["objects"].push_back(b);
+  }
   return j;
 }
 

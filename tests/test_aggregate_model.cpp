@@ -22,6 +22,24 @@ sm::HwConfig config(int census, int sw, int disp, int shift) {
   return hw;
 }
 
+// One voxel (x, y, level d) of a cost volume and its value.
+struct Voxel {
+  int x, y, d, v;
+};
+
+// Sets the voxels of `vol`.
+void set_voxels(sm::CostVolume& vol, std::initializer_list<Voxel> vs) {
+  for (const Voxel& w : vs) vol.at(w.x, w.y, w.d) = static_cast<uint8_t>(w.v);
+}
+
+// Each voxel of `vol` holds its value.
+void check_voxels(const sm::CostVolume& vol, std::initializer_list<Voxel> vs) {
+  for (const Voxel& w : vs) {
+    INFO("x " << w.x << " y " << w.y << " d " << w.d);
+    CHECK(vol.at(w.x, w.y, w.d) == w.v);
+  }
+}
+
 std::array<uint8_t, 32> all_codes(uint8_t c) {
   std::array<uint8_t, 32> t{};
   t.fill(c);
@@ -176,22 +194,14 @@ TEST_CASE("weights are zero outside the image", "[aggregate]") {
   const sm::HwConfig hw = config(15, 3, 2, 0);
   sm::Image8 left(4, 3, 50);
   sm::CostVolume raw(4, 3, 2, 200);  // neighbours outside the corners' windows
-  raw.at(0, 0, 0) = 4;
-  raw.at(1, 0, 0) = 8;
-  raw.at(0, 1, 0) = 12;
-  raw.at(1, 1, 0) = 16;
-  raw.at(0, 0, 1) = 1;
-  raw.at(1, 0, 1) = 2;
-  raw.at(0, 1, 1) = 2;
-  raw.at(1, 1, 1) = 2;
+  set_voxels(raw, {{0, 0, 0, 4}, {1, 0, 0, 8}, {0, 1, 0, 12}, {1, 1, 0, 16}});  // level 0
+  set_voxels(raw, {{0, 0, 1, 1}, {1, 0, 1, 2}, {0, 1, 1, 2}, {1, 1, 1, 2}});    // level 1
   const sm::CostVolume out = sm::sw_aggregate(raw, left, all_codes(1), hw);
   // Corner (0,0): 4 in-image neighbours, (4+8+12+16)/4 = 10; (1+2+2+2)/4 = 1.75 -> 2.
-  CHECK(out.at(0, 0, 0) == 10);
-  CHECK(out.at(0, 0, 1) == 2);
+  check_voxels(out, {{0, 0, 0, 10}, {0, 0, 1, 2}});
   // Corner (3,2): its 4 in-image neighbours all hold 200.
-  CHECK(out.at(3, 2, 0) == 200);
   // Edge (1,0): 6 in-image neighbours: (4+8+200+12+16+200)/6 = 73.33 -> 73.
-  CHECK(out.at(1, 0, 0) == 73);
+  check_voxels(out, {{3, 2, 0, 200}, {1, 0, 0, 73}});
 }
 
 TEST_CASE("adaptive weights, hand-computed", "[aggregate]") {
@@ -200,8 +210,7 @@ TEST_CASE("adaptive weights, hand-computed", "[aggregate]") {
   sm::Image8 left(3, 3, 100);
   left.at(2, 1) = 200;
   sm::CostVolume raw(3, 3, 2, 10);
-  raw.at(2, 1, 0) = 22;
-  raw.at(2, 1, 1) = 0;
+  set_voxels(raw, {{2, 1, 0, 22}, {2, 1, 1, 0}});
   std::array<uint8_t, 32> t{};
   t[0] = 1;   // equal intensity: weight 1
   t[12] = 3;  // the bright neighbour: weight 4
@@ -209,12 +218,10 @@ TEST_CASE("adaptive weights, hand-computed", "[aggregate]") {
   // wsum = 8 * 1 + 4 = 12, RECIP(12) = 341.
   // level 0: (8*10 + 4*22) = 168 -> (168*341 + 2048) >> 12 = 14
   // level 1: (8*10 + 4*0) = 80 -> (80*341 + 2048) >> 12 = 7 (6.66 rounds up)
-  CHECK(out.at(1, 1, 0) == 14);
-  CHECK(out.at(1, 1, 1) == 7);
   // Pixel (2,1) (value 200): its in-image neighbours (1,0),(1,1),(1,2),(2,0),(2,2) all
   // differ by 100 -> weight 4, itself weight 1: wsum 21, RECIP(21) = 195.
   // level 0: 5*4*10 + 22 = 222 -> (222*195 + 2048) >> 12 = 11 (222/21 = 10.57)
-  CHECK(out.at(2, 1, 0) == 11);
+  check_voxels(out, {{1, 1, 0, 14}, {1, 1, 1, 7}, {2, 1, 0, 11}});
 }
 
 TEST_CASE("cost shift, zero weight sum and bad input", "[aggregate]") {

@@ -20,6 +20,7 @@
 #include "dp.hpp"
 #include "float_ref/float_ref.hpp"
 #include "pipeline.hpp"
+#include "sm_test_util.hpp"
 
 namespace {
 
@@ -94,12 +95,7 @@ TEST_CASE("float trellis of one line: known matching and ties as the model", "[u
 }
 
 TEST_CASE("float reference with every simplification on equals the bit-exact model", "[unit][float_ref]") {
-  sm::tools::SceneParams sp;
-  sp.width = 96;
-  sp.height = 64;
-  sp.levels = 32;
-  sp.seed = 5;
-  sp.objects = 3;
+  sm::tools::SceneParams sp = sm::test::scene_params(96, 64, 32, 5, 3);
   sp.noise = 2;
   const auto sc = sm::tools::render_scene(sp);
   const sm::Image8 l = sm::tools::to_image8(sc.left), r = sm::tools::to_image8(sc.right);

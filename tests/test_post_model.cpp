@@ -20,6 +20,15 @@ HwConfig small_hw() {
   return hw;
 }
 DispImage constant(int w, int h, unsigned d) { return DispImage(w, h, make_disp(d, true)); }
+
+// The register defaults with the object separation's three registers set.
+Regs object_regs(const HwConfig& hw, uint8_t near, uint8_t tol, uint16_t min_pixels) {
+  Regs regs = Regs::defaults(hw);
+  regs.obj_near = near;
+  regs.obj_tol = tol;
+  regs.obj_min_pixels = min_pixels;
+  return regs;
+}
 }  // namespace
 
 TEST_CASE("vertical median removes one- and two-row streaks", "[unit][post]") {
@@ -129,10 +138,7 @@ TEST_CASE("post_process follows filter_enable and reports every step", "[unit][p
 
 TEST_CASE("objects: boxes at known depths on a far background", "[unit][objects]") {
   const HwConfig hw = small_hw();
-  Regs regs = Regs::defaults(hw);
-  regs.obj_near = 20;
-  regs.obj_tol = 1;
-  regs.obj_min_pixels = 4;
+  Regs regs = object_regs(hw, 20, 1, 4);  // near, tol, min pixels
   DispImage m = constant(50, 40, 5);
   auto box = [&](int x0, int y0, int x1, int y1, unsigned d) {
     for (int y = y0; y <= y1; ++y)
@@ -163,10 +169,7 @@ TEST_CASE("objects: boxes at known depths on a far background", "[unit][objects]
 
 TEST_CASE("objects: tolerance, merging shapes, mean and nearest disparity", "[unit][objects]") {
   const HwConfig hw = small_hw();
-  Regs regs = Regs::defaults(hw);
-  regs.obj_near = 10;
-  regs.obj_tol = 2;
-  regs.obj_min_pixels = 1;
+  Regs regs = object_regs(hw, 10, 2, 1);  // near, tol, min pixels
   // two touching halves at 30 and 32 merge (|dd| = 2); at 30 and 33 they do not
   DispImage m = constant(20, 10, 0);
   for (int y = 2; y < 6; ++y)
@@ -202,11 +205,8 @@ TEST_CASE("objects: tolerance, merging shapes, mean and nearest disparity", "[un
 }
 
 TEST_CASE("objects: overflow of the list and of the label table raise the flags", "[unit][objects]") {
-  const HwConfig hw = small_hw();  // K = 4, 16 labels
-  Regs regs = Regs::defaults(hw);
-  regs.obj_near = 10;
-  regs.obj_tol = 0;
-  regs.obj_min_pixels = 2;
+  const HwConfig hw = small_hw();         // K = 4, 16 labels
+  Regs regs = object_regs(hw, 10, 0, 2);  // near, tol, min pixels
   DispImage m = constant(40, 10, 0);
   for (int i = 0; i < 6; ++i) m.at(2 + 5 * i, 3) = m.at(3 + 5 * i, 3) = make_disp(20 + i, true);
   ObjectList l = separate_objects(m, regs, hw);
@@ -234,11 +234,8 @@ TEST_CASE("objects: overflow of the list and of the label table raise the flags"
 TEST_CASE("objects: components match cv::connectedComponentsWithStats", "[unit][objects]") {
   HwConfig hw = small_hw();
   hw.label_slots = 1024;
-  hw.max_objects = 1000;  // model only: list every component
-  Regs regs = Regs::defaults(hw);
-  regs.obj_near = 10;
-  regs.obj_tol = 0;
-  regs.obj_min_pixels = 1;
+  hw.max_objects = 1000;                  // model only: list every component
+  Regs regs = object_regs(hw, 10, 0, 1);  // near, tol, min pixels
   std::mt19937 rng(17);
   for (int trial = 0; trial < 5; ++trial) {
     DispImage m(48, 32, make_disp(0, true));
@@ -270,15 +267,7 @@ TEST_CASE("objects: components match cv::connectedComponentsWithStats", "[unit][
 
 TEST_CASE("object packet format", "[unit][objects]") {
   ObjectList l;
-  Object o;
-  o.x0 = 3;
-  o.y0 = 4;
-  o.x1 = 10;
-  o.y1 = 12;
-  o.count = 72;
-  o.sum_disp = 2880;
-  o.mean_disp = 40;
-  o.max_disp = 41;
+  const Object o{3, 4, 10, 12, 72, 2880, 40, 41};  // box x0 y0 x1 y1, count, sum, mean, nearest
   l.objects.push_back(o);
   l.table_full = true;
   const std::vector<uint32_t> p = object_packet(l, true);

@@ -9,6 +9,7 @@
 
 #include "calib_file.hpp"
 #include "pre.hpp"
+#include "toolio/sm_io.hpp"
 
 namespace {
 
@@ -21,12 +22,7 @@ sm::Image8 smooth_image(int w, int h) {
   return img;
 }
 
-cv::Mat to_mat(const sm::Image8& im) {
-  cv::Mat m(im.h, im.w, CV_8U);
-  for (int y = 0; y < im.h; ++y)
-    for (int x = 0; x < im.w; ++x) m.at<uint8_t>(y, x) = im.at(x, y);
-  return m;
-}
+using sm::tools::to_mat;  // Image8 -> CV_8UC1 (toolio, as the tools convert)
 
 sm::RectGrid shifted_identity(int w, int h, int dx_q5, int dy_q5) {
   sm::RectGrid g = sm::RectGrid::identity(w, h);

@@ -11,6 +11,7 @@
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "sm_cmd.hpp"
+#include "sm_test_util.hpp"
 
 namespace fs = std::filesystem;
 using sm::tools::render_scene;
@@ -24,22 +25,9 @@ bool same(const cv::Mat& a, const cv::Mat& b) {
 
 using sm::test::slurp;
 
-SceneParams small(uint64_t seed = 3) {
-  SceneParams p;
-  p.width = 96;
-  p.height = 64;
-  p.levels = 32;
-  p.seed = seed;
-  p.objects = 4;
-  return p;
-}
+SceneParams small(uint64_t seed = 3) { return sm::test::scene_params(96, 64, 32, seed, 4); }
 
-fs::path scratch(const std::string& name) {
-  fs::path d = fs::path(SM_TEST_TMP) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return sm::test::fresh_dir(fs::path(SM_TEST_TMP) / name); }
 
 }  // namespace
 

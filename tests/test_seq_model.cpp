@@ -50,6 +50,17 @@ sm::SeqFaultCounts faults(uint32_t short_line, uint32_t long_line, uint32_t miss
 }
 constexpr sm::SeqFaultCounts kNone{};
 
+// The sequencer's result on `in`: `n` frames, the first one's rows `first`, the fault
+// counts `f`.
+sm::SeqResult expect_frames(const std::vector<sm::SeqInput>& in, size_t n, const Rows& first,
+                            const sm::SeqFaultCounts& f) {
+  sm::SeqResult r = sm::seq_frames(in);
+  REQUIRE(r.frames.size() == n);
+  CHECK(rows(r.frames[0]) == first);
+  CHECK(r.faults == f);
+  return r;
+}
+
 // Records the sink calls as text.
 struct Log : sm::SeqSink {
   std::vector<std::string> ev;
@@ -145,11 +156,9 @@ TEST_CASE("seq: the rest of a long line is dropped", "[seq]") {
   SECTION("a tuser ends the drop and starts a frame: the open one was short of lines") {
     Stream t;
     t.line({1, 2, 3, 4}, true).line({5, 6, 7, 8, 70, 71}, false, false);
-    const sm::SeqResult q = sm::seq_frames(t.frame(20).in);
-    REQUIRE(q.frames.size() == 2);
-    CHECK(rows(q.frames[0]) == Rows{{1, 2, 3, 4}, {5, 6, 7, 8}, {0, 0, 0, 0}});
+    const sm::SeqResult q =
+        expect_frames(t.frame(20).in, 2, Rows{{1, 2, 3, 4}, {5, 6, 7, 8}, {0, 0, 0, 0}}, faults(0, 1, 0, 0, 1, 0));
     CHECK(rows(q.frames[1]) == Rows{{20, 21, 22, 23}, {24, 25, 26, 27}, {28, 29, 30, 31}});
-    CHECK(q.faults == faults(0, 1, 0, 0, 1, 0));
   }
 }
 
@@ -178,10 +187,7 @@ TEST_CASE("seq: a tuser inside a line completes the frame with 0", "[seq]") {
   SECTION("the camera restarts the frame after one pixel") {
     Stream t;
     t.line({1}, true, false).frame(20);
-    const sm::SeqResult q = sm::seq_frames(t.in);
-    REQUIRE(q.frames.size() == 2);
-    CHECK(rows(q.frames[0]) == Rows{{1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}});
-    CHECK(q.faults == faults(0, 0, 0, 1, 0, 0));
+    expect_frames(t.in, 2, Rows{{1, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}}, faults(0, 0, 0, 1, 0, 0));
   }
 }
 
@@ -198,10 +204,7 @@ TEST_CASE("seq: a tuser at a line start before H lines: too few lines", "[seq]")
   SECTION("a short line then the early tuser: both reported") {
     Stream t;
     t.line({1, 2, 3, 4}, true).line({5}).frame(20);
-    const sm::SeqResult q = sm::seq_frames(t.in);
-    REQUIRE(q.frames.size() == 2);
-    CHECK(rows(q.frames[0]) == Rows{{1, 2, 3, 4}, {5, 0, 0, 0}, {0, 0, 0, 0}});
-    CHECK(q.faults == faults(1, 0, 0, 0, 1, 0));
+    expect_frames(t.in, 2, Rows{{1, 2, 3, 4}, {5, 0, 0, 0}, {0, 0, 0, 0}}, faults(1, 0, 0, 0, 1, 0));
   }
 }
 

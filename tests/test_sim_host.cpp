@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -22,6 +23,8 @@
 #include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
 #include "sm_cmd.hpp"
+#include "sm_sim_run.hpp"
+#include "sm_test_util.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -30,26 +33,11 @@ namespace {
 
 const fs::path kTmp = fs::path(SM_TEST_TMP);
 
-struct Run {
-  int rc = -1;
-  std::string out, err;
-  json report;
-  fs::path dir;
-};
+using Run = sm::test::SimRun;
 
+// stereo_sim_small <args> -q --out <tmp>/<name>
 Run sim(const std::string& name, const std::string& args) {
-  fs::create_directories(kTmp);
-  const fs::path out = kTmp / name;
-  fs::remove_all(out);
-  const sm::test::CmdResult c =
-      sm::test::run_cmd(SM_STEREO_SIM_SMALL, args + " -q --out \"" + out.string() + "\"", kTmp);
-  Run r;
-  r.rc = c.rc;
-  r.out = c.out;
-  r.err = c.err;
-  r.dir = out;
-  if (fs::exists(out / "report.json")) r.report = json::parse(sm::test::slurp(out / "report.json"));
-  return r;
+  return sm::test::run_sim(SM_STEREO_SIM_SMALL, kTmp, name, args);
 }
 
 // The configuration stereo_sim reports (the Verilated one).
@@ -75,22 +63,12 @@ struct Scenes {
     raw = kTmp / "scene_raw";
     plain = kTmp / "scene_plain";
     many = kTmp / "scene_objects";
-    sm::tools::SceneParams p;
-    p.width = 64;
-    p.height = 48;
-    p.levels = 16;
-    p.seed = 3;
-    p.objects = 3;
+    sm::tools::SceneParams p = sm::test::scene_params(64, 48, 16, 3, 3);
     sm::tools::write_scene(sm::tools::render_scene(p), p, plain.string());
     p.rot_deg = 1.5;
     p.vshift = 1.5;
     sm::tools::write_scene(sm::tools::render_scene(p), p, raw.string());
-    p = sm::tools::SceneParams{};
-    p.width = 64;
-    p.height = 48;
-    p.levels = 16;
-    p.seed = 2;  // the small scene of the build (tools/scene.cmake)
-    p.objects = 3;
+    p = sm::test::scene_params(64, 48, 16, 2, 3);  // the small scene of the build (tools/scene.cmake)
     sm::tools::write_scene(sm::tools::render_scene(p), p, many.string());
     calib_a = sm::load_calib((plain / "calib.json").string());
     calib_b = sm::load_calib((raw / "calib.json").string());
@@ -164,43 +142,54 @@ TEST_CASE("register schedule: every frame bit-exact with its own registers; one 
   CHECK(r.report.at("bit_exact") == true);
   CHECK(r.report.at("register_schedule").at("ok") == true);
   hw = hw_of(r.report);
-  std::vector<sm::Regs> regs(n, sm::Regs::defaults(hw));
-  regs[0].width = 64;
-  regs[0].height = 48;
-  regs[0].obj_near = 6;
-  regs[0].obj_min_pixels = 16;
-  regs[0].grid_l = sc.calib_b.left;
-  regs[0].grid_r = sc.calib_b.right;
-  regs[1] = regs[0];
-  regs[1].gain_l = 300;
-  regs[1].offset_l = 12;
-  regs[2] = regs[1];
-  regs[2].offset_r = -9;
-  regs[2].occ = 20;
-  regs[3] = regs[2];
-  regs[3].sw_table.fill(0);
-  regs[3].sw_table[0] = 3;
-  regs[3].sw_table[1] = 2;
-  regs[3].sw_table[2] = 1;
-  regs[3].grid_l = sc.calib_a.left;
-  regs[3].grid_r = sc.calib_a.right;
-  regs[4] = regs[3];
-  regs[4].filter_enable = 5;
-  regs[4].grid_l = sc.calib_b.left;
-  regs[4].grid_r = sc.calib_b.right;
-  regs[5] = regs[4];
-  regs[5].obj_near = 8;
-  regs[5].obj_tol = 1;
-  regs[5].obj_min_pixels = 24;
-  regs[5].grid_l = sc.calib_a.left;
-  regs[5].grid_r = sc.calib_a.right;
-  regs[6] = regs[5];
-  regs[6].gain_l = 256;
-  regs[6].offset_l = 0;
-  regs[6].offset_r = 0;
-  regs[6].filter_enable = 7;
-  regs[6].grid_l = sc.calib_b.left;
-  regs[6].grid_r = sc.calib_b.right;
+  // Each frame's registers: the previous frame's with the changes of the frame's file.
+  auto grids = [](sm::Regs& g, const sm::CalibFile& c) {
+    g.grid_l = c.left;
+    g.grid_r = c.right;
+  };
+  std::vector<std::function<void(sm::Regs&)>> changes;
+  changes.push_back([&](sm::Regs& g) {  // f0.json
+    g.width = 64;
+    g.height = 48;
+    g.obj_near = 6;
+    g.obj_min_pixels = 16;
+    grids(g, sc.calib_b);
+  });
+  changes.push_back([](sm::Regs& g) {  // f1.json
+    g.gain_l = 300;
+    g.offset_l = 12;
+  });
+  changes.push_back([](sm::Regs& g) {  // f2.json
+    g.offset_r = -9;
+    g.occ = 20;
+  });
+  changes.push_back([&](sm::Regs& g) {  // f3.json
+    g.sw_table = {3, 2, 1};             // the rest 0
+    grids(g, sc.calib_a);
+  });
+  changes.push_back([&](sm::Regs& g) {  // f4.json
+    g.filter_enable = 5;
+    grids(g, sc.calib_b);
+  });
+  changes.push_back([&](sm::Regs& g) {  // f5.json
+    g.obj_near = 8;
+    g.obj_tol = 1;
+    g.obj_min_pixels = 24;
+    grids(g, sc.calib_a);
+  });
+  changes.push_back([&](sm::Regs& g) {  // f6.json
+    g.gain_l = 256;
+    g.offset_l = g.offset_r = 0;
+    g.filter_enable = 7;
+    grids(g, sc.calib_b);
+  });
+  REQUIRE(changes.size() == files.size());
+  std::vector<sm::Regs> regs;
+  sm::Regs g = sm::Regs::defaults(hw);
+  for (const auto& change : changes) {
+    change(g);
+    regs.push_back(g);
+  }
 
   const sm::Image8 L = sm::tools::load_grey((sc.raw / "left.png").string());
   const sm::Image8 R = sm::tools::load_grey((sc.raw / "right.png").string());
@@ -382,12 +371,7 @@ TEST_CASE("stereo_sim options: real ranges, one-line errors for bad camera timin
 TEST_CASE("stereo_sim outputs: lossless disparity files, resized ground truth, labelled panel", "[sim][host]") {
   fs::create_directories(kTmp);
   const fs::path big = kTmp / "scene_128";
-  sm::tools::SceneParams p;
-  p.width = 128;
-  p.height = 96;
-  p.levels = 32;
-  p.seed = 4;
-  p.objects = 3;
+  const sm::tools::SceneParams p = sm::test::scene_params(128, 96, 32, 4, 3);
   sm::tools::write_scene(sm::tools::render_scene(p), p, big.string());
   const std::string args = "--scene \"" + big.string() + "\" --frames 1 --continuous";
   const Run r = sim("resized", args);

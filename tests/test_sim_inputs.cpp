@@ -16,6 +16,8 @@
 
 #include "toolio/sm_scenegen.hpp"
 #include "sm_cmd.hpp"
+#include "sm_sim_run.hpp"
+#include "sm_test_util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -25,25 +27,16 @@ const fs::path kTmp = fs::path(SM_TEST_TMP);
 
 using sm::test::slurp;
 
-struct Run {
-  int rc = -1;
-  std::string err;
-  nlohmann::json report;
+struct Run : sm::test::SimRun {
   cv::Mat disparity;  // the last frame's disparity.png as written
 };
 
-// stereo_sim_small <args> --out <tmp>/<name>: exit code, stderr, report, last disparity
+// stereo_sim_small <args> --continuous -q --out <tmp>/<name>: exit code, stderr, report,
+// last disparity
 Run sim(const std::string& name, const std::string& args) {
-  const fs::path out = kTmp / name;
-  fs::remove_all(out);
-  const sm::test::CmdResult c =
-      sm::test::run_cmd(SM_STEREO_SIM_SMALL, args + " --continuous -q --out \"" + out.string() + "\"", kTmp);
-  Run r;
-  r.rc = c.rc;
-  r.err = c.err;
-  if (fs::exists(out / "report.json")) r.report = nlohmann::json::parse(slurp(out / "report.json"));
-  if (fs::exists(out / "disparity.png"))
-    r.disparity = cv::imread((out / "disparity.png").string(), cv::IMREAD_UNCHANGED);
+  Run r{sm::test::run_sim(SM_STEREO_SIM_SMALL, kTmp, name, args + " --continuous"), {}};
+  if (fs::exists(r.dir / "disparity.png"))
+    r.disparity = cv::imread((r.dir / "disparity.png").string(), cv::IMREAD_UNCHANGED);
   return r;
 }
 
@@ -74,12 +67,7 @@ struct Pairs {
   Pairs() {
     fs::create_directories(kTmp);
     for (int i = 0; i < 2; ++i) {
-      sm::tools::SceneParams p;
-      p.width = 64;
-      p.height = 48;
-      p.levels = 16;
-      p.seed = 11 + 7 * static_cast<unsigned>(i);
-      p.objects = 2 + i;
+      const sm::tools::SceneParams p = sm::test::scene_params(64, 48, 16, 11 + 7 * static_cast<unsigned>(i), 2 + i);
       const sm::tools::SyntheticScene s = sm::tools::render_scene(p);
       l[i] = s.left;
       r[i] = s.right;

@@ -19,6 +19,7 @@
 #include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
 #include "sm_cmd.hpp"
+#include "sm_test_util.hpp"
 
 namespace fs = std::filesystem;
 
@@ -53,11 +54,7 @@ struct Fixture {
   sm::tools::SceneParams p;
   Fixture() {
     fs::create_directories(tmp_root());
-    p.width = 64;
-    p.height = 48;
-    p.levels = 16;
-    p.seed = 2;
-    p.objects = 3;
+    p = sm::test::scene_params(64, 48, 16, 2, 3);
     dir = tmp_root() / "fx";
     fs::remove_all(dir);
     scene = dir / "dataset" / "small";
@@ -72,6 +69,7 @@ struct Fixture {
     cv::imwrite((in / "narrow.png").string(), narrow);
     std::ofstream((in / "bad.json").string()) << "{ \"occ\": ";
     std::ofstream((in / "unknown.json").string()) << "{ \"occc\": 3 }";
+    std::ofstream((in / "range.json").string()) << "{ \"occ\": 300 }";
   }
   std::string L() const { return (scene / "left.png").string(); }
   std::string R() const { return (scene / "right.png").string(); }
@@ -85,41 +83,36 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
   const fs::path out = fx.dir / "out";
   fs::create_directories(out);
   const std::string o = " -o " + (out / "d.png").string();
-  SECTION("missing file") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.I("nope.png") + " " + fx.R() + o), "nope.png: no such file");
-  }
-  SECTION("not a PNG") { expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.I("text.png") + o), "text.png"); }
-  SECTION("truncated PNG") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.I("trunc.png") + " " + fx.R() + o), "truncated");
-  }
-  SECTION("size mismatch") { expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.I("narrow.png") + o), "differs"); }
-  SECTION("size above MAX_WIDTH") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --max-width 32"), "above MAX_WIDTH");
-  }
+  // stereo_model on the fixture's pair (L R) with `args`, or on `pair` instead
+  auto model = [&](const std::string& args, const std::string& pair = "") {
+    return run(SM_STEREO_MODEL_EXE, (pair.empty() ? fx.L() + " " + fx.R() : pair) + args);
+  };
+  SECTION("missing file") { expect_error(model(o, fx.I("nope.png") + " " + fx.R()), "nope.png: no such file"); }
+  SECTION("not a PNG") { expect_error(model(o, fx.L() + " " + fx.I("text.png")), "text.png"); }
+  SECTION("truncated PNG") { expect_error(model(o, fx.I("trunc.png") + " " + fx.R()), "truncated"); }
+  SECTION("size mismatch") { expect_error(model(o, fx.L() + " " + fx.I("narrow.png")), "differs"); }
+  SECTION("size above MAX_WIDTH") { expect_error(model(o + " --disp 16 --max-width 32"), "above MAX_WIDTH"); }
   SECTION("malformed --regs") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("bad.json")), "malformed JSON");
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --regs " + fx.I("unknown.json")), "occc");
+    expect_error(model(o + " --regs " + fx.I("bad.json")), "malformed JSON");
+    expect_error(model(o + " --regs " + fx.I("unknown.json")), "occc");
+    // a register out of range: the file, the key, the value and the range (set_register's wording)
+    expect_error(model(o + " --regs " + fx.I("range.json")), "range.json: 'occ' = 300 is outside 0..255");
   }
   SECTION("illegal parameter") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 15"), "disp 15");
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --occ 300"), "occ");
+    expect_error(model(o + " --disp 15"), "disp 15");
+    // the option, the value and the range: the same wording as a register file's key
+    expect_error(model(o + " --disp 16 --occ 300"), "--occ = 300 is outside 0..255");
   }
-  SECTION("missing calibration") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + o + " --disp 16 --calib " + fx.I("none.json")),
-                 "none.json");
-  }
+  SECTION("missing calibration") { expect_error(model(o + " --disp 16 --calib " + fx.I("none.json")), "none.json"); }
   SECTION("unwritable output") {
-    expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --disp 16 -o " + (out / "no" / "d.png").string()),
-                 "cannot write");
+    expect_error(model(" --disp 16 -o " + (out / "no" / "d.png").string()), "cannot write");
   }
   expect_only(out, {});
 }
 
 TEST_CASE("stereo_model writes the model's disparity", "[unit][tools][cli]") {
   Fixture fx;
-  const fs::path out = fx.dir / "out_ok";
-  fs::remove_all(out);
-  fs::create_directories(out);
+  const fs::path out = sm::test::fresh_dir(fx.dir / "out_ok");
   const Run r = run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --disp 16 --census 7 --sw 3 --occ 20 -v -o " +
                                              (out / "d.png").string() + " --objects-json " + (out / "o.json").string());
   INFO(r.err);
@@ -174,9 +167,7 @@ TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {
 
 TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools][cli]") {
   Fixture fx;
-  const fs::path out = fx.dir / "eval_ok";
-  fs::remove_all(out);
-  fs::create_directories(out);
+  const fs::path out = sm::test::fresh_dir(fx.dir / "eval_ok");
   const Run r = run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --levels 16 -q --json " +
                                          (out / "r.json").string() + " --disp-images " + (out / "img").string());
   INFO(r.err);
@@ -333,37 +324,31 @@ TEST_CASE("--help shows the model's own defaults", "[unit][tools][cli]") {
     CHECK(d.at("--sw-table") == sw_table);
     CHECK(r.rect_enable);  // --no-rect is a flag: off by default, as rect_enable = 1
   }
-  {
-    const Run h = run(SM_EVALUATE_EXE, "--help");
+  // sm_evaluate and sm_calibrate: each option's default as the help shows it
+  const std::vector<std::pair<std::string, std::map<std::string, std::string>>> tools = {
+      {SM_EVALUATE_EXE,
+       {{"--levels", std::to_string(hw.disp)},
+        {"--occ", std::to_string(r.occ)},
+        {"--synthetic-size", std::to_string(hw.max_width) + "x" + std::to_string(hw.max_height)}}},
+      {SM_CALIBRATE_EXE,
+       {{"--rect-radius", std::to_string(hw.rect_radius)},
+        {"--width", std::to_string(hw.max_width)},
+        {"--height", std::to_string(hw.max_height)}}}};
+  for (const auto& [exe, want] : tools) {
+    const Run h = run(exe, "--help");
     REQUIRE(h.rc == 0);
     const auto d = help_defaults(h.out);
     INFO(h.out);
-    REQUIRE(d.count("--levels"));
-    CHECK(d.at("--levels") == std::to_string(hw.disp));
-    REQUIRE(d.count("--occ"));
-    CHECK(d.at("--occ") == std::to_string(r.occ));
-    REQUIRE(d.count("--synthetic-size"));
-    CHECK(d.at("--synthetic-size") == std::to_string(hw.max_width) + "x" + std::to_string(hw.max_height));
-  }
-  {
-    const Run h = run(SM_CALIBRATE_EXE, "--help");
-    REQUIRE(h.rc == 0);
-    const auto d = help_defaults(h.out);
-    INFO(h.out);
-    REQUIRE(d.count("--rect-radius"));
-    CHECK(d.at("--rect-radius") == std::to_string(hw.rect_radius));
-    REQUIRE(d.count("--width"));
-    CHECK(d.at("--width") == std::to_string(hw.max_width));
-    REQUIRE(d.count("--height"));
-    CHECK(d.at("--height") == std::to_string(hw.max_height));
+    for (const auto& [name, v] : want) {
+      REQUIRE(d.count(name));
+      CHECK(d.at(name) == v);
+    }
   }
 }
 
 TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][tools][cli]") {
   Fixture fx;
-  const fs::path out = fx.dir / "out_lossless";
-  fs::remove_all(out);
-  fs::create_directories(out);
+  const fs::path out = sm::test::fresh_dir(fx.dir / "out_lossless");
   sm::HwConfig hw;
   hw.max_width = 64;
   hw.max_height = 48;

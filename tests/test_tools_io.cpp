@@ -9,16 +9,30 @@
 #include <vector>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_regs_json.hpp"
+#include "sm_test_util.hpp"
 
 namespace fs = std::filesystem;
 using namespace sm::tools;
 
 namespace {
-fs::path scratch(const std::string& name) {
-  fs::path d = fs::path(SM_TEST_TMP) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+fs::path scratch(const std::string& name) { return sm::test::fresh_dir(fs::path(SM_TEST_TMP) / name); }
+
+// A disparity file read back (`back`) against what was written (`f`, negative = invalid):
+// CV_32FC1 of the same size, each invalid pixel (and with zero_invalid a 0) negative,
+// every other pixel exact.
+void check_read_back(const cv::Mat& back, const cv::Mat& f, bool zero_invalid) {
+  REQUIRE(back.type() == CV_32FC1);
+  REQUIRE(back.size() == f.size());
+  for (int y = 0; y < f.rows; ++y)
+    for (int x = 0; x < f.cols; ++x) {
+      INFO("x " << x << " y " << y);
+      const float w = f.at<float>(y, x);
+      if (w < 0 || (zero_invalid && w == 0))
+        CHECK(back.at<float>(y, x) < 0);
+      else
+        CHECK(back.at<float>(y, x) == w);
+    }
 }
 }  // namespace
 
@@ -231,20 +245,9 @@ TEST_CASE("disparity files: 16-bit PNG and PFM round trips", "[unit][tools]") {
     CHECK(raw.at<uint16_t>(0, 4) == 127 * 16);
     CHECK(raw.at<uint16_t>(2, 0) == 1600);
     CHECK(raw.at<uint16_t>(2, 1) == 1);
-    const cv::Mat back = read_disparity_file(p);
-    REQUIRE(back.type() == CV_32FC1);
-    REQUIRE(back.size() == f.size());
-    for (int y = 0; y < f.rows; ++y)
-      for (int x = 0; x < f.cols; ++x) {
-        INFO("x " << x << " y " << y);
-        const float w = f.at<float>(y, x);
-        // A valid disparity of exactly 0 is written as 0 and reads back as invalid (the
-        // convention cannot tell them apart); every other value is exact.
-        if (w <= 0)
-          CHECK(back.at<float>(y, x) < 0);
-        else
-          CHECK(back.at<float>(y, x) == w);
-      }
+    // A valid disparity of exactly 0 is written as 0 and reads back as invalid (the
+    // convention cannot tell them apart); every other value is exact.
+    check_read_back(read_disparity_file(p), f, true);
     // Another scale (e.g. KITTI's 256) divides by it.
     CHECK(read_disparity_file(p, 256).at<float>(2, 0) == 6.25f);
   }
@@ -273,18 +276,7 @@ TEST_CASE("disparity files: 16-bit PNG and PFM round trips", "[unit][tools]") {
       CHECK(data[2 * 5 + 3] > 0);
       CHECK(data[2 * 5 + 4] == 127.0f);
     }
-    const cv::Mat back = read_disparity_file(p);
-    REQUIRE(back.type() == CV_32FC1);
-    REQUIRE(back.size() == f.size());
-    for (int y = 0; y < f.rows; ++y)
-      for (int x = 0; x < f.cols; ++x) {
-        INFO("x " << x << " y " << y);
-        const float w = f.at<float>(y, x);
-        if (w < 0)
-          CHECK(back.at<float>(y, x) < 0);
-        else
-          CHECK(back.at<float>(y, x) == w);
-      }
+    check_read_back(read_disparity_file(p), f, false);
   }
   SECTION("errors name the file") {
     CHECK_THROWS_WITH(write_disparity_file((d / "disp.tif").string(), f), Catch::Contains("disp.tif"));
@@ -295,4 +287,43 @@ TEST_CASE("disparity files: 16-bit PNG and PFM round trips", "[unit][tools]") {
     // Unwritable target: nothing left behind.
     CHECK_THROWS_AS(write_disparity_file((d / "no_dir" / "x.pfm").string(), f), ToolError);
   }
+}
+
+TEST_CASE("register words, parameter fields and range errors have one definition", "[unit][tools]") {
+  sm::HwConfig hw;
+  // HwConfig::field: the member of an sm_top parameter name, as parameters() reports it
+  REQUIRE(hw.field("DISP") == &hw.disp);
+  *hw.field("BAND_K") = 4;
+  CHECK(hw.band_k == 4);
+  CHECK(hw.parameters().at("BAND_K") == 4);
+  CHECK(hw.field("disp") == nullptr);
+  for (const auto& [name, v] : hw.parameters()) CHECK(*hw.field(name) == v);
+
+  // SW_TABLE words: codes 0 1 2 3 repeated -> 0xE4 a byte, in both the tools and the model
+  sm::Regs r = sm::Regs::defaults(hw);
+  for (size_t k = 0; k < r.sw_table.size(); ++k) r.sw_table[k] = static_cast<uint8_t>(k % 4);
+  CHECK(sm::sw_table_word(r, 0) == 0xE4E4E4E4u);
+  CHECK(register_value("SW_TABLE1", r) == 0xE4E4E4E4);
+  set_register("SW_TABLE1", 0x0000001B, hw, r, "--sw-table1");  // codes 3 2 1 0, then 0
+  CHECK(sm::sw_table_word(r, 1) == 0x1Bu);
+  CHECK(r.sw_table[16] == 3);
+  CHECK(r.sw_table[19] == 0);
+  CHECK(sm::sw_table_word(r, 0) == 0xE4E4E4E4u);
+
+  // one wording for an option and a register file key: what, value and range
+  CHECK_THROWS_WITH(set_register("OCC", 256, hw, r, "--occ"), "--occ = 256 is outside 0..255");
+  const fs::path d = scratch("regs_json");
+  std::ofstream((d / "r.json").string()) << R"({"disp": 64, "occ": 256})";
+  const std::string f = (d / "r.json").string();
+  CHECK_THROWS_WITH(apply_regs_json(f, hw, r), f + ": 'occ' = 256 is outside 0..255");
+  std::ofstream((d / "h.json").string()) << R"({"band_k": 99})";
+  CHECK_THROWS_WITH(apply_regs_json((d / "h.json").string(), hw, r), Catch::Contains("'band_k' = 99 is outside"));
+  std::ofstream((d / "u.json").string()) << R"({"OCC": 3})";
+  CHECK_THROWS_WITH(apply_regs_json((d / "u.json").string(), hw, r), Catch::Contains("unknown key 'OCC'"));
+  std::ofstream((d / "ok.json").string()) << R"({"sw_table1": 27, "disp": 64, "occ": 20})";
+  const RegsFile rf = apply_regs_json((d / "ok.json").string(), hw, r);
+  CHECK(rf.keys == std::vector<std::string>{"disp", "occ", "sw_table1"});
+  CHECK(hw.disp == 64);
+  CHECK(r.occ == 20);
+  CHECK(sm::sw_table_word(r, 1) == 27u);
 }

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -26,6 +27,20 @@ int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** arg
     fmt::print(stderr, "{}: error: {}\n", tool, e.what());
     return 1;
   }
+}
+
+std::optional<int> parse_args(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  return std::nullopt;
+}
+
+void check_levels(const char* option, int levels) {
+  if (levels < 4 || levels > 254 || levels % 2)
+    throw ToolError(fmt::format("{} {}: must be even, 4..254", option, levels));
 }
 
 namespace {

@@ -5,11 +5,16 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "sm_types.hpp"
+
+namespace CLI {
+class App;
+}
 
 namespace sm::tools {
 
@@ -21,6 +26,14 @@ struct ToolError : std::runtime_error {
 // A tool's main(): runs `run` and turns any exception into the one-line error
 // "<tool>: error: <what>" on stderr and exit code 1.
 int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** argv);
+
+// Parses a tool's command line into `app`: the exit code when the tool stops there
+// (--help, or a parse error, both printed by CLI11), nothing when it goes on.
+std::optional<int> parse_args(CLI::App& app, int argc, char** argv);
+
+// The disparity levels of the model and the RTL (DISP): even, 4..254; a ToolError
+// "<option> <levels>: must be even, 4..254" otherwise.
+void check_levels(const char* option, int levels);
 
 // Silences OpenCV's own logging (tools report errors themselves, in one line).
 void quiet_opencv();

@@ -6,7 +6,6 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -27,21 +26,27 @@ std::string lower(std::string s) {
   return s;
 }
 
-using Set = std::function<void(int64_t)>;
+std::string upper(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return s;
+}
+
+using Set = void (*)(Regs&, int64_t);
 
 // Setters of the run-time registers, by register name: every register whose fields are
 // all rw and shadowed (the pipeline parameters), except CONTROL (not a parameter).
-std::map<std::string, Set> register_setters(Regs& r) {
-  auto sw_word = [&r](int half) {
-    return [&r, half](int64_t v) {
-      for (int k = 0; k < 16; ++k) r.sw_table[16 * half + k] = static_cast<uint8_t>((v >> (2 * k)) & 3);
-    };
-  };
-  // the value registers: the sm::Regs member of the register's name
-  std::map<std::string, Set> set{{"SW_TABLE0", sw_word(0)}, {"SW_TABLE1", sw_word(1)}};
-#define SM_X(NAME, member) set[#NAME] = [&r](int64_t v) { r.member = static_cast<decltype(r.member)>(v); };
-  SM_REGMAP_VALUE_REGS(SM_X)
+// Built once.
+const std::map<std::string, Set>& register_setters() {
+  static const std::map<std::string, Set> set = [] {
+    std::map<std::string, Set> m{
+        {"SW_TABLE0", [](Regs& r, int64_t v) { set_sw_table_word(r, 0, static_cast<uint32_t>(v)); }},
+        {"SW_TABLE1", [](Regs& r, int64_t v) { set_sw_table_word(r, 1, static_cast<uint32_t>(v)); }}};
+    // the value registers: the sm::Regs member of the register's name
+#define SM_X(NAME, member) m[#NAME] = [](Regs& r, int64_t v) { r.member = static_cast<decltype(r.member)>(v); };
+    SM_REGMAP_VALUE_REGS(SM_X)
 #undef SM_X
+    return m;
+  }();
   return set;
 }
 
@@ -62,12 +67,19 @@ const regmap::Reg* find_register(const std::string& name) {
   return nullptr;
 }
 
+bool is_value_register(const std::string& name) { return register_setters().count(name) != 0; }
+
+// The one range check of register values, register-file keys and options:
+// "<what> = <value> is outside <lo>..<hi>".
+void check_range(const std::string& what, int64_t v, int64_t lo, int64_t hi) {
+  if (v < lo || v > hi) throw ToolError(fmt::format("{} = {} is outside {}..{}", what, v, lo, hi));
+}
+
 }  // namespace
 
 std::vector<ValueRegister> value_registers() {
   std::vector<ValueRegister> v;
-  Regs scratch;
-  for (const auto& [name, set] : register_setters(scratch)) {
+  for (const auto& [name, set] : register_setters()) {
     (void)set;
     const regmap::Reg* reg = find_register(name);
     v.push_back({name, reg->desc, reg->addr});
@@ -81,21 +93,19 @@ int64_t register_value(const std::string& name, const Regs& r) {
   if (name == #NAME) return static_cast<int64_t>(r.member);
   SM_REGMAP_VALUE_REGS(SM_X)
 #undef SM_X
-  uint64_t table = 0;  // SW_TABLE0/1: 16 two-bit codes a word
-  for (int k = 31; k >= 0; --k) table = (table << 2) | (r.sw_table[static_cast<size_t>(k)] & 3u);
-  if (name == "SW_TABLE0") return static_cast<int64_t>(table & 0xffffffffu);
-  if (name == "SW_TABLE1") return static_cast<int64_t>(table >> 32);
+  if (name == "SW_TABLE0") return sw_table_word(r, 0);
+  if (name == "SW_TABLE1") return sw_table_word(r, 1);
   throw ToolError(fmt::format("{}: not a value register", name));
 }
 
 void set_register(const std::string& name, int64_t v, const HwConfig& hw, Regs& r, const std::string& what) {
-  const auto setters = register_setters(r);
+  const auto& setters = register_setters();
   const regmap::Reg* reg = find_register(name);
   const auto s = setters.find(name);
   if (!reg || s == setters.end()) throw ToolError(fmt::format("{}: not a value register", name));
   const Range rg = register_range(*reg, hw);
-  if (v < rg.lo || v > rg.hi) throw ToolError(fmt::format("{} {} outside {}..{}", what, v, rg.lo, rg.hi));
-  s->second(v);
+  check_range(what, v, rg.lo, rg.hi);
+  s->second(r, v);
 }
 
 RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
@@ -109,39 +119,28 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
   }
   if (!j.is_object()) throw ToolError(fmt::format("{}: not a JSON object", path));
 
-  auto integer = [&](const std::string& k, const json& v, int64_t lo, int64_t hi) {
-    if (!v.is_number_integer())
-      throw ToolError(fmt::format("{}: '{}' must be an integer {}..{}, not {}", path, k, lo, hi, v.dump()));
-    const int64_t x = v.is_number_unsigned() ? static_cast<int64_t>(std::min<uint64_t>(v.get<uint64_t>(), INT64_MAX))
-                                             : v.get<int64_t>();
-    if (x < lo || x > hi) throw ToolError(fmt::format("{}: '{}' = {} is outside {}..{}", path, k, x, lo, hi));
-    return x;
+  auto what = [&](const std::string& k) { return fmt::format("{}: '{}'", path, k); };
+  auto integer = [&](const std::string& k, const json& v) {
+    if (!v.is_number_integer()) throw ToolError(fmt::format("{} must be an integer, not {}", what(k), v.dump()));
+    return v.is_number_unsigned() ? static_cast<int64_t>(std::min<uint64_t>(v.get<uint64_t>(), INT64_MAX))
+                                  : v.get<int64_t>();
   };
 
   // Compile-time parameters first: the registers' ranges depend on them.
   // (the generated limits of rtl/defs.json; HwConfig::validate() checks parity and the rest)
-  const std::map<std::string, int*> hw_fields = {{"MAX_WIDTH", &hw.max_width},
-                                                 {"MAX_HEIGHT", &hw.max_height},
-                                                 {"DISP", &hw.disp},
-                                                 {"CENSUS", &hw.census},
-                                                 {"SW", &hw.sw},
-                                                 {"RECT_RADIUS", &hw.rect_radius},
-                                                 {"COST_SHIFT", &hw.cost_shift},
-                                                 {"MAX_OBJECTS", &hw.max_objects},
-                                                 {"LABEL_SLOTS", &hw.label_slots},
-                                                 {"BAND_K", &hw.band_k}};
-  std::map<std::string, std::tuple<int64_t, int64_t, int*>> hw_keys;
-  for (const auto& l : defs::kLimits) hw_keys[lower(l.name)] = {l.min, l.max, hw_fields.at(l.name)};
+  std::map<std::string, const defs::Limit*> hw_keys;
+  for (const auto& l : defs::kLimits) hw_keys[lower(l.name)] = &l;
   RegsFile out;
   for (auto it = j.begin(); it != j.end(); ++it) {
     out.keys.push_back(it.key());
     if (auto h = hw_keys.find(it.key()); h != hw_keys.end()) {
-      const auto& [lo, hi, field] = h->second;
-      *field = static_cast<int>(integer(it.key(), it.value(), lo, hi));
+      const defs::Limit& l = *h->second;
+      const int64_t x = integer(it.key(), it.value());
+      check_range(what(it.key()), x, l.min, l.max);
+      *hw.field(l.name) = static_cast<int>(x);
     }
   }
 
-  const auto setters = register_setters(r);
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& k = it.key();
     const json& v = it.value();
@@ -150,8 +149,12 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
       if (!v.is_array() || v.empty() || v.size() > 32)
         throw ToolError(fmt::format("{}: 'sw_table' must be an array of 1..32 codes 0..3", path));
       r.sw_table.fill(0);
-      for (size_t i = 0; i < v.size(); ++i)
-        r.sw_table[i] = static_cast<uint8_t>(integer(fmt::format("sw_table[{}]", i), v[i], 0, 3));
+      for (size_t i = 0; i < v.size(); ++i) {
+        const std::string ki = fmt::format("sw_table[{}]", i);
+        const int64_t x = integer(ki, v[i]);
+        check_range(what(ki), x, 0, 3);
+        r.sw_table[i] = static_cast<uint8_t>(x);
+      }
       continue;
     }
     if (k == "calib") {
@@ -162,13 +165,10 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
       out.calib = p.lexically_normal().string();
       continue;
     }
-    const regmap::Reg* reg = nullptr;
-    for (const auto& g : regmap::registers())
-      if (lower(g.name) == k) reg = &g;
-    const auto s = reg ? setters.find(reg->name) : setters.end();
-    if (s == setters.end()) throw ToolError(fmt::format("{}: unknown key '{}'", path, k));
-    const Range rg = register_range(*reg, hw);
-    s->second(integer(k, v, rg.lo, rg.hi));
+    // a register: its name in lower case
+    const std::string name = upper(k);
+    if (lower(name) != k || !is_value_register(name)) throw ToolError(fmt::format("{}: unknown key '{}'", path, k));
+    set_register(name, integer(k, v), hw, r, what(k));
   }
   return out;
 }

@@ -15,7 +15,7 @@
 //                                     rtl/defs.json
 //
 // Any other key, a value of the wrong type or out of range is a ToolError naming the
-// file and the key.
+// file and the key ("<file>: '<key>' = <value> is outside <lo>..<hi>" for a range).
 #pragma once
 
 #include <cstdint>
@@ -48,7 +48,8 @@ std::vector<ValueRegister> value_registers();
 // The register's value in r (the word a host writes, before sign extension).
 int64_t register_value(const std::string& name, const Regs& r);
 // Sets the register in r; a value outside the map's range at hw is a ToolError
-// "<what> <value> outside <lo>..<hi>".
+// "<what> = <value> is outside <lo>..<hi>" (the wording of every range error of the
+// register file too, where <what> is "<file>: '<key>'").
 void set_register(const std::string& name, int64_t v, const HwConfig& hw, Regs& r, const std::string& what);
 
 }  // namespace sm::tools

@@ -126,20 +126,6 @@ bool find_corners_small(const cv::Mat& img, cv::Size board, std::vector<cv::Poin
   return true;
 }
 
-sm::Image8 to_image(const cv::Mat& m) {
-  sm::Image8 im(m.cols, m.rows);
-  for (int y = 0; y < m.rows; ++y)
-    for (int x = 0; x < m.cols; ++x) im.at(x, y) = m.at<uint8_t>(y, x);
-  return im;
-}
-
-cv::Mat to_mat(const sm::Image8& im) {
-  cv::Mat m(im.h, im.w, CV_8U);
-  for (int y = 0; y < im.h; ++y)
-    for (int x = 0; x < im.w; ++x) m.at<uint8_t>(y, x) = im.at(x, y);
-  return m;
-}
-
 sm::RectGrid grid_for(const cv::Mat& k, const cv::Mat& d, const cv::Mat& r, const cv::Mat& p, int w, int h) {
   const int mw = (sm::RectGrid::points_w(w) - 1) * sm::kGridStep + 1;
   const int mh = (sm::RectGrid::points_h(h) - 1) * sm::kGridStep + 1;
@@ -267,8 +253,9 @@ int run(int argc, char** argv) {
   long n_dy = 0;
   int n_pairs = 0;
   for (size_t i = 0; i < small_l.size(); ++i) {
-    const cv::Mat rl = to_mat(sm::rectify(to_image(small_l[i]), cal.left, true, hw));
-    const cv::Mat rr = to_mat(sm::rectify(to_image(small_r[i]), cal.right, true, hw));
+    using sm::tools::to_image8, sm::tools::to_mat;
+    const cv::Mat rl = to_mat(sm::rectify(to_image8(small_l[i]), cal.left, true, hw));
+    const cv::Mat rr = to_mat(sm::rectify(to_image8(small_r[i]), cal.right, true, hw));
     if (!save_dir.empty()) {
       cv::Mat both;
       cv::hconcat(rl, rr, both);

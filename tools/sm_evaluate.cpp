@@ -238,11 +238,7 @@ int run(int argc, char** argv) {
                  "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
                  "the scene's, --occ wins when given");
   app.add_flag("-q,--quiet", quiet, "no progress lines");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   sm::tools::quiet_opencv();
   cv::setNumThreads(1);
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))

@@ -31,9 +31,8 @@ Filter rk(int ry, int rx, int rank) {
 Filter med(int ry, int rx) {
   return [ry, rx](const DispImage& d, const HwConfig& hw) { return post_median(d, hw, ry, rx); };
 }
-}  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Measure bad-1.0 of the DP output before/after candidate streak filters"};
   std::string datasets;
   int synthetic = 0;
@@ -45,7 +44,7 @@ int main(int argc, char** argv) {
   app.add_option("--disp", disp, "disparity levels (DISP)")->check(CLI::Range(4, 254))->capture_default_str();
   app.add_option("--json", json_out, "write the table as JSON");
   app.add_option("--dump", dump_dir, "write <scene>_dp.png and <scene>_err.png (bad pixels) here");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto rc = parse_args(app, argc, argv)) return *rc;
   quiet_opencv();
 
   // The chain (section 7) is F1 vmed5 -> F2 med3x3 -> F3 med5x3 (rows x columns); the
@@ -79,29 +78,21 @@ int main(int argc, char** argv) {
     cv::Mat gt, mask;
   };
   std::vector<Input> inputs;
-  try {
-    if (!datasets.empty())
-      for (const std::string& dir : list_scenes(datasets)) {
-        if (!is_scene_dir(dir)) continue;
-        Scene s = load_scene(dir);
-        inputs.push_back({s.name, to_image8(s.left), to_image8(s.right), s.gt, s.nonocc});
-      }
-    for (int i = 0; i < synthetic; ++i) {
-      SceneParams p;
-      p.levels = disp;
-      p.seed = 100 + i;
-      p.noise = 2.0;
-      SyntheticScene s = render_scene(p);
-      inputs.push_back({fmt::format("synthetic{}", i), to_image8(s.left), to_image8(s.right), s.gt, s.nonocc});
+  if (!datasets.empty())
+    for (const std::string& dir : list_scenes(datasets)) {
+      if (!is_scene_dir(dir)) continue;
+      Scene s = load_scene(dir);
+      inputs.push_back({s.name, to_image8(s.left), to_image8(s.right), s.gt, s.nonocc});
     }
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "sm_filter_study: {}\n", e.what());
-    return 1;
+  for (int i = 0; i < synthetic; ++i) {
+    SceneParams p;
+    p.levels = disp;
+    p.seed = 100 + i;
+    p.noise = 2.0;
+    SyntheticScene s = render_scene(p);
+    inputs.push_back({fmt::format("synthetic{}", i), to_image8(s.left), to_image8(s.right), s.gt, s.nonocc});
   }
-  if (inputs.empty()) {
-    fmt::print(stderr, "sm_filter_study: no scenes (give --datasets DIR or --synthetic N)\n");
-    return 1;
-  }
+  if (inputs.empty()) throw ToolError("no scenes (give --datasets DIR or --synthetic N)");
 
   nlohmann::json js = nlohmann::json::array();
   std::vector<double> sum(cands.size(), 0.0);
@@ -126,13 +117,8 @@ int main(int argc, char** argv) {
           const bool bad = e < 0 || std::fabs(e - g) > 1.0f;
           err.at<cv::Vec3b>(y, x) = bad ? (e > g ? cv::Vec3b(0, 0, 255) : cv::Vec3b(255, 0, 0)) : cv::Vec3b(80, 80, 80);
         }
-      try {
-        write_image_atomic(dump_dir + "/" + in.name + "_dp.png", disp_to_grey(f, disp));
-        write_image_atomic(dump_dir + "/" + in.name + "_err.png", err);
-      } catch (const std::exception& e) {
-        fmt::print(stderr, "sm_filter_study: {}\n", e.what());
-        return 1;
-      }
+      write_image_atomic(dump_dir + "/" + in.name + "_dp.png", disp_to_grey(f, disp));
+      write_image_atomic(dump_dir + "/" + in.name + "_err.png", err);
     }
     for (size_t c = 0; c < cands.size(); ++c) {
       DispImage d = r.dp;
@@ -161,13 +147,10 @@ int main(int argc, char** argv) {
   };
   print_table("bad-1.0 % (known pixels, nonocc mask where present)", table);
   print_table("bad-1.0 % (all known pixels, occluded included)", table_all);
-  if (!json_out.empty()) {
-    try {
-      write_text_atomic(json_out, js.dump(1));
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "sm_filter_study: {}\n", e.what());
-      return 1;
-    }
-  }
+  if (!json_out.empty()) write_text_atomic(json_out, js.dump(1));
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return guarded_main("sm_filter_study", run, argc, argv); }

@@ -60,11 +60,7 @@ int run(int argc, char** argv) {
   app.add_option("--disp-file", disp_file, "one pair: disparity file (.pfm or 16-bit .png, x16)");
   app.add_option("--json", json_path, "dataset: write the results as JSON");
   app.add_flag("-q,--quiet", quiet, "no progress lines");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   sm::tools::quiet_opencv();
   try {
     p.simp = sm::fref::parse_simplify(simplify);

@@ -41,11 +41,7 @@ int run(int argc, char** argv) {
   app.add_option("--regs", regs_path, "register file (stereo_model --regs), compile-time keys included")->required();
   app.add_option("-o,--out", out, "output JSON")->required();
   app.add_option("pairs", images, "LEFT RIGHT image pairs, one per frame")->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   if (images.size() % 2 != 0) throw ToolError("images come in LEFT RIGHT pairs");
 
   sm::tools::quiet_opencv();

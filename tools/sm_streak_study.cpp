@@ -378,9 +378,7 @@ struct Score {
   double bad = 0, s1 = 0, s5 = 0, s8 = 0;
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Streak study (issue 21): bad-1.0 and the streak measure of the post chain and of candidates"};
   std::string dataset, json_out, dump_dir;
   std::vector<std::string> groups, detail;
@@ -392,7 +390,7 @@ int main(int argc, char** argv) {
                  "write <scene>__<candidate>.png colour maps of the two base and --detail candidates");
   int occ = -1;
   app.add_option("--occ", occ, "DP occlusion penalty register (default: Regs::defaults)")->check(CLI::Range(0, 255));
-  CLI11_PARSE(app, argc, argv);
+  if (const auto rc = parse_args(app, argc, argv)) return *rc;
   quiet_opencv();
 
   std::vector<Candidate> cands;
@@ -402,64 +400,53 @@ int main(int argc, char** argv) {
   std::vector<size_t> det_user;  // --detail candidates, checked before the long run
   for (const auto& n : detail) {
     auto it = std::find_if(cands.begin(), cands.end(), [&](const Candidate& c) { return c.name == n; });
-    if (it == cands.end()) {
-      fmt::print(stderr, "sm_streak_study: --detail: no candidate '{}'\n", n);
-      return 1;
-    }
+    if (it == cands.end()) throw ToolError(fmt::format("--detail: no candidate '{}'", n));
     det_user.push_back(static_cast<size_t>(it - cands.begin()));
   }
 
   const std::vector<std::string> classic = {"cones", "teddy", "tsukuba", "venus"};
   std::vector<std::string> names;
   std::vector<std::vector<Score>> score(cands.size());  // [candidate][scene]
-  try {
-    for (const std::string& dir : list_scenes(dataset)) {
-      if (!is_scene_dir(dir)) continue;
-      const Scene s = load_scene(dir);
-      HwConfig hw;  // paper defaults: CENSUS 15, SW 5, 128 levels, as sm_evaluate
-      hw.max_width = s.left.cols;
-      hw.max_height = s.left.rows;
-      Regs regs = Regs::defaults(hw);
-      if (occ >= 0) regs.occ = static_cast<uint8_t>(occ);
-      regs.filter_enable = 7;  // the chain F1..F3 without F0: the study's "chain" candidate is checked against it
-      const PipelineResult r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, true);
-      // The study's own DP and chain reproduce the model's (same functions, same bits).
-      if (dp_vert(r.agg, r.rl, regs.occ, hw, DpSpec{}) != r.dp)
-        throw std::logic_error(s.name + ": DP differs from the model");
-      const Ctx ctx{hw, r.rl};
-      // The model's post_band is the study's rband with L 1 and no intensity test.
-      for (int k : {8, 12})
-        if (post_band(r.dp, hw, k) != rband(k, 1, -1)(r.dp, ctx))
-          throw std::logic_error(s.name + ": post_band differs from the study's band filter");
-      std::map<std::string, DispImage> dps{{"dp", r.dp}};
-      for (size_t c = 0; c < cands.size(); ++c) {
-        const std::string key = cands[c].dp.key();
-        if (!dps.count(key)) dps.emplace(key, dp_vert(r.agg, r.rl, regs.occ, hw, cands[c].dp));
-        DispImage d = dps.at(key);
-        for (const Filter& f : cands[c].post) d = f(d, ctx);
-        if (cands[c].name == "chain F1+F2+F3" && d != r.post)
-          throw std::logic_error(s.name + ": chain differs from the model");
-        const cv::Mat e = disp_to_float(d);
-        if (!dump_dir.empty() && (c < 2 || std::find(det_user.begin(), det_user.end(), c) != det_user.end())) {
-          std::string file = cands[c].name;
-          for (char& ch : file)
-            if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-          write_image_atomic(dump_dir + "/" + s.name + "__" + file + ".png", disp_to_colour(e, hw.disp));
-        }
-        score[c].push_back({bad1(e, s.gt, s.nonocc).bad_pct(), streaks(e, s.gt, s.nonocc, 1).streak_pct(),
-                            streaks(e, s.gt, s.nonocc, 5).streak_pct(), streaks(e, s.gt, s.nonocc, 8).streak_pct()});
+  for (const std::string& dir : list_scenes(dataset)) {
+    if (!is_scene_dir(dir)) continue;
+    const Scene s = load_scene(dir);
+    HwConfig hw;  // paper defaults: CENSUS 15, SW 5, 128 levels, as sm_evaluate
+    hw.max_width = s.left.cols;
+    hw.max_height = s.left.rows;
+    Regs regs = Regs::defaults(hw);
+    if (occ >= 0) regs.occ = static_cast<uint8_t>(occ);
+    regs.filter_enable = 7;  // the chain F1..F3 without F0: the study's "chain" candidate is checked against it
+    const PipelineResult r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, true);
+    // The study's own DP and chain reproduce the model's (same functions, same bits).
+    if (dp_vert(r.agg, r.rl, regs.occ, hw, DpSpec{}) != r.dp)
+      throw std::logic_error(s.name + ": DP differs from the model");
+    const Ctx ctx{hw, r.rl};
+    // The model's post_band is the study's rband with L 1 and no intensity test.
+    for (int k : {8, 12})
+      if (post_band(r.dp, hw, k) != rband(k, 1, -1)(r.dp, ctx))
+        throw std::logic_error(s.name + ": post_band differs from the study's band filter");
+    std::map<std::string, DispImage> dps{{"dp", r.dp}};
+    for (size_t c = 0; c < cands.size(); ++c) {
+      const std::string key = cands[c].dp.key();
+      if (!dps.count(key)) dps.emplace(key, dp_vert(r.agg, r.rl, regs.occ, hw, cands[c].dp));
+      DispImage d = dps.at(key);
+      for (const Filter& f : cands[c].post) d = f(d, ctx);
+      if (cands[c].name == "chain F1+F2+F3" && d != r.post)
+        throw std::logic_error(s.name + ": chain differs from the model");
+      const cv::Mat e = disp_to_float(d);
+      if (!dump_dir.empty() && (c < 2 || std::find(det_user.begin(), det_user.end(), c) != det_user.end())) {
+        std::string file = cands[c].name;
+        for (char& ch : file)
+          if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+        write_image_atomic(dump_dir + "/" + s.name + "__" + file + ".png", disp_to_colour(e, hw.disp));
       }
-      names.push_back(s.name);
-      fmt::print(stderr, "{} done\n", s.name);
+      score[c].push_back({bad1(e, s.gt, s.nonocc).bad_pct(), streaks(e, s.gt, s.nonocc, 1).streak_pct(),
+                          streaks(e, s.gt, s.nonocc, 5).streak_pct(), streaks(e, s.gt, s.nonocc, 8).streak_pct()});
     }
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "sm_streak_study: {}\n", e.what());
-    return 1;
+    names.push_back(s.name);
+    fmt::print(stderr, "{} done\n", s.name);
   }
-  if (names.empty()) {
-    fmt::print(stderr, "sm_streak_study: no scenes in {}\n", dataset);
-    return 1;
-  }
+  if (names.empty()) throw ToolError(fmt::format("no scenes in {}", dataset));
 
   auto mean = [&](size_t c, double Score::*m, bool classic_only) {
     double sum = 0;
@@ -556,13 +543,10 @@ int main(int argc, char** argv) {
       fmt::print("\n");
     }
   }
-  if (!json_out.empty()) {
-    try {
-      write_text_atomic(json_out, js.dump(1));
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "sm_streak_study: {}\n", e.what());
-      return 1;
-    }
-  }
+  if (!json_out.empty()) write_text_atomic(json_out, js.dump(1));
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return guarded_main("sm_streak_study", run, argc, argv); }

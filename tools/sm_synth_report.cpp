@@ -452,6 +452,14 @@ json params_json(const std::vector<std::string>& ps) {
   return j;
 }
 
+// The fields every report starts with, a single run's and a sum of blocks' alike.
+json report_head(const std::string& yosys, const std::string& top, const std::string& family, const std::string& config,
+                 const std::vector<std::string>& params, const char* mode, double seconds) {
+  return {
+      {"tool", "sm_synth_report"},     {"yosys", yosys}, {"top", top},        {"family", family}, {"config", config},
+      {"params", params_json(params)}, {"mode", mode},   {"seconds", seconds}};
+}
+
 std::string num(double v) {
   return v == static_cast<int64_t>(v) ? fmt::format("{}", static_cast<int64_t>(v)) : fmt::format("{:.1f}", v);
 }
@@ -540,15 +548,8 @@ int main(int argc, char** argv) {
   if (*rep) {
     json stat = load_stat(stat_path);
     StatResult s = parse_stat(stat, top, instances);
-    json r;
-    r["tool"] = "sm_synth_report";
-    r["yosys"] = stat.value("creator", "");
-    r["top"] = base_name(norm(top));
-    r["family"] = family;
-    r["config"] = config;
-    r["params"] = params_json(params);
-    r["mode"] = "single run";
-    r["seconds"] = seconds;
+    json r =
+        report_head(stat.value("creator", ""), base_name(norm(top)), family, config, params, "single run", seconds);
     r["command"] = command;
     r["total"] = s.total.to_json();
     r["blocks"] = json::object();
@@ -569,7 +570,6 @@ int main(int argc, char** argv) {
     save(out, r);
     if (!quiet) print_report(r, false);
   } else if (*comb) {
-    json r;
     Res total;
     std::map<std::string, Res> blocks;
     std::map<std::string, int64_t> inst;
@@ -611,14 +611,7 @@ int main(int argc, char** argv) {
       parts.push_back(
           {{"top", p.value("top", "")}, {"seconds", p.value("seconds", 0.0)}, {"command", p.value("command", "")}});
     }
-    r["tool"] = "sm_synth_report";
-    r["yosys"] = yosys;
-    r["top"] = top;
-    r["family"] = family;
-    r["config"] = config;
-    r["params"] = params_json(params);
-    r["mode"] = "sum of blocks";
-    r["seconds"] = secs;
+    json r = report_head(yosys, top, family, config, params, "sum of blocks", secs);
     r["parts"] = parts;
     r["missing_blocks"] = missing;  // non-empty: the total is a lower bound
     r["total"] = total.to_json();

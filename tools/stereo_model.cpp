@@ -18,6 +18,7 @@
 
 #include "calib_file.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
@@ -70,11 +71,7 @@ int run(int argc, char** argv) {
                     ->check(CLI::Range(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
 
   if (out.empty() && colour.empty() && disp_file.empty())
     throw ToolError("no output: give -o, --colour and/or --disp-file");
@@ -169,14 +166,11 @@ int run(int argc, char** argv) {
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
-    for (const auto& o : res.objects.objects)
-      j["objects"].push_back({{"x0", o.x0},
-                              {"y0", o.y0},
-                              {"x1", o.x1},
-                              {"y1", o.y1},
-                              {"count", o.count},
-                              {"mean_disp", o.mean_disp},
-                              {"max_disp", o.max_disp}});
+    for (const auto& o : res.objects.objects) {
+      json b = sm::tools::object_box_json(o);
+      b.update(json{{"count", o.count}, {"max_disp", o.max_disp}});
+      j["objects"].push_back(b);
+    }
     outs.write(objects_json, [&](const std::string& t) { sm::tools::write_text_atomic(t, j.dump(2) + "\n"); });
   }
   outs.commit();
