@@ -36,24 +36,27 @@ module sm_sw_terms #(
         wire [L-1:0] m2 = {L{cd == 2'd2}};
         wire [L-1:0] m4 = {L{cd == 2'd3}};
         wire [LVW-1:0] cp = win[c*COLW + k*LVW +: LVW];  // its CW cost planes
+        // Bit g takes plane g (weight 1), g - 1 (weight 2) and g - 2 (weight 4) where
+        // those planes exist; one branch per combination, so no constant-zero wires.
         for (g = 0; g < TP; g = g + 1) begin : g_bit
-          wire [L-1:0] b1, b2, b4;
-          if (g < CW) begin : g_s0
-            assign b1 = cp[g*L +: L] & m1;
-          end else begin : g_n0
-            assign b1 = {L{1'b0}};
+          localparam H1 = g < CW;                // plane g exists
+          localparam H2 = g >= 1 && g <= CW;     // plane g - 1 exists
+          localparam H4 = g >= 2;                // plane g - 2 exists (g <= CW + 1 always)
+          localparam LSB = (g*NQ + Q) * L;       // this bit of this position in terms
+          if (H1 && H2 && H4) begin : g_124
+            assign terms[LSB +: L] = (cp[g*L +: L] & m1) | (cp[(g-1)*L +: L] & m2) |
+                                     (cp[(g-2)*L +: L] & m4);
+          end else if (H1 && H2) begin : g_12
+            assign terms[LSB +: L] = (cp[g*L +: L] & m1) | (cp[(g-1)*L +: L] & m2);
+          end else if (H1) begin : g_1
+            assign terms[LSB +: L] = cp[g*L +: L] & m1;
+          end else if (H2 && H4) begin : g_24
+            assign terms[LSB +: L] = (cp[(g-1)*L +: L] & m2) | (cp[(g-2)*L +: L] & m4);
+          end else if (H2) begin : g_2
+            assign terms[LSB +: L] = cp[(g-1)*L +: L] & m2;
+          end else begin : g_4
+            assign terms[LSB +: L] = cp[(g-2)*L +: L] & m4;
           end
-          if (g >= 1 && g <= CW) begin : g_s1
-            assign b2 = cp[(g-1)*L +: L] & m2;
-          end else begin : g_n1
-            assign b2 = {L{1'b0}};
-          end
-          if (g >= 2) begin : g_s2
-            assign b4 = cp[(g-2)*L +: L] & m4;
-          end else begin : g_n2
-            assign b4 = {L{1'b0}};
-          end
-          assign terms[(g*NQ + Q)*L +: L] = b1 | b2 | b4;
         end
       end
     end
