@@ -39,7 +39,7 @@ constexpr int kFold = SM_P_DISP / SM_P_PU;  // clocks per beat
 #else
 constexpr int kFold = 1;
 #endif
-constexpr int kPipe = 6;  // beats from the window's entering beat to the output, inclusive
+constexpr int kPipe = sm::defs::kAggPipeBeats;  // beats from the window's entering beat to the output, inclusive
 
 int clog2(int v) {
   int n = 0;
