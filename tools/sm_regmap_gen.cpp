@@ -1,5 +1,7 @@
 // Register map generator: reads rtl/regmap.json (the single source of truth) and writes
-// sm_regmap.vh (Verilog localparams, included inside sm_axil_regs), sm_regmap.hpp (C++
+// sm_regmap.vh (Verilog localparams and the register tables sm_axil_regs is built from:
+// every register's address, the rw fields with their packed host / shadow offsets, the
+// constant ro fields; included inside sm_axil_regs), sm_regmap.hpp (C++
 // constants and a register table for the test benches and the harness) and
 // registers.md (the documentation committed as docs/registers.md); with --defs also the
 // shared definitions of rtl/defs.json: sm_defs.vh, sm_defs_check.vh and sm_defs.hpp.
@@ -38,6 +40,7 @@ struct Field {
   Val reset, min, max;
   bool is_signed = false;
   bool shadow = false;
+  bool is_const = false;  // ro field that never changes (read back from the generated table)
   std::string desc;
 };
 
@@ -115,6 +118,9 @@ Field parse_field(const json& j, const std::string& where, const std::vector<std
   if (f.min.present != f.max.present) fail(w + ": min and max go together");
   f.is_signed = j.value("signed", false);
   f.shadow = j.value("shadow", false);
+  f.is_const = j.value("const", false);
+  if (f.is_const && f.access != "ro") fail(w + ": only ro fields can be const");
+  if (f.shadow && f.access != "rw") fail(w + ": only rw fields can be shadowed");
   f.desc = j.value("desc", "");
   return f;
 }
@@ -150,6 +156,20 @@ Map parse(const json& j) {
     for (const auto& f : reg.fields)
       if (f.min.present && reg.fields.size() != 1)
         fail(reg.name + ": a clamped (min/max) field must be the register's only field");
+    for (const auto& f : reg.fields) {
+      if (!f.min.present) continue;
+      // The register file clamps the whole word into a field at bit 0 that holds max.
+      if (f.access != "rw" || f.lsb != 0) fail(reg.name + ": a clamped field must be rw at bit 0");
+      if (f.is_signed && (!f.min.param.empty() || !f.max.param.empty()))
+        fail(reg.name + ": a signed clamped field needs numeric min and max");
+      if (f.is_signed && f.width == 32) fail(reg.name + ": a signed clamped field must be narrower than 32 bits");
+      if (f.is_signed && (f.min.num < -(int64_t{1} << (f.width - 1)) || f.max.num >= (int64_t{1} << (f.width - 1))))
+        fail(reg.name + ": min..max does not fit the signed field");
+      if (!f.is_signed &&
+          ((f.min.param.empty() && f.min.num < 0) ||
+           (f.max.param.empty() && (f.max.num >= (int64_t{1} << f.width) || f.max.num >= (int64_t{1} << 31)))))
+        fail(reg.name + ": min..max does not fit the unsigned field");
+    }
     m.regs.push_back(reg);
   }
   const auto& o = j.at("object_list");
@@ -209,6 +229,116 @@ std::string bits(const Field& f) {
   return fmt::format("{}:{}", f.lsb + f.width - 1, f.lsb);
 }
 
+// Concatenation (first element in the low bits) of the generated table's elements.
+std::string vcat(const std::vector<std::string>& els) {
+  std::string r = "{";
+  for (size_t i = els.size(); i-- > 0;) r += els[i] + (i ? ", " : "");
+  return r + "}";
+}
+
+// The tables that make sm_axil_regs register-independent: every register's address, the
+// rw fields (kept in one packed host vector and, when shadowed, one packed shadow vector)
+// and the constant ro fields. Element i of a table is bits i*W +: W.
+void gen_vh_tables(std::ostringstream& o, const Map& m) {
+  struct RwRef {
+    const Reg* r;
+    const Field* f;
+  };
+  std::vector<RwRef> rw;
+  std::vector<RwRef> cst;
+  for (const auto& r : m.regs)
+    for (const auto& f : r.fields) {
+      if (f.access == "rw") rw.push_back({&r, &f});
+      if (f.is_const) cst.push_back({&r, &f});
+    }
+  if (rw.empty() || cst.empty()) fail("the register map needs rw and const fields");
+  std::vector<std::string> raddr, rwr;
+  for (const auto& r : m.regs) {
+    raddr.push_back(fmt::format("SM_{}_ADDR", r.name));
+    bool w = false;
+    for (const auto& f : r.fields) w = w || f.access != "ro";
+    rwr.push_back(w ? "1'b1" : "1'b0");
+  }
+  o << "// ---- tables (element i at bits i*W +: W)\n";
+  o << fmt::format("localparam integer SM_REG_N = {};\n", m.regs.size());
+  o << fmt::format("localparam [SM_REG_N*{}-1:0] SM_REG_ADDR = {};\n", m.addr_bits, vcat(raddr));
+  o << fmt::format("localparam [SM_REG_N-1:0] SM_REG_WRITABLE = {};  // has rw / w1c / wp fields\n", vcat(rwr));
+  // Storage width: a clamped unsigned field holds only 0..max, so it keeps only the bits
+  // max needs (WIDTH and HEIGHT at the configured frame size).
+  o << "// rw fields: SW bits stored at OFF of the host vector (SOFF of the shadow vector)\n";
+  std::string prev_off = "32'd0", prev_soff = "32'd0";
+  for (const auto& x : rw) {
+    const auto p = fmt::format("SM_{}_{}", x.r->name, x.f->name);
+    std::string sw = fmt::format("32'd{}", x.f->width);
+    if (x.f->min.present && !x.f->is_signed) {
+      if (x.f->max.param.empty()) {
+        int b = 1;
+        while ((int64_t{1} << b) <= x.f->max.num) ++b;
+        sw = fmt::format("32'd{}", b < x.f->width ? b : x.f->width);
+      } else {
+        sw = fmt::format("(($clog2({0} + 1) < {1}) ? (($clog2({0} + 1) < 1) ? 32'd1 : $clog2({0} + 1)) : 32'd{1})",
+                         x.f->max.param, x.f->width);
+      }
+    }
+    o << fmt::format("localparam [31:0] {}_SW = {};\n", p, sw);
+    o << fmt::format("localparam [31:0] {}_OFF = {};\n", p, prev_off);
+    prev_off = fmt::format("{0}_OFF + {0}_SW", p);
+    if (x.f->shadow) {
+      o << fmt::format("localparam [31:0] {}_SOFF = {};\n", p, prev_soff);
+      prev_soff = fmt::format("{0}_SOFF + {0}_SW", p);
+    }
+  }
+  o << fmt::format("localparam integer SM_RW_BITS = {};\n", prev_off);
+  o << fmt::format("localparam integer SM_SHADOW_BITS = {};\n", prev_soff);
+  std::vector<std::string> a, lsb, w, sw, off, soff, rst, mn, mx, cl, sg, sh, cidx;
+  int nclamp = 0;
+  for (const auto& x : rw) {
+    const auto p = fmt::format("SM_{}_{}", x.r->name, x.f->name);
+    a.push_back(fmt::format("SM_{}_ADDR", x.r->name));
+    lsb.push_back(fmt::format("32'd{}", x.f->lsb));
+    w.push_back(fmt::format("32'd{}", x.f->width));
+    sw.push_back(fmt::format("{}_SW", p));
+    off.push_back(fmt::format("{}_OFF", p));
+    soff.push_back(x.f->shadow ? fmt::format("{}_SOFF", p) : "32'd0");
+    rst.push_back(fmt::format("{}_RESET", p));
+    mn.push_back(x.f->min.present ? fmt::format("{}_MIN[31:0]", p) : "32'd0");
+    mx.push_back(x.f->min.present ? fmt::format("{}_MAX[31:0]", p) : "32'd0");
+    cl.push_back(x.f->min.present ? "1'b1" : "1'b0");
+    cidx.push_back(fmt::format("32'd{}", x.f->min.present ? nclamp++ : 0));
+    sg.push_back(x.f->is_signed ? "1'b1" : "1'b0");
+    sh.push_back(x.f->shadow ? "1'b1" : "1'b0");
+  }
+  if (nclamp == 0) fail("the register map needs a clamped field");
+  o << fmt::format("localparam integer SM_RW_N = {};\n", rw.size());
+  o << fmt::format("localparam integer SM_CLAMP_N = {};  // CIDX: index among the clamped fields\n", nclamp);
+  o << fmt::format("localparam [SM_RW_N*{}-1:0] SM_RW_ADDR = {};\n", m.addr_bits, vcat(a));
+  for (const auto& [n, v] : {std::pair<const char*, const std::vector<std::string>*>{"LSB", &lsb},
+                             {"W", &w},
+                             {"SW", &sw},
+                             {"OFF", &off},
+                             {"SOFF", &soff},
+                             {"RESET", &rst},
+                             {"MIN", &mn},
+                             {"MAX", &mx},
+                             {"CIDX", &cidx}})
+    o << fmt::format("localparam [SM_RW_N*32-1:0] SM_RW_{} = {};\n", n, vcat(*v));
+  o << fmt::format("localparam [SM_RW_N-1:0] SM_RW_CLAMP = {};\n", vcat(cl));
+  o << fmt::format("localparam [SM_RW_N-1:0] SM_RW_SIGNED = {};\n", vcat(sg));
+  o << fmt::format("localparam [SM_RW_N-1:0] SM_RW_SHADOW = {};\n", vcat(sh));
+  std::vector<std::string> ca, cv;
+  o << "// const ro fields: the register word each contributes (a parameter is cut to its field)\n";
+  for (const auto& x : cst) {
+    const auto p = fmt::format("SM_{}_{}", x.r->name, x.f->name);
+    ca.push_back(fmt::format("SM_{}_ADDR", x.r->name));
+    cv.push_back(p + "_WORD");
+    const uint32_t mask = x.f->width == 32 ? 0xffffffffu : (1u << x.f->width) - 1u;
+    o << fmt::format("localparam [31:0] {0}_WORD = ({0}_RESET & 32'h{1:X}) << {2};\n", p, mask, x.f->lsb);
+  }
+  o << fmt::format("localparam integer SM_CONST_N = {};\n", cst.size());
+  o << fmt::format("localparam [SM_CONST_N*{}-1:0] SM_CONST_ADDR = {};\n", m.addr_bits, vcat(ca));
+  o << fmt::format("localparam [SM_CONST_N*32-1:0] SM_CONST_VALUE = {};\n", vcat(cv));
+}
+
 std::string gen_vh(const Map& m) {
   std::ostringstream o;
   o << "// Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit.\n"
@@ -231,6 +361,7 @@ std::string gen_vh(const Map& m) {
       }
     }
   }
+  gen_vh_tables(o, m);
   o << fmt::format("localparam [{}:0] SM_OBJ_BASE = {}'h{:X};\n", m.addr_bits - 1, m.addr_bits, m.obj_base);
   o << fmt::format("localparam SM_OBJ_SIZE = {};\n", m.obj_size);
   o << fmt::format("localparam SM_OBJ_FIRST_IDX = {};  // word index of object 0\n", m.obj_offset / 4);
