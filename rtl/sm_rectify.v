@@ -147,7 +147,7 @@ module sm_rectify #(
       /* verilator lint_off UNUSEDSIGNAL */  // parity bit 0 is the bank itself
       wire           unused_par = cx_b[0] ^ cy_b[0];
       /* verilator lint_on UNUSEDSIGNAL */
-      sm_rect_ram #(
+      sm_sdp_ram #(
           .DATA_W(32),
           .DEPTH (1 << GBW)
       ) u_ram (
@@ -328,7 +328,7 @@ module sm_rectify #(
   generate
     for (b = 0; b < 4; b = b + 1) begin : g_lb
       localparam [1:0] BI = b;
-      sm_rect_ram #(
+      sm_sdp_ram #(
           .DATA_W(8),
           .DEPTH (BDEPTH)
       ) u_ram (
