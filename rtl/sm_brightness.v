@@ -17,7 +17,7 @@ module sm_brightness (
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [7:0] s_left,
     input  wire [7:0] s_right,
-    output reg  [`SM_SIDE_W-1:0] m_side,
+    output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [7:0] m_left,
     output reg  [7:0] m_right
 );
@@ -35,7 +35,6 @@ module sm_brightness (
 
   // Stage 1: products; the offset travels with its beat so a new frame's sof entering
   // behind it cannot change it.
-  reg [`SM_SIDE_W-1:0] side_q;
   // Bits 6:0 of the product never reach the result, only bit 7 (the rounding bit).
   reg [10:0] prod_l_q, prod_r_q;  // product >> 7
   /* verilator lint_off UNUSEDSIGNAL */  // low product bits below the rounding bit
@@ -51,6 +50,8 @@ module sm_brightness (
   wire signed [11:0] sum_l = $signed({2'b00, sc_l}) + {{3{off_l_q2[8]}}, off_l_q2};
   wire signed [11:0] sum_r = $signed({2'b00, sc_r}) + {{3{off_r_q2[8]}}, off_r_q2};
 
+  sm_side_delay #(.DEPTH(2)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(s_side), .q(m_side));
+
   function [7:0] clamp8(input signed [11:0] v);
     clamp8 = v[11] ? 8'd0 : (|v[10:8]) ? 8'd255 : v[7:0];
   endfunction
@@ -61,15 +62,11 @@ module sm_brightness (
       gain_r_q <= GAIN_ONE;
       off_l_q  <= 9'd0;
       off_r_q  <= 9'd0;
-      side_q   <= {`SM_SIDE_W{1'b0}};
-      m_side   <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       gain_l_q <= gain_l_f;
       gain_r_q <= gain_r_f;
       off_l_q  <= off_l_f;
       off_r_q  <= off_r_f;
-      side_q   <= s_side;
-      m_side   <= side_q;
     end
   end
 

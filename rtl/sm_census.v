@@ -22,7 +22,7 @@ module sm_census #(
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [7:0]    s_left,   // rectified left pixel
     input  wire [7:0]    s_right,  // rectified right pixel
-    output reg  [`SM_SIDE_W-1:0] m_side,
+    output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [CB-1:0] m_cl,     // left census vector, bit k = neighbour k < centre
     output reg  [CB-1:0] m_cr,     // right census vector
     output reg  [7:0]    m_left    // left centre pixel, for the aggregation weights
@@ -58,7 +58,6 @@ module sm_census #(
       .clk(clk), .ce(ce), .col(s_x), .din({s_right, s_left}), .dout(lb_dout)
   );
   reg [15:0]  live_q;  // the entering pixel, aligned with the line-buffer read
-  reg [`SM_SIDE_W-1:0] side_q, side_q2;
   reg [C-1:0] row_ok_q, row_ok_q2;
   reg [C-1:0] col_ok_q, col_ok_q2;
 
@@ -137,17 +136,6 @@ module sm_census #(
     end
   end
 
-  // sideband: control state, reset so no phantom real beat leaves after reset
-  always @(posedge clk) begin
-    if (!rst_n) begin
-      side_q  <= {`SM_SIDE_W{1'b0}};
-      side_q2 <= {`SM_SIDE_W{1'b0}};
-      m_side  <= {`SM_SIDE_W{1'b0}};
-    end else if (ce) begin
-      side_q  <= c_side;
-      side_q2 <= side_q;
-      m_side  <= side_q2;
-    end
-  end
+  sm_side_delay #(.DEPTH(3)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(m_side));
 endmodule
 `default_nettype wire

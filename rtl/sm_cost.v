@@ -39,7 +39,7 @@ module sm_cost #(
     input  wire [CB-1:0]      s_cl,    // left census vector
     input  wire [CB-1:0]      s_cr,    // right census vector
     input  wire [7:0]         s_left,  // left centre pixel, passed through
-    output reg  [`SM_SIDE_W-1:0] m_side,
+    output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [HW*DISP-1:0] m_cost,  // bit-plane order: bit f of level d at [f*DISP + d]
     output reg  [7:0]         m_left
 );
@@ -68,19 +68,13 @@ module sm_cost #(
   wire unused_ok_top = ok_q[DISP-1];  // shifted out
 
   // Control and pass-through data along the three ce stages.
-  reg [`SM_SIDE_W-1:0] side_q2, side_q3;
+  sm_side_delay #(.DEPTH(3)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(s_side), .q(m_side));
   reg [7:0] left_q2, left_q3;
   always @(posedge clk) begin
     if (!rst_n) begin
       ok_q    <= {DISP{1'b0}};
-      side_q2 <= {`SM_SIDE_W{1'b0}};
-      side_q3 <= {`SM_SIDE_W{1'b0}};
-      m_side  <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       ok_q    <= ok;
-      side_q2 <= s_side;
-      side_q3 <= side_q2;
-      m_side  <= side_q3;
     end
   end
   always @(posedge clk) begin

@@ -499,9 +499,9 @@ module sm_dp #(
     end
   endgenerate
 
-  sm_dp_ram #(
+  sm_sdp_ram #(
       .DATA_W(DEC_W),
-      .ADDR_W(DEC_AW)
+      .DEPTH (1 << DEC_AW)
   ) u_dec (
       .clk  (clk),
       .we   (dec_we),

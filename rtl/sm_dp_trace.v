@@ -190,9 +190,9 @@ module sm_dp_trace #(
   reg  [AW-1:0] raddr;
   wire          rbank = ~wbank_q;
 
-  sm_dp_ram #(
+  sm_sdp_ram #(
       .DATA_W(SW),
-      .ADDR_W(AW + 1)
+      .DEPTH (1 << (AW + 1))
   ) u_stack (
       .clk  (clk),
       .we   (ce && match),

@@ -27,7 +27,7 @@ module sm_post_band #(
     input  wire          enable,   // 0: pass the centre through (same latency)
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [15:0]   s_disp,   // bit 15 valid, low bits disparity
-    output reg  [`SM_SIDE_W-1:0] m_side,
+    output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [15:0]   m_disp
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
@@ -75,7 +75,6 @@ module sm_post_band #(
   reg [15:0]    live_q;   // the entering beat: row y+K
   reg           up_ok_q;  // row y-1 is in the centre's frame
   reg [K-1:0]   dn_ok_q;  // bit j-1: row y+j is in the centre's frame
-  reg [`SM_SIDE_W-1:0] side_q;
 
   // rows of the centre's column after the read: row y+j at j = 0..K
   wire [15:0] row_w [0:K];
@@ -133,6 +132,10 @@ module sm_post_band #(
     end
   endgenerate
 
+  wire [`SM_SIDE_W-1:0] side_q;
+  sm_side_delay #(.DEPTH(1)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(side_q));
+  sm_side_delay #(.DEPTH(1)) u_side_out (.clk(clk), .rst_n(rst_n), .ce(ce), .d(side_q), .q(m_side));
+
   // The enable is taken with the frame's first centre at the output stage, so every
   // pixel of a frame sees the same setting even when the register changes mid-frame.
   reg  en_q;
@@ -150,17 +153,10 @@ module sm_post_band #(
     end
   end
 
-  // sideband and enable: control state, reset so no phantom real beat leaves after reset
+  // the enable is control state like the sideband: reset with it
   always @(posedge clk) begin
-    if (!rst_n) begin
-      side_q <= {`SM_SIDE_W{1'b0}};
-      m_side <= {`SM_SIDE_W{1'b0}};
-      en_q   <= 1'b0;
-    end else if (ce) begin
-      side_q <= c_side;
-      m_side <= side_q;
-      en_q   <= en;
-    end
+    if (!rst_n) en_q <= 1'b0;
+    else if (ce) en_q <= en;
   end
 endmodule
 `default_nettype wire

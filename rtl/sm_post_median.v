@@ -21,7 +21,7 @@ module sm_post_median #(
     input  wire          enable,   // 0: pass the centre through (same latency)
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [15:0]   s_disp,   // bit 15 valid, low bits disparity
-    output reg  [`SM_SIDE_W-1:0] m_side,
+    output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [15:0]   m_disp
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
@@ -75,7 +75,6 @@ module sm_post_median #(
   endgenerate
   assign col_in[16*(NR-1) +: 16] = live_q;
 
-  reg [`SM_SIDE_W-1:0] side_q, side_q2;
   reg [NR-1:0] row_ok_q;
   reg [NC-1:0] col_ok_q;
 
@@ -189,6 +188,10 @@ module sm_post_median #(
   end
   wire [15:0] med_pix = med[DW] ? {1'b1, {(15-DW){1'b0}}, med[DW-1:0]} : 16'd0;
 
+  wire [`SM_SIDE_W-1:0] side_q2;
+  sm_side_delay #(.DEPTH(2)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(side_q2));
+  sm_side_delay #(.DEPTH(1)) u_side_out (.clk(clk), .rst_n(rst_n), .ce(ce), .d(side_q2), .q(m_side));
+
   // The enable is taken with the frame's first centre at this stage, so every pixel of
   // a frame sees the same setting even when the register changes mid-frame.
   reg  en_q;
@@ -210,19 +213,10 @@ module sm_post_median #(
     end
   end
 
-  // sideband and enable: control state, reset so no phantom real beat leaves after reset
+  // the enable is control state like the sideband: reset with it
   always @(posedge clk) begin
-    if (!rst_n) begin
-      side_q  <= {`SM_SIDE_W{1'b0}};
-      side_q2 <= {`SM_SIDE_W{1'b0}};
-      m_side  <= {`SM_SIDE_W{1'b0}};
-      en_q    <= 1'b0;
-    end else if (ce) begin
-      side_q  <= c_side;
-      side_q2 <= side_q;
-      m_side  <= side_q2;
-      en_q    <= en;
-    end
+    if (!rst_n) en_q <= 1'b0;
+    else if (ce) en_q <= en;
   end
 endmodule
 `default_nettype wire

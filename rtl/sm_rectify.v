@@ -36,7 +36,7 @@ module sm_rectify #(
     input  wire [31:0]    grid_wdata,  // {sy, sx}, signed Q.5
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [7:0]     s_pix,
-    output reg  [`SM_SIDE_W-1:0] m_side,
+    output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [7:0]     m_pix
 );
   localparam R      = RECT_RADIUS;
@@ -147,7 +147,7 @@ module sm_rectify #(
       /* verilator lint_off UNUSEDSIGNAL */  // parity bit 0 is the bank itself
       wire           unused_par = cx_b[0] ^ cy_b[0];
       /* verilator lint_on UNUSEDSIGNAL */
-      sm_rect_ram #(
+      sm_sdp_ram #(
           .DATA_W(32),
           .DEPTH (1 << GBW)
       ) u_ram (
@@ -163,7 +163,6 @@ module sm_rectify #(
   endgenerate
 
   // ---------------------------------------------------------------- stage 1: V0/V1
-  reg [`SM_SIDE_W-1:0] side_q;
   reg [3:0]    fx_q, fy_q;
   reg          gxp_q, gyp_q, en_q1;
   reg [XW-1:0] cx_q;
@@ -188,7 +187,6 @@ module sm_rectify #(
   wire [VW-1:0] v1y = sext16(k10[31:16]) * wy1 + sext16(k11[31:16]) * wy;
 
   // ---------------------------------------------------------------- stage 2: S
-  reg [`SM_SIDE_W-1:0] side_q2;
   reg [3:0]    fx_q2;
   reg          en_q2;
   reg [XW-1:0] cx_q2;
@@ -216,7 +214,6 @@ module sm_rectify #(
   wire [SW-1:0] sy_s = en_q2 ? sy_n : {SW{1'b0}};
 
   // ---------------------------------------------------------------- stage 3: taps
-  reg [`SM_SIDE_W-1:0] side_q3;
   reg [SB-1:0] cs_q3;
   reg [SB+1:0] csm_q3, csp_q3;  // cs - NR, cs + NR (signed)
   reg [RW-1:0] rok_q3;
@@ -307,7 +304,6 @@ module sm_rectify #(
   wire [4:0] ay1 = 5'd16 - {1'b0, ay};
 
   // ---------------------------------------------------------------- stage 4: read
-  reg [`SM_SIDE_W-1:0] side_q4;
   reg [SB-2:0]  hs_e_q, hs_o_q;  // slot pairs of the even / odd tap row
   reg [CHW-1:0] hc_e_q, hc_o_q;  // column pairs of the even / odd tap column
   reg [3:0]     ok_q;            // bank reads that hit a valid tap
@@ -332,7 +328,7 @@ module sm_rectify #(
   generate
     for (b = 0; b < 4; b = b + 1) begin : g_lb
       localparam [1:0] BI = b;
-      sm_rect_ram #(
+      sm_sdp_ram #(
           .DATA_W(8),
           .DEPTH (BDEPTH)
       ) u_ram (
@@ -348,7 +344,6 @@ module sm_rectify #(
   endgenerate
 
   // ---------------------------------------------------------------- stage 5: blend
-  reg [`SM_SIDE_W-1:0] side_q5;
   reg [8:0] w00_q2, w10_q2, w01_q2, w11_q2;
   reg [3:0] tv_q2;
   reg       rp_q2, cp_q2;
@@ -364,29 +359,18 @@ module sm_rectify #(
   /* verilator lint_on UNUSEDSIGNAL */
 
   // ---------------------------------------------------------------- registers
+  sm_side_delay #(.DEPTH(6)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(m_side));
   always @(posedge clk) begin
     if (!rst_n) begin
       ls_q    <= {SB{1'b0}};
       cy_q    <= {YW{1'b0}};
       bank_q  <= 1'b0;
       en_q    <= 1'b0;
-      side_q  <= {`SM_SIDE_W{1'b0}};
-      side_q2 <= {`SM_SIDE_W{1'b0}};
-      side_q3 <= {`SM_SIDE_W{1'b0}};
-      side_q4 <= {`SM_SIDE_W{1'b0}};
-      side_q5 <= {`SM_SIDE_W{1'b0}};
-      m_side  <= {`SM_SIDE_W{1'b0}};
     end else if (ce) begin
       ls_q    <= ls;
       cy_q    <= cy;
       bank_q  <= bank_f;
       en_q    <= en_f;
-      side_q  <= c_side;
-      side_q2 <= side_q;
-      side_q3 <= side_q2;
-      side_q4 <= side_q3;
-      side_q5 <= side_q4;
-      m_side  <= side_q5;
     end
   end
 

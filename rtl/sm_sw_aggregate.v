@@ -70,7 +70,7 @@ module sm_sw_aggregate #(
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [HW*DISP-1:0]   s_cost,    // raw Hamming costs, bit b of level d at [b*DISP + d]
     input  wire [7:0]           s_left,    // left rectified pixel of the same beat
-    output reg  [`SM_SIDE_W-1:0] m_side,
+    output wire [`SM_SIDE_W-1:0] m_side,
     output wire [DISP*CW-1:0]   m_agg      // aggregated cost of level d at [d*CW +: CW]
 );
   localparam XW    = `SM_COUNT_W(MAX_WIDTH);
@@ -133,7 +133,6 @@ module sm_sw_aggregate #(
   reg [7:0]     live_pix_q;
   reg [2*R:0]   row_ok_q, col_ok_q;
   reg [63:0]    table_q;      // weight codes of the frame whose pixels are centred now
-  reg [`SM_SIDE_W-1:0] side1_q;
 
   always @(posedge clk) begin
     if (ce) begin
@@ -181,7 +180,6 @@ module sm_sw_aggregate #(
   // after it (g_fold: they hold for the F steps, which start on the clock after ce).
   wire           code_en, recip_en;
   reg [NQ*2-1:0] code_q;
-  reg [`SM_SIDE_W-1:0] side2_q;
   always @(posedge clk) begin
     if (ce) pwin_q <= pform[(SW-1)*SW*8-1:0];
     if (code_en) code_q <= code;
@@ -418,25 +416,6 @@ module sm_sw_aggregate #(
     end
   endgenerate
 
-  reg [`SM_SIDE_W-1:0] side3_q, side4_q, side5_q;
-
-  // Sideband: the only control state, reset so no stale real beat leaves after reset.
-  always @(posedge clk) begin
-    if (!rst_n) begin
-      side1_q <= {`SM_SIDE_W{1'b0}};
-      side2_q <= {`SM_SIDE_W{1'b0}};
-      side3_q <= {`SM_SIDE_W{1'b0}};
-      side4_q <= {`SM_SIDE_W{1'b0}};
-      side5_q <= {`SM_SIDE_W{1'b0}};
-      m_side  <= {`SM_SIDE_W{1'b0}};
-    end else if (ce) begin
-      side1_q <= c_side;
-      side2_q <= side1_q;
-      side3_q <= side2_q;
-      side4_q <= side3_q;
-      side5_q <= side4_q;
-      m_side  <= side5_q;
-    end
-  end
+  sm_side_delay #(.DEPTH(6)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(m_side));
 endmodule
 `default_nettype wire

@@ -319,15 +319,15 @@ module sm_top #(
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[3]),
       .s_side(dp_side), .s_disp(dp_disp), .m_side(f0_side), .m_disp(f0_disp)
   );
-  sm_post_vmed #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post1 (
+  sm_post_median #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .RY(2), .RX(0)) u_post1 (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[0]),
       .s_side(f0_side), .s_disp(f0_disp), .m_side(f1_side), .m_disp(f1_disp)
   );
-  sm_post_med3 #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post2 (
+  sm_post_median #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .RY(1), .RX(1)) u_post2 (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[1]),
       .s_side(f1_side), .s_disp(f1_disp), .m_side(f2_side), .m_disp(f2_disp)
   );
-  sm_post_med53 #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_post3 (
+  sm_post_median #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .RY(2), .RX(1)) u_post3 (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_filt[2]),
       .s_side(f2_side), .s_disp(f2_disp), .m_side(f3_side), .m_disp(f3_disp)
   );

@@ -1,11 +1,16 @@
 # Post-processing (docs/algorithm.md sections 7-8): model unit tests and block tests.
 sm_unit_test(test_post_model LIBS sm_model ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS} DISCOVER)
 
+# The three median filters are sm_post_median at the window shapes sm_top gives them.
+set(_shape_vmed RY=2 RX=0)
+set(_shape_med3 RY=1 RX=1)
+set(_shape_med53 RY=2 RX=1)
 foreach(_f vmed med3 med53)
-  sm_rtl_test(NAME tb_post_${_f} TOP sm_post_${_f} SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
-              PARAMS MAX_WIDTH=64 DISP=16 ARGS --filter ${_f} --width 37 --height 9)
-  sm_rtl_test(NAME tb_post_${_f}_paper TOP sm_post_${_f} SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
-              PARAMS MAX_WIDTH=320 DISP=128 ARGS --filter ${_f} --width 320 --height 6 LABELS "rtl;slow")
+  sm_rtl_test(NAME tb_post_${_f} TOP sm_post_median SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
+              PARAMS MAX_WIDTH=64 DISP=16 ${_shape_${_f}} ARGS --filter ${_f} --width 37 --height 9)
+  sm_rtl_test(NAME tb_post_${_f}_paper TOP sm_post_median SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_filter.cpp
+              PARAMS MAX_WIDTH=320 DISP=128 ${_shape_${_f}} ARGS --filter ${_f} --width 320 --height 6
+              LABELS "rtl;slow")
 endforeach()
 
 sm_rtl_test(NAME tb_objects TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp

@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   int filter = 0;
   const std::map<std::string, int> filters{{"vmed", 1}, {"med3", 2}, {"med53", 3}};
   t.cli()
-      .add_option("--filter", filter, "the model's filter, as the Verilated top: vmed, med3 or med53")
+      .add_option("--filter", filter, "the model's filter, as the Verilated shape: vmed, med3 or med53")
       ->required()
       ->transform(CLI::CheckedTransformer(filters));
   t.cli().add_option("--width", w, "active width")->check(CLI::Range(2, hw.max_width));
