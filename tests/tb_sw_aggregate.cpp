@@ -163,10 +163,11 @@ int main(int argc, char** argv) {
     for (auto& v : f.raw.v) v = static_cast<uint8_t>(at_max ? (1 << hwid) - 1 : cost(rng));
     f.table = make_table(rng);
     if (at_max) {
-      // Independent of the model: an inside window of costs all at cm = (2^HW - 1) >>
-      // COST_SHIFT has A_raw = cm * wsum, so it saturates exactly when
-      // (cm * wsum * RECIP(wsum) + 2048) >> 12 > 2^CW - 1. Count such windows, and require
-      // one wherever some weight sum can do it, so the saturation is exercised.
+      // Apart from the model's aggregation (only its weight and RECIP definitions): an
+      // inside window of costs all at cm = (2^HW - 1) >> COST_SHIFT has A_raw = cm * wsum,
+      // so it saturates exactly when (cm * wsum * RECIP(wsum) + 2048) >> 12 > 2^CW - 1.
+      // Count such windows, and require one wherever some weight sum can do it, so the
+      // saturation is exercised.
       const uint32_t cm = ((1u << hwid) - 1u) >> kCostShift, omax = (1u << cw) - 1u;
       auto saturates = [&](uint32_t s) { return ((cm * s * sm::sw_recip(s) + 2048u) >> 12) > omax; };
       bool possible = false;
