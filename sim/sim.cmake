@@ -61,14 +61,25 @@ sm_vtop(vtop_vga ${SM_VGA_PARAMS})
 sm_vtop(vtop_small ${SM_SMALL_PARAMS})
 sm_vtop(vtop_small_fold ${SM_SMALL_FOLD_PARAMS})
 
+# stereo_sim's configuration-independent part (sim/stereo_sim_app.hpp), compiled once
+# for every stereo_sim_* executable. It sees no Verilated model (VM_TRACE=0: no trace
+# header), only the harness's plain types.
+add_library(sm_stereo_sim_app STATIC ${CMAKE_CURRENT_SOURCE_DIR}/stereo_sim_app.cpp)
+target_include_directories(sm_stereo_sim_app PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR})
+target_link_libraries(sm_stereo_sim_app PUBLIC sm_model sm_toolio sm_verilated fmt::fmt
+                      PRIVATE CLI11::CLI11 nlohmann_json::nlohmann_json ${OpenCV_LIBS})
+target_compile_definitions(sm_stereo_sim_app PRIVATE VM_TRACE=0 VM_COVERAGE=0)
+target_compile_options(sm_stereo_sim_app PRIVATE ${SM_WARNINGS})
+add_dependencies(sm_stereo_sim_app sm_regmap_gen_files)
+
 # sm_add_sim(<target> <vtop library>)
 function(sm_add_sim target lib)
   add_executable(${target} ${CMAKE_CURRENT_SOURCE_DIR}/stereo_sim.cpp)
   # tests/common: sm_coverage.hpp, so the tests that run stereo_sim count in the coverage
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR}
                                                ${CMAKE_SOURCE_DIR}/tests/common)
-  target_link_libraries(${target} PRIVATE ${lib} sm_model sm_toolio fmt::fmt CLI11::CLI11
-                                          nlohmann_json::nlohmann_json ${OpenCV_LIBS})
+  target_link_libraries(${target} PRIVATE ${lib} sm_stereo_sim_app sm_model fmt::fmt)
+  target_compile_options(${target} PRIVATE ${SM_WARNINGS})
   target_compile_definitions(${target} PRIVATE
     SM_DEFAULT_SCENE="${CMAKE_BINARY_DIR}/scene"
     SM_SYNTH_JSON="${CMAKE_BINARY_DIR}/synth/sm_top_${target}.json"

@@ -12,7 +12,7 @@ foreach(v "tb_faults;vtop_small" "tb_faults_fold;vtop_small_fold")
   list(GET v 1 lib)
   add_executable(${exe} ${CMAKE_SOURCE_DIR}/tests/tb_faults.cpp)
   target_include_directories(${exe} PRIVATE ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOURCE_DIR}/tests/common ${SM_GEN_DIR})
-  target_link_libraries(${exe} PRIVATE ${lib} sm_model sm_toolio fmt::fmt CLI11::CLI11 ${OpenCV_LIBS})
+  target_link_libraries(${exe} PRIVATE ${lib} sm_model sm_toolio sm_bench_options fmt::fmt ${OpenCV_LIBS})
 endforeach()
 # The main run: ~1000 input steps mixing every fault class (a few seconds).
 add_test(NAME robust_faults COMMAND tb_faults --scene ${SM_SCENE_SMALL_DIR} --steps 1000 --seed 20240611

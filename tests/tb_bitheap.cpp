@@ -24,7 +24,7 @@ constexpr int kL = SM_P_L;
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_bitheap direct test"};
   std::vector<int> heights;
-  t.cli().add_option("--heights", heights, "bits in column 0, 1, ... (as H0)")->required();
+  t.option("--heights", heights, "bits in column 0, 1, ... (as H0)").required();
   if (auto rc = t.parse(argc, argv)) return *rc;
   if (static_cast<int>(heights.size()) != kNc) {
     fmt::print(stderr, "tb_bitheap: {} heights given for NC = {}\n", heights.size(), kNc);

@@ -24,8 +24,8 @@ int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_brightness block test"};
   int w = 37;
   std::vector<int> heights = {9, 5, 12, 7, 6, 8};
-  t.cli().add_option("--width", w, "active width");
-  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  t.option("--width", w, "active width");
+  t.option("--heights", heights, "rows of each frame, sent back to back");
   if (auto rc = t.parse(argc, argv)) return *rc;
   std::mt19937 rng(2024), garbage(77);
   std::uniform_int_distribution<int> pix(0, 255), gain(0, 1023), off(-256, 255);

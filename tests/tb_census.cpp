@@ -32,8 +32,8 @@ int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_census block test"};
   int w = 37;
   std::vector<int> heights = {13, 2, 7};  // H = 2 is shorter than the window
-  t.cli().add_option("--width", w, "active width")->check(CLI::Range(1, kMaxWidth));
-  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  t.option("--width", w, "active width").range(1, kMaxWidth);
+  t.option("--heights", heights, "rows of each frame, sent back to back");
   if (auto rc = t.parse(argc, argv)) return *rc;
   const int r = (kCensus - 1) / 2;
   const sm::HwConfig hw = sm::verilated_config();

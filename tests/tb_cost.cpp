@@ -36,11 +36,11 @@ int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_cost block test"};
   int w = 37;
   std::vector<int> heights = {9, 3, 5};
-  t.cli().add_option("--width", w, "active width")->check(CLI::Range(1, kMaxWidth));
-  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
+  t.option("--width", w, "active width").range(1, kMaxWidth);
+  t.option("--heights", heights, "rows of each frame, sent back to back");
   bool max_cost_frame = false;
-  t.cli().add_flag("--max-cost-frame", max_cost_frame,
-                   "append a frame of isolated peaks over a flat right image (largest costs)");
+  t.flag("--max-cost-frame", max_cost_frame,
+         "append a frame of isolated peaks over a flat right image (largest costs)");
   if (auto rc = t.parse(argc, argv)) return *rc;
   if (max_cost_frame) heights.push_back(heights.empty() ? kCensus : heights.back());
   const sm::HwConfig hw = sm::verilated_config();

@@ -81,11 +81,11 @@ int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_dp block test"};
   int width = kMaxWidth, rows = 6, frames = 3, idle = 30;
   uint32_t seed = 1;
-  t.cli().add_option("--width", width, "active width");
-  t.cli().add_option("--rows", rows, "rows per frame");
-  t.cli().add_option("--frames", frames, "frames back to back");
-  t.cli().add_option("--seed", seed, "random seed");
-  t.cli().add_option("--idle", idle, "percent of cycles with ce = 0");
+  t.option("--width", width, "active width");
+  t.option("--rows", rows, "rows per frame");
+  t.option("--frames", frames, "frames back to back");
+  t.option("--seed", seed, "random seed");
+  t.option("--idle", idle, "percent of cycles with ce = 0");
   if (auto rc = t.parse(argc, argv)) return *rc;
   if (width < kS + kP + 1 || width > kMaxWidth) {
     fmt::print(stderr, "tb_dp: width {} outside {}..{} (DISP/2 + 3 .. MAX_WIDTH)\n", width, kS + kP + 1, kMaxWidth);

@@ -26,11 +26,11 @@ int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_edge_flag block test"};
   int width = kMaxWidth, rows = 6, frames = 3, idle = 30;
   uint32_t seed = 1;
-  t.cli().add_option("--width", width, "active width")->check(CLI::Range(16, kMaxWidth));
-  t.cli().add_option("--rows", rows, "rows per frame")->check(CLI::Range(1, 4096));
-  t.cli().add_option("--frames", frames, "frames back to back")->check(CLI::Range(1, 64));
-  t.cli().add_option("--seed", seed, "random seed");
-  t.cli().add_option("--idle", idle, "percent of cycles with ce = 0")->check(CLI::Range(0, 95));
+  t.option("--width", width, "active width").range(16, kMaxWidth);
+  t.option("--rows", rows, "rows per frame").range(1, 4096);
+  t.option("--frames", frames, "frames back to back").range(1, 64);
+  t.option("--seed", seed, "random seed");
+  t.option("--idle", idle, "percent of cycles with ce = 0").range(0, 95);
   if (auto rc = t.parse(argc, argv)) return *rc;
 
   std::mt19937 rng(seed);

@@ -596,10 +596,10 @@ int main(int argc, char** argv) {
   int n_frames = 400;
   uint32_t seed = 20240611u;
   bool no_soft = false;
-  bench.cli().add_option("--scene", scene, "scene folder, at least MAX_WIDTH x MAX_HEIGHT")->required();
-  bench.cli().add_option("--steps", n_frames, "input steps (a frame, faulty or not, and its recovery frame)");
-  bench.cli().add_option("--seed", seed, "random seed");
-  bench.cli().add_flag("--no-soft-reset", no_soft, "aresetn steps instead of CONTROL.SOFT_RESET");
+  bench.option("--scene", scene, "scene folder, at least MAX_WIDTH x MAX_HEIGHT").required();
+  bench.option("--steps", n_frames, "input steps (a frame, faulty or not, and its recovery frame)");
+  bench.option("--seed", seed, "random seed");
+  bench.flag("--no-soft-reset", no_soft, "aresetn steps instead of CONTROL.SOFT_RESET");
   // a flood of one rule must not hide another
   bench.report_each_kind(20);
   if (auto rc = bench.parse(argc, argv)) return *rc;

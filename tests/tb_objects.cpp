@@ -83,8 +83,8 @@ int main(int argc, char** argv) {
   BlockTest<SM_VTOP> t{"sm_objects block test"};
   int w = 37, h = 23;
   // room for the scenes' boxes
-  t.cli().add_option("--width", w, "active width")->check(CLI::Range(16, hw.max_width));
-  t.cli().add_option("--height", h, "rows of every frame")->check(CLI::Range(7, hw.max_height));
+  t.option("--width", w, "active width").range(16, hw.max_width);
+  t.option("--height", h, "rows of every frame").range(7, hw.max_height);
   if (auto rc = t.parse(argc, argv)) return *rc;
   const unsigned D = hw.disp;
   std::mt19937 rng(4321);

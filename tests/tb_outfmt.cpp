@@ -34,7 +34,7 @@ struct Expect {
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_outfmt block test"};
   bool paper = false;
-  t.cli().add_flag("--paper", paper, "the paper point's widths and heights (320 and 200 wide)");
+  t.flag("--paper", paper, "the paper point's widths and heights (320 and 200 wide)");
   if (auto rc = t.parse(argc, argv)) return *rc;
   const int W1 = paper ? 320 : 37, W2 = paper ? 200 : 21;
   const std::vector<int> h1 = paper ? std::vector<int>{3, 2} : std::vector<int>{5, 4};

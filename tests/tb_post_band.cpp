@@ -64,11 +64,10 @@ int main(int argc, char** argv) {
   BlockTest<SM_VTOP> t{"sm_post_band block test"};
   std::vector<int> widths{37};
   int h = 12;
-  t.cli()
-      .add_option("--widths", widths, "active widths, one frame group each, no reset between")
-      ->delimiter(',')
-      ->check(CLI::Range(2, hw.max_width));
-  t.cli().add_option("--height", h, "rows of the first frame of each group")->check(CLI::Range(1, 4096));
+  t.option("--widths", widths, "active widths, one frame group each, no reset between")
+      .delimiter(',')
+      .range(2, hw.max_width);
+  t.option("--height", h, "rows of the first frame of each group").range(1, 4096);
   if (auto rc = t.parse(argc, argv)) return *rc;
   unsigned dmask = 1;
   while (dmask + 1 < static_cast<unsigned>(hw.disp)) dmask = dmask * 2 + 1;  // 2^clog2(DISP) - 1

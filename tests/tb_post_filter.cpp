@@ -50,12 +50,11 @@ int main(int argc, char** argv) {
   // the filter's number (1..3) also offsets the seeds: each filter has its own stimulus
   int filter = 0;
   const std::map<std::string, int> filters{{"vmed", 1}, {"med3", 2}, {"med53", 3}};
-  t.cli()
-      .add_option("--filter", filter, "the model's filter, as the Verilated shape: vmed, med3 or med53")
-      ->required()
-      ->transform(CLI::CheckedTransformer(filters));
-  t.cli().add_option("--width", w, "active width")->check(CLI::Range(2, hw.max_width));
-  t.cli().add_option("--height", h, "rows of the first frame (the others: +2, -1, +1)")->check(CLI::Range(2, 4096));
+  t.option("--filter", filter, "the model's filter, as the Verilated shape: vmed, med3 or med53")
+      .required()
+      .names(filters);
+  t.option("--width", w, "active width").range(2, hw.max_width);
+  t.option("--height", h, "rows of the first frame (the others: +2, -1, +1)").range(2, 4096);
   if (auto rc = t.parse(argc, argv)) return *rc;
   std::mt19937 rng(1234 + filter);
   const std::vector<int> heights = {h, h + 2, h - 1, h + 1};

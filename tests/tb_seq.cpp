@@ -212,7 +212,7 @@ void verify(Bench& t, const std::string& name, const std::vector<Segment>& segs,
 int main(int argc, char** argv) {
   Bench t{"sm_seq block test"};
   bool paper = false;
-  t.cli().add_flag("--paper", paper, "the paper point's widths and heights (320 and 160 wide)");
+  t.flag("--paper", paper, "the paper point's widths and heights (320 and 160 wide)");
   if (auto rc = t.parse(argc, argv)) return *rc;
   const int W = paper ? 320 : 37, H = paper ? 3 : 6;
   const int W2 = paper ? 160 : 21;

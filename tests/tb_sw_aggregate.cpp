@@ -122,12 +122,12 @@ int main(int argc, char** argv) {
   uint32_t seed = 1;
   int idle = 30;
   bool max_cost_frame = false;
-  t.cli().add_option("--width", width, "active width")->check(CLI::Range(kSw, kMaxWidth));
-  t.cli().add_option("--heights", heights, "rows of each frame, sent back to back");
-  t.cli().add_option("--seed", seed, "random seed");
-  t.cli().add_option("--idle", idle, "percent of cycles with ce low")->check(CLI::Range(0, 95));
-  t.cli().add_flag("--max-cost-frame", max_cost_frame,
-                   "append a frame with every raw cost at the port's maximum (saturation, widest sums)");
+  t.option("--width", width, "active width").range(kSw, kMaxWidth);
+  t.option("--heights", heights, "rows of each frame, sent back to back");
+  t.option("--seed", seed, "random seed");
+  t.option("--idle", idle, "percent of cycles with ce low").range(0, 95);
+  t.flag("--max-cost-frame", max_cost_frame,
+         "append a frame with every raw cost at the port's maximum (saturation, widest sums)");
   if (auto rc = t.parse(argc, argv)) return *rc;
   if (max_cost_frame) heights.push_back(heights.empty() ? kR + 1 : heights.back());
 

@@ -67,13 +67,11 @@ int main(int argc, char** argv) {
   Bench t{"sm_top system test"};
   std::string scene, mode = "stress", vcd, calib;
   double mhz = 0.0;
-  t.cli().add_option("--scene", scene, "scene folder (left.png, right.png, ground truth)")->required();
-  t.cli()
-      .add_option("--mode", mode, "stress, budget, frame, vcd or calib")
-      ->check(CLI::IsMember({"stress", "budget", "frame", "vcd", "calib"}));
-  t.cli().add_option("--mhz", mhz, "budget, frame: core clock in MHz (0: the slowest the pacing allows)");
-  t.cli().add_option("--vcd", vcd, "vcd: the VCD file to write");
-  t.cli().add_option("--calib", calib, "calib: the calibration JSON");
+  t.option("--scene", scene, "scene folder (left.png, right.png, ground truth)").required();
+  t.option("--mode", mode, "stress, budget, frame, vcd or calib").one_of({"stress", "budget", "frame", "vcd", "calib"});
+  t.option("--mhz", mhz, "budget, frame: core clock in MHz (0: the slowest the pacing allows)");
+  t.option("--vcd", vcd, "vcd: the VCD file to write");
+  t.option("--calib", calib, "calib: the calibration JSON");
   if (auto rc = t.parse(argc, argv)) return *rc;
   if ((mode == "vcd" && vcd.empty()) || (mode == "calib" && calib.empty())) {
     fmt::print(stderr, "tb_top: --mode {} needs --{}\n", mode, mode);

@@ -54,7 +54,7 @@ std::vector<BeatInfo> build(int w, const std::vector<Segment>& segs, std::vector
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_win_ctrl direct test"};
   int w = 37;
-  t.cli().add_option("--width", w, "active width");
+  t.option("--width", w, "active width");
   if (auto rc = t.parse(argc, argv)) return *rc;
   std::vector<int> heights;
   // H = 1 and 2 are shorter than the window; 0 virtual rows puts frames back to back.

@@ -7,7 +7,6 @@
 // varies is a command-line option, so one binary serves several ctest entries.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <cctype>
@@ -21,6 +20,7 @@
 #include <vector>
 
 #include "beat_schedule.hpp"
+#include "sm_bench_options.hpp"
 #include "sm_coverage.hpp"
 #include "sm_tb.hpp"
 #include "sm_vconfig.hpp"  // sm::verilated_config(): the model's HwConfig
@@ -30,25 +30,24 @@ namespace sm::test {
 template <class Top>
 class BlockTest {
  public:
-  explicit BlockTest(const std::string& description) : cli_(description) {
-    cli_.add_option("--trace", trace_, "write a trace of the run to this file (model built with TRACE only)");
-    cli_.add_option("--max-report", max_report_, "failures printed in full, the first one always")
-        ->check(CLI::Range(1, 1 << 20));
+  explicit BlockTest(const std::string& description) : opts_(description) {
+    opts_.option("--trace", trace_, "write a trace of the run to this file (model built with TRACE only)");
+    opts_.option("--max-report", max_report_, "failures printed in full, the first one always").range(1, 1 << 20);
   }
   BlockTest(const BlockTest&) = delete;
   BlockTest& operator=(const BlockTest&) = delete;
 
-  // The bench's own options go here before parse().
-  CLI::App& cli() { return cli_; }
+  // The bench's own options go here before parse() (sm_bench_options.hpp).
+  template <class T>
+  BenchOption option(const std::string& name, T& v, const std::string& help) {
+    return opts_.option(name, v, help);
+  }
+  BenchOption flag(const std::string& name, bool& v, const std::string& help) { return opts_.flag(name, v, help); }
 
   // Parses the command line and opens the trace if one is asked for. Returns the exit
   // code when the bench must stop here (--help, a bad option), nothing otherwise.
   std::optional<int> parse(int argc, char** argv) {
-    try {
-      cli_.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-      return cli_.exit(e);
-    }
+    if (auto rc = opts_.parse(argc, argv)) return rc;
     if (!trace_.empty() && !tb().open_trace(trace_)) fmt::print("note: model built without tracing, --trace ignored\n");
     return std::nullopt;
   }
@@ -185,7 +184,7 @@ class BlockTest {
     return kinds_.insert(kind).second;
   }
 
-  CLI::App cli_;
+  BenchOptions opts_;
   std::string trace_;
   long max_report_ = 10;
   std::unique_ptr<Testbench<Top>> tb_;
