@@ -18,19 +18,26 @@
 // word by word (bit by bit and lane by lane, the paper configuration's 128 levels would
 // dominate the simulation time).
 //
-// The caller adds the two rows. With REG = 1 they are registered here, where the
-// bits that are always 0 are visible (a register outside would keep them).
+// With REG = 1 the two rows are registered here, where the bits that are always 0 are
+// visible (a register outside would keep them). With ADD = 1 the two rows are also added
+// here (after the register), for the same reason: which planes of row b can be set, and
+// so which carries exist, follows from the heap's final shape, which only this module
+// knows; a caller's adder over whole rows would hold wires that are 0 by construction.
 module sm_bitheap #(
     parameter NC = 3,                      // columns: the sum is below 2^NC (1..32)
     parameter [32*NC-1:0] H0 = 96'd7,      // bits in column c at [c*32 +: 32]
     parameter L = 1,                       // lanes (1..4096)
-    parameter REG = 0                      // 1: the rows are registered (on ce)
+    parameter REG = 0,                     // 1: the rows are registered (on ce)
+    parameter ADD = 0                      // 1: `sum` is row_a + row_b
 ) (
     input  wire             clk,    // used only with REG = 1
     input  wire             ce,
     input  wire [HIN*L-1:0] bits,   // column c's bits from the sum of H0[0..c-1] on
     output wire [NC*L-1:0]  row_a,  // bit c of lane l at [c*L + l]
-    output wire [NC*L-1:0]  row_b   // row_a + row_b (modulo 2^NC) = the heap's sum
+    output wire [NC*L-1:0]  row_b,  // row_a + row_b (modulo 2^NC) = the heap's sum
+    // ADD = 1: that sum, bit c of lane l at [c*L + l]; ADD = 0: one bit, 0 (Verilog-2005
+    // has no optional ports)
+    output wire [SUMW-1:0]  sum
 );
   localparam HB  = 32;      // bits per number in the packed shape tables
   localparam NCP = NC + 2;  // columns in the tables; the top two stay empty
@@ -139,8 +146,22 @@ module sm_bitheap #(
       for (k = 0; k < st; k = k + 1) hoff = hoff + OFFS[(k*NCP + NC)*HB +: HB];
     end
   endfunction
+
+  // A carry into plane f of the final adder can be set: two of plane f-1's row a bit
+  // (its column holds 1 or 2 bits), row b bit (it holds 2) and carry in can be.
+  function carry_in(input integer f);
+    integer k, hf;
+    begin
+      carry_in = 1'b0;
+      for (k = 0; k < f; k = k + 1) begin
+        hf       = SHAPE[(NS*NCP + k)*HB +: HB];
+        carry_in = (hf >= 2) || (hf == 1 && carry_in);
+      end
+    end
+  endfunction
   /* verilator coverage_on */
   localparam HTOT = hoff(NS + 1);
+  localparam SUMW = (ADD != 0) ? NC * L : 1;
 
   generate
     `SM_BAD_PARAM(g_bad_nc, NC < 1 || NC > 32, ("sm_bitheap: NC (%0d) must be 1..32", NC))
@@ -251,39 +272,80 @@ module sm_bitheap #(
     end
   endgenerate
 
-  // ---- the two rows --------------------------------------------------------------
+  // ---- the two rows, and their sum ----------------------------------------------
+  // Only the planes the final shape can set are declared (HF bits of column f: row a's
+  // plane, then row b's); the others are constant 0 at the ports.
   genvar f;
   generate
     for (f = 0; f < NC; f = f + 1) begin : g_fin
       localparam HF = SHAPE[(NS*NCP + f)*HB +: HB];
       localparam OF = OFFS[(NS*NCP + f)*HB +: HB];
-      wire [2*L-1:0] fin;  // the column's bits, zero where it holds fewer than two
       if (HF == 0) begin : g_none
-        assign fin = {2 * L{1'b0}};
-      end else if (NS == 0) begin : g_in
-        if (HF == 1) begin : g_one
-          assign fin = {{L{1'b0}}, bits[OF*L +: L]};
-        end else begin : g_two
-          assign fin = bits[OF*L +: 2*L];
+        assign row_a[f*L +: L] = {L{1'b0}};
+        assign row_b[f*L +: L] = {L{1'b0}};
+      end else begin : g_set
+        wire [HF*L-1:0] fin;
+        if (NS == 0) begin : g_in
+          assign fin = bits[OF*L +: HF*L];
+        end else begin : g_heap
+          assign fin = heap[(HFIN + OF)*L +: HF*L];
         end
-      end else begin : g_heap
-        if (HF == 1) begin : g_one
-          assign fin = {{L{1'b0}}, heap[(HFIN + OF)*L +: L]};
-        end else begin : g_two
-          assign fin = heap[(HFIN + OF)*L +: 2*L];
+        wire [HF*L-1:0] rows;
+        if (REG != 0) begin : g_reg
+          reg [HF*L-1:0] fin_q;
+          always @(posedge clk) begin
+            if (ce) fin_q <= fin;
+          end
+          assign rows = fin_q;
+        end else begin : g_comb
+          assign rows = fin;
+        end
+        assign row_a[f*L +: L] = rows[0 +: L];
+        if (HF == 2) begin : g_two
+          assign row_b[f*L +: L] = rows[L +: L];
+        end else begin : g_one
+          assign row_b[f*L +: L] = {L{1'b0}};
         end
       end
-      if (REG != 0) begin : g_reg
-        reg [2*L-1:0] fin_q;
-        always @(posedge clk) begin
-          if (ce) fin_q <= fin;
+      // The adder: a ripple on whole bit planes (per lane the NC-bit addition modulo 2^NC),
+      // one branch per combination of the terms that can be set, so no constant-zero
+      // wire: plane f adds row a (HF >= 1), row b (HF = 2) and the carry in (CI); it
+      // passes a carry on (CO) only if two of them can be set and plane f + 1 exists.
+      if (ADD != 0) begin : g_add
+        localparam CI = carry_in(f);
+        localparam CO = (f + 1 < NC) && carry_in(f + 1);
+        if (HF == 2) begin : g_x
+          wire [L-1:0] x = g_set.rows[0 +: L] ^ g_set.rows[L +: L];
         end
-        assign row_a[f*L +: L] = fin_q[0 +: L];
-        assign row_b[f*L +: L] = fin_q[L +: L];
-      end else begin : g_comb
-        assign row_a[f*L +: L] = fin[0 +: L];
-        assign row_b[f*L +: L] = fin[L +: L];
+        if (HF == 2 && CI) begin : g_abc
+          assign sum[f*L +: L] = g_x.x ^ g_fin[f-1].g_add.g_co.co;
+        end else if (HF == 2) begin : g_ab
+          assign sum[f*L +: L] = g_x.x;
+        end else if (HF == 1 && CI) begin : g_ac
+          assign sum[f*L +: L] = g_set.rows[0 +: L] ^ g_fin[f-1].g_add.g_co.co;
+        end else if (HF == 1) begin : g_a
+          assign sum[f*L +: L] = g_set.rows[0 +: L];
+        end else if (CI) begin : g_c
+          assign sum[f*L +: L] = g_fin[f-1].g_add.g_co.co;
+        end else begin : g_zero
+          assign sum[f*L +: L] = {L{1'b0}};  // the heap's sum never reaches this plane
+        end
+        // carry out: HF = 2, or HF = 1 with a carry in (see carry_in)
+        if (CO) begin : g_co
+          wire [L-1:0] co;
+          if (HF == 2 && CI) begin : g_abc
+            assign co = (g_set.rows[0 +: L] & g_set.rows[L +: L]) |
+                        (g_fin[f-1].g_add.g_co.co & g_x.x);
+          end else if (HF == 2) begin : g_ab
+            assign co = g_set.rows[0 +: L] & g_set.rows[L +: L];
+          end else begin : g_ac
+            assign co = g_set.rows[0 +: L] & g_fin[f-1].g_add.g_co.co;
+          end
+        end
       end
+    end
+    if (ADD == 0) begin : g_no_sum
+      assign sum = 1'b0;
     end
     if (REG == 0) begin : g_no_clk
       wire unused_clk = clk ^ ce;  // combinational heap

@@ -286,11 +286,14 @@ module sm_rectify #(
   wire          cv_e = cp ? c1ok : c0ok;
   wire          cv_o = cp ? c0ok : c1ok;
 
-  // Only col >> 1 addresses a bank; high bits are zero for in-image columns.
+  // Bank address of a written pixel (slot, col). Only col >> 1 addresses a bank; high
+  // bits are zero for in-image columns. No valid input: its one use, the line-buffer
+  // write, always addresses the entering pixel's own slot and column (taps outside the
+  // image are masked in haddr).
   /* verilator lint_off UNUSEDSIGNAL */
-  function [BAW-1:0] baddr(input [SB-1:0] slot, input [IW-1:0] col, input ok);
+  function [BAW-1:0] baddr(input [SB-1:0] slot, input [IW-1:0] col);
     /* verilator lint_off WIDTH */
-    baddr = ok ? (slot >> 1) * HALFW_B + col[CHW:1] : {BAW{1'b0}};
+    baddr = (slot >> 1) * HALFW_B + col[CHW:1];
     /* verilator lint_on WIDTH */
   endfunction
   /* verilator lint_on UNUSEDSIGNAL */
@@ -322,7 +325,7 @@ module sm_rectify #(
   reg [BAW-1:0] wa_q2, wa_q3, wa_q4;
   reg [XW-1:0]  wx_q;
   reg [SB-1:0]  wls_q;
-  wire [BAW-1:0] wa1 = baddr(wls_q, {{(IW - XW){1'b0}}, wx_q}, 1'b1);
+  wire [BAW-1:0] wa1 = baddr(wls_q, {{(IW - XW){1'b0}}, wx_q});
 
   wire [7:0] lb_rd[0:3];
   generate
