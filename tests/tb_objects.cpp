@@ -141,6 +141,28 @@ int main(int argc, char** argv) {
   add(random_map(rng, w, h, D, 2), 0, 128, 0x8000);
   // 9..11: combs (merge shapes) at three tolerances
   for (unsigned tol = 1; tol <= 3; ++tol) add(comb_scene(rng, w, h, D, tol), D / 2, tol, 1);
+  // 12: two U's whose absorbed arm (the younger label) holds the object's deepest pixel,
+  // rising a step per row and back before the bar joins it: the merge must take the
+  // absorbed label's maximum, not the survivor's or the joining pixel's. Left U: both
+  // arms start on one row, the right arm is younger; right U: the right arm starts a row
+  // higher, the left arm is younger. (They need 22 columns.)
+  if (w >= 22) {
+    DispImage m(w, h, make_disp(1, true));
+    const unsigned base = D / 2, peak = 4;
+    const int yb = h - 3;
+    auto arm = [&](int x, int top, bool rises) {
+      for (int y = top; y < yb; ++y) {
+        const unsigned up = static_cast<unsigned>(std::min({y - top, yb - 1 - y, static_cast<int>(peak)}));
+        m.at(x, y) = make_disp(base + (rises ? up : 0), true);
+      }
+    };
+    for (const auto& [x0, left_rises] : {std::pair<int, bool>{2, false}, std::pair<int, bool>{14, true}}) {
+      arm(x0, 2, left_rises);
+      arm(x0 + 7, left_rises ? 1 : 2, !left_rises);
+      for (int x = x0; x <= x0 + 7; ++x) m.at(x, yb) = make_disp(base, true);
+    }
+    add(m, D / 2, 1, 1);
+  }
 
   std::vector<ObjectList> want;
   for (size_t f = 0; f < in.size(); ++f) want.push_back(separate_objects(in[f], regs[f], hw));
