@@ -4,6 +4,8 @@
 
 #include <cctype>
 
+#include "sm_regmap.hpp"  // generated from rtl/regmap.json: the SW_TABLE reset values
+
 namespace sm {
 
 namespace {
@@ -97,11 +99,9 @@ RectGrid RectGrid::identity(int width, int height) {
 
 Regs Regs::defaults(const HwConfig& hw) {
   Regs r;
-  r.width = hw.max_width;
-  r.height = hw.max_height;
-  r.sw_table.fill(0);
-  const uint8_t codes[8] = {3, 3, 2, 2, 1, 1, 1, 1};
-  for (int k = 0; k < 8; ++k) r.sw_table[k] = codes[k];
+  r.set_reset_values(hw);
+  set_sw_table_word(r, 0, static_cast<uint32_t>(regmap::kSW_TABLE0_CODES_RESET));
+  set_sw_table_word(r, 1, static_cast<uint32_t>(regmap::kSW_TABLE1_CODES_RESET));
   r.grid_l = RectGrid::identity(r.width, r.height);
   r.grid_r = r.grid_l;
   return r;

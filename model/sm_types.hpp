@@ -118,28 +118,26 @@ struct RectGrid {
   static int points_h(int height) { return defs::grid_pts(height); }
 };
 
-// Run-time registers (AXI4-Lite), with the paper's defaults.
-struct Regs {
-  int width = 320;        // active width, HwConfig::min_width()..MAX_WIDTH
-  int height = 240;       // active height, 16..MAX_HEIGHT
-  uint16_t gain_l = 256;  // brightness gain, Q2.8 (10 bits)
-  uint16_t gain_r = 256;
-  int16_t offset_l = 0;  // brightness offset, -256..255 (9 bits signed)
-  int16_t offset_r = 0;
-  bool rect_enable = true;  // false: the rectifier passes pixels through
-  RectGrid grid_l;          // empty = identity for the active size
+}  // namespace sm
+
+// sm::RegValues, generated from rtl/regmap.json: one member per value register (WIDTH,
+// GAIN_L, OCC, ...) named after it in lower case, initialised to its reset value. It needs
+// HwConfig above.
+#include "sm_regvalues.hpp"
+
+namespace sm {
+
+// Run-time registers (AXI4-Lite), with the paper's defaults. The value registers are the
+// generated base RegValues (a register added to rtl/regmap.json is a member here with no
+// edit); the rest are kept here by hand.
+struct Regs : RegValues {
+  RectGrid grid_l;  // empty = identity for the active size
   RectGrid grid_r;
-  // DP occlusion penalty (8 bits) where the left image is flat, and at its edges: a left
-  // pixel x >= 1 with |L(x) - L(x-1)| > edge_t (docs/algorithm.md section 6); 11 / 7 / 16
-  // chosen on the 14 scenes (docs/evaluation.md). occ_edge == occ: one penalty everywhere.
-  uint8_t occ = 11;
-  uint8_t occ_edge = 7;
-  uint8_t edge_t = 16;
-  std::array<uint8_t, 32> sw_table{};  // 2-bit weight codes by |dI| >> 3 (set by defaults())
-  uint8_t filter_enable = 15;          // bits 0..2: median filters F1..F3, bit 3: band filter F0
-  uint8_t obj_near = 32;               // objects: disparity >= obj_near is "near"
-  uint8_t obj_tol = 2;                 // objects: neighbours merge when |d1 - d2| <= obj_tol
-  uint16_t obj_min_pixels = 64;        // objects smaller than this are not reported
+  // SW_TABLE0/1: 2-bit weight codes by |dI| >> 3 (all 0 here, the reset values of
+  // regmap.json by defaults())
+  std::array<uint8_t, 32> sw_table{};
+  // The registers' reset values at hw (rtl/regmap.json: width = max_width, ...) and the
+  // identity grids of that size.
   static Regs defaults(const HwConfig& hw);
 };
 

@@ -9,6 +9,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -216,8 +217,25 @@ struct Model {
   }
 };
 
-// Shadow ports by field name; every shadow field of the map must be listed here.
-int64_t shadow_port(Top& t, const std::string& n) {
+// The model's port cfg_<member> of a value register, when sm_axil_regs has one: a register
+// added to regmap.json is stored, clamped, read back and shadowed by the table-driven
+// register file at once, but its shadow reaches a port (and the pipeline) only once the
+// RTL uses it; until then only its host copy (reads) is checked.
+#define SM_X(NAME, member)                                                                 \
+  template <class T>                                                                       \
+  auto cfg_##member(T& t, int)->decltype((void)t.cfg_##member, std::optional<int64_t>{}) { \
+    return static_cast<int64_t>(t.cfg_##member);                                           \
+  }                                                                                        \
+  template <class T>                                                                       \
+  std::optional<int64_t> cfg_##member(T&, long) {                                          \
+    return std::nullopt;                                                                   \
+  }
+SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+
+// Shadow ports by field name (nullopt: a value register without its cfg_ port); every
+// other shadow field of the map must be listed here.
+std::optional<int64_t> shadow_port(Top& t, const std::string& n) {
   auto sx = [](uint32_t v, int bits) {
     return static_cast<int64_t>(static_cast<int32_t>(v << (32 - bits)) >> (32 - bits));
   };
@@ -229,8 +247,12 @@ int64_t shadow_port(Top& t, const std::string& n) {
   int bits = 32;
   for (const auto& f : rm::fields())
     if (n == f.name) is_signed = f.is_signed, bits = f.width;
-#define SM_X(NAME, member) \
-  if (n == #NAME ".VALUE") return is_signed ? sx(t.cfg_##member, bits) : static_cast<int64_t>(t.cfg_##member);
+#define SM_X(NAME, member)                                          \
+  if (n == #NAME ".VALUE") {                                        \
+    const std::optional<int64_t> v = cfg_##member(t, 0);            \
+    if (v && is_signed) return sx(static_cast<uint32_t>(*v), bits); \
+    return v;                                                       \
+  }
   SM_REGMAP_VALUE_REGS(SM_X)
 #undef SM_X
   throw std::runtime_error("tb_axil_regs: no shadow port for " + n);
@@ -245,8 +267,9 @@ void check_shadows(Dut& d, const Model& m, const std::string& when) {
   for (const auto& f : rm::fields()) {
     if (!f.shadow) continue;
     const int64_t want = as_signed_field(m.shadow.at(f.name), f);
-    const int64_t got = shadow_port(*d.top, f.name);
-    d.bench.check(got == want, fmt::format("{}: shadow {} expected {} got {}", when, f.name, want, got));
+    const std::optional<int64_t> got = shadow_port(*d.top, f.name);
+    if (!got) continue;  // no port yet: checked through reads only
+    d.bench.check(*got == want, fmt::format("{}: shadow {} expected {} got {}", when, f.name, want, *got));
   }
   d.bench.check(d.top->enable == m.fval.at("CONTROL.ENABLE"), when + ": enable port");
   d.bench.check(d.top->host_width == m.fval.at("WIDTH.VALUE"), when + ": host_width port");
@@ -280,9 +303,12 @@ int main(int argc, char** argv) {
   t.reset_by(4, [&] { d.tick(); });
   d.tick();
 
-  // Every shadow field must be mapped to a port (fails on a new json field).
+  // Every shadow field must be mapped to a port (fails on a new json field other than a
+  // value register); a value register without its cfg_ port is named.
+  std::string no_port;
   for (const auto& f : rm::fields())
-    if (f.shadow) (void)shadow_port(*d.top, f.name);
+    if (f.shadow && !shadow_port(*d.top, f.name)) no_port += std::string(no_port.empty() ? "" : ", ") + f.name;
+  if (!no_port.empty()) fmt::print("tb_axil_regs: no cfg_ port (shadow not observable, reads checked): {}\n", no_port);
 
   // 1. reset values, cross-checked against the model's defaults
   read_all(d, m, "reset");

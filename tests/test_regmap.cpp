@@ -1,13 +1,17 @@
 // Unit tests of the generated register map (sm_regmap.hpp from rtl/regmap.json) against
-// independent truth: the model's defaults (sm::Regs::defaults), the spec's grid size
-// (sm::RectGrid), field widths from docs/algorithm.md and hand-computed addresses.
+// independent truth: the paper's defaults written out by hand (sm::Regs::defaults, whose
+// value registers are generated from the same json), the spec's grid size (sm::RectGrid),
+// field widths from docs/algorithm.md and hand-computed addresses.
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <limits>
 #include <map>
 #include <regex>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "sm_cmd.hpp"
 #include "sm_regmap.hpp"
@@ -39,6 +43,70 @@ TEST_CASE("reset values are the model's defaults", "[regmap]") {
     for (int k = 0; k < 32; ++k) sw |= static_cast<uint64_t>(d.sw_table[k]) << (2 * k);
     CHECK(static_cast<uint64_t>(reset("SW_TABLE0.CODES", hw)) == (sw & 0xffffffffu));
     CHECK(static_cast<uint64_t>(reset("SW_TABLE1.CODES", hw)) == (sw >> 32));
+  }
+}
+
+TEST_CASE("the defaults are the paper's (independent of the generated code)", "[regmap]") {
+  // sm::Regs' value registers are generated from rtl/regmap.json (sm::RegValues): the
+  // numbers of docs/algorithm.md and docs/evaluation.md, written out here once more.
+  sm::HwConfig hw;
+  hw.max_width = 64;
+  hw.max_height = 48;
+  const sm::Regs d = sm::Regs::defaults(hw);
+  CHECK(d.width == 64);
+  CHECK(d.height == 48);
+  CHECK(d.gain_l == 256);
+  CHECK(d.gain_r == 256);
+  CHECK(d.offset_l == 0);
+  CHECK(d.offset_r == 0);
+  CHECK(d.rect_enable);
+  CHECK(d.occ == 11);
+  CHECK(d.occ_edge == 7);
+  CHECK(d.edge_t == 16);
+  CHECK(d.filter_enable == 15);
+  CHECK(d.obj_near == 32);
+  CHECK(d.obj_tol == 2);
+  CHECK(d.obj_min_pixels == 64);
+  const std::array<uint8_t, 8> codes{3, 3, 2, 2, 1, 1, 1, 1};
+  for (size_t k = 0; k < 32; ++k) CHECK(d.sw_table[k] == (k < 8 ? codes[k] : 0));
+  CHECK(d.grid_l.gw == sm::RectGrid::points_w(64));
+  CHECK(d.grid_r.gh == sm::RectGrid::points_h(48));
+  // a default-constructed Regs holds the same values at HwConfig{} (no grids, no weights)
+  const sm::Regs z;
+  const sm::Regs zd = sm::Regs::defaults(sm::HwConfig{});
+#define SM_X(NAME, member) CHECK(z.member == zd.member);
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+  CHECK(z.width == 320);
+  CHECK(z.height == 240);
+  CHECK(z.grid_l.gw == 0);
+  // the member types of today
+  static_assert(std::is_same_v<decltype(d.width), int> && std::is_same_v<decltype(d.height), int>);
+  static_assert(std::is_same_v<decltype(d.gain_l), uint16_t> && std::is_same_v<decltype(d.offset_l), int16_t>);
+  static_assert(std::is_same_v<decltype(d.rect_enable), bool> && std::is_same_v<decltype(d.occ), uint8_t>);
+  static_assert(std::is_same_v<decltype(d.filter_enable), uint8_t>);
+  static_assert(std::is_same_v<decltype(d.obj_min_pixels), uint16_t>);
+}
+
+TEST_CASE("every value register's member holds the register's range", "[regmap]") {
+  for (const auto& [w, h] : {std::pair{320, 240}, std::pair{640, 480}}) {
+    sm::HwConfig hw;
+    hw.max_width = w;
+    hw.max_height = h;
+    const sm::Regs d = sm::Regs::defaults(hw);
+    auto holds = [&](const std::string& name, auto member) {
+      using T = decltype(member);
+      const rm::Field& f = field(name);
+      const int64_t lo = f.clamped ? f.min.eval(hw) : (f.is_signed ? -(int64_t{1} << (f.width - 1)) : 0);
+      const int64_t hi =
+          f.clamped ? f.max.eval(hw) : (f.is_signed ? (int64_t{1} << (f.width - 1)) - 1 : (int64_t{1} << f.width) - 1);
+      INFO(name);
+      CHECK(static_cast<int64_t>(std::numeric_limits<T>::min()) <= lo);
+      CHECK(static_cast<int64_t>(std::numeric_limits<T>::max()) >= hi);
+    };
+#define SM_X(NAME, member) holds(#NAME ".VALUE", d.member);
+    SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
   }
 }
 

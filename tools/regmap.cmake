@@ -2,6 +2,8 @@
 # first and run at build time; its outputs land in ${SM_GEN_DIR}:
 #   sm_regmap.vh   Verilog localparams, included inside rtl/sm_axil_regs.v
 #   sm_regmap.hpp  C++ constants + register table for test benches and the harness
+#   sm_regvalues.hpp  sm::RegValues: the value registers as members of the model's sm::Regs,
+#                  with their reset values (included by model/sm_types.hpp)
 #   registers.md   documentation; docs/registers.md must equal it (ctest regmap_doc_current)
 # and, from rtl/defs.json (sideband layout, parameter limits, grid geometry):
 #   sm_defs.vh        Verilog macros, included by the RTL files that use them
@@ -15,7 +17,7 @@ target_compile_options(sm_regmap_gen PRIVATE ${SM_WARNINGS})
 set(SM_REGMAP_JSON ${SM_RTL_DIR}/regmap.json)
 set(SM_DEFS_JSON ${SM_RTL_DIR}/defs.json)
 
-set(SM_REGMAP_OUTPUTS ${SM_GEN_DIR}/sm_regmap.vh ${SM_GEN_DIR}/sm_regmap.hpp
+set(SM_REGMAP_OUTPUTS ${SM_GEN_DIR}/sm_regmap.vh ${SM_GEN_DIR}/sm_regmap.hpp ${SM_GEN_DIR}/sm_regvalues.hpp
                       ${SM_GEN_DIR}/registers.md ${SM_GEN_DIR}/sm_defs.vh
                       ${SM_GEN_DIR}/sm_defs_check.vh ${SM_GEN_DIR}/sm_defs.hpp)
 add_custom_command(

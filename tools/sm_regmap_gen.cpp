@@ -2,9 +2,11 @@
 // sm_regmap.vh (Verilog localparams and the register tables sm_axil_regs is built from:
 // every register's address, the rw fields with their packed host / shadow offsets, the
 // constant ro fields; included inside sm_axil_regs), sm_regmap.hpp (C++
-// constants and a register table for the test benches and the harness) and
-// registers.md (the documentation committed as docs/registers.md); with --defs also the
-// shared definitions of rtl/defs.json: sm_defs.vh, sm_defs_check.vh and sm_defs.hpp.
+// constants and a register table for the test benches and the harness), sm_regvalues.hpp
+// (sm::RegValues: the value registers as the C++ members of the model's sm::Regs, with
+// their reset values) and registers.md (the documentation committed as
+// docs/registers.md); with --defs also the shared definitions of rtl/defs.json:
+// sm_defs.vh, sm_defs_check.vh and sm_defs.hpp.
 //
 // Usage: sm_regmap_gen <regmap.json> <output dir> [--defs defs.json]
 #include <cctype>
@@ -70,6 +72,23 @@ struct Map {
 };
 
 [[noreturn]] void fail(const std::string& m) { throw std::runtime_error(m); }
+
+// The C++ value of each compile-time parameter the map may name ("params"), on an
+// sm::HwConfig `hw`: the one translation for the register table's Val::eval and the
+// reset values of sm::RegValues.
+struct ParamExpr {
+  const char* name;
+  const char* expr;
+};
+constexpr ParamExpr kParamExprs[] = {
+    {"MAX_WIDTH", "hw.max_width"},     {"MAX_HEIGHT", "hw.max_height"}, {"DISP", "hw.disp"},
+    {"MAX_OBJECTS", "hw.max_objects"}, {"MIN_WIDTH", "hw.min_width()"}, {"PU", "hw.levels_per_clock()"}};
+
+std::string param_expr(const std::string& p) {
+  for (const auto& e : kParamExprs)
+    if (p == e.name) return e.expr;
+  fail("params: " + p + " has no C++ value (kParamExprs in tools/sm_regmap_gen.cpp)");
+}
 
 int64_t parse_num(const json& j, const std::string& what) {
   if (j.is_number_integer()) return j.get<int64_t>();
@@ -139,6 +158,7 @@ Map parse(const json& j) {
   m.title = j.value("title", "Register map");
   m.addr_bits = static_cast<int>(parse_num(j.at("addr_bits"), "addr_bits"));
   m.params = j.at("params").get<std::vector<std::string>>();
+  for (const auto& p : m.params) (void)param_expr(p);  // every parameter has a C++ value
   if (j.contains("notes")) m.notes = j.at("notes").get<std::vector<std::string>>();
   std::set<uint32_t> addrs;
   std::set<std::string> names;
@@ -169,6 +189,12 @@ Map parse(const json& j) {
           ((f.min.param.empty() && f.min.num < 0) ||
            (f.max.param.empty() && (f.max.num >= (int64_t{1} << f.width) || f.max.num >= (int64_t{1} << 31)))))
         fail(reg.name + ": min..max does not fit the unsigned field");
+    }
+    for (const auto& f : reg.fields) {
+      if (!f.reset.param.empty()) continue;
+      const int64_t lo = f.is_signed ? -(int64_t{1} << (f.width - 1)) : 0;
+      const int64_t hi = f.is_signed ? (int64_t{1} << (f.width - 1)) - 1 : (int64_t{1} << f.width) - 1;
+      if (f.reset.num < lo || f.reset.num > hi) fail(reg.name + "." + f.name + ": reset value does not fit the field");
     }
     m.regs.push_back(reg);
   }
@@ -389,9 +415,98 @@ std::string cpp_string(const std::string& s) {
   return o + "\"";
 }
 
+// A value register: one rw, shadowed field named VALUE (the pipeline's numeric
+// parameters). Each is the sm::RegValues member of the register's name in lower case.
+bool is_value_reg(const Reg& r) {
+  return r.fields.size() == 1 && r.fields[0].name == "VALUE" && r.fields[0].access == "rw" && r.fields[0].shadow;
+}
+
+std::string lower_name(const std::string& s) {
+  std::string o;
+  for (char c : s) o += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return o;
+}
+
+// The C++ type of a value register's member: bool for one bit, int when a compile-time
+// parameter bounds the field (WIDTH, HEIGHT), else the narrowest (u)int8/16/32_t.
+std::string member_type(const Field& f) {
+  if (f.width == 1) return "bool";
+  if (!f.min.param.empty() || !f.max.param.empty() || !f.reset.param.empty()) return "int";
+  return fmt::format("{}int{}_t", f.is_signed ? "" : "u", f.width <= 8 ? 8 : f.width <= 16 ? 16 : 32);
+}
+
+// The C++ value of v on the HwConfig expression `hw` ("hw" or "HwConfig{}"), as type t.
+std::string member_value(const Val& v, const std::string& t, const std::string& hw) {
+  if (!v.param.empty()) {
+    std::string e = param_expr(v.param);  // "hw.<member>"
+    e.replace(0, 2, hw);
+    return t == "bool" ? e + " != 0" : e;
+  }
+  if (t == "bool") return v.num ? "true" : "false";
+  if (t == "uint32_t") return fmt::format("{}u", v.num);
+  return fmt::format("{}", v.num);
+}
+
+// `text` as // comment lines of at most `cols` columns, each starting with `indent`.
+void wrap_comment(std::ostringstream& o, const std::string& indent, const std::string& text, size_t cols = 100) {
+  std::istringstream words(text);
+  std::string w, line;
+  while (words >> w) {
+    if (!line.empty() && indent.size() + 3 + line.size() + 1 + w.size() > cols) {
+      o << indent << "// " << line << "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  if (!line.empty()) o << indent << "// " << line << "\n";
+}
+
+// sm_regvalues.hpp: the value registers as C++ members (sm::RegValues, the base of the
+// model's sm::Regs), so that a register added to regmap.json is a member of sm::Regs,
+// a key of the tools' register file, an option and a word of the harness's AXI-Lite
+// writer (all expand SM_REGMAP_VALUE_REGS over these members) with no hand edit.
+std::string gen_values_hpp(const Map& m) {
+  std::ostringstream o;
+  o << "// Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit.\n"
+       "// Included by sm_types.hpp after sm::HwConfig (the parameter-dependent reset values use it);\n"
+       "// include sm_types.hpp, not this file.\n"
+       "#pragma once\n\n#include <cstdint>\n\nnamespace sm {\n\n";
+  wrap_comment(o, "",
+               "The value registers of rtl/regmap.json (one rw, shadowed VALUE field; SM_REGMAP_VALUE_REGS in "
+               "sm_regmap.hpp), one member each, named after the register in lower case. A member is bool for a "
+               "one-bit field, int when a compile-time parameter bounds the field, else the narrowest "
+               "(u)int8/16/32_t of the field. The initialisers are the reset values for HwConfig{}; "
+               "set_reset_values(hw) sets those of another configuration. sm::Regs adds the other run-time "
+               "registers (grids, SW_TABLE).");
+  o << "struct RegValues {\n";
+  std::ostringstream set;
+  for (const auto& r : m.regs) {
+    if (!is_value_reg(r)) continue;
+    const Field& f = r.fields[0];
+    const std::string t = member_type(f), member = lower_name(r.name);
+    const std::string range = f.min.present ? fmt::format("{}..{}", vval(f.min), vval(f.max)) : "";
+    const std::string head =
+        fmt::format("{} (0x{:03X}, {} bit{}{}{}, reset {}):", r.name, r.addr, f.width, f.width == 1 ? "" : "s",
+                    f.is_signed ? " signed" : "", range.empty() ? "" : ", " + range, vval(f.reset));
+    std::string text = head + " " + r.desc;
+    if (!f.desc.empty() && f.desc != range) text += " " + f.desc;
+    wrap_comment(o, "  ", text);
+    o << fmt::format("  {} {} = {};\n", t, member, member_value(f.reset, t, "HwConfig{}"));
+    set << fmt::format("  {} = {};\n", member, member_value(f.reset, t, "hw"));
+  }
+  o << "  // Every member to its register's reset value at the parameters hw.\n"
+       "  void set_reset_values(const HwConfig& hw);\n};\n\n";
+  o << "inline void RegValues::set_reset_values(const HwConfig& hw) {\n  (void)hw;\n" << set.str() << "}\n\n";
+  o << "}  // namespace sm\n";
+  return o.str();
+}
+
 std::string gen_hpp(const Map& m) {
   std::ostringstream o;
-  o << R"(// Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit.
+  std::string eval;
+  for (const auto& p : m.params)
+    eval += fmt::format("    if (!std::strcmp(param, \"{}\")) return {};\n", p, param_expr(p));
+  std::string head = R"(// Generated by tools/sm_regmap_gen from rtl/regmap.json -- do not edit.
 #pragma once
 
 #include <array>
@@ -412,13 +527,7 @@ struct Val {
   const char* param;
   int64_t eval(const HwConfig& hw) const {
     if (!param) return num;
-    if (!std::strcmp(param, "MAX_WIDTH")) return hw.max_width;
-    if (!std::strcmp(param, "MAX_HEIGHT")) return hw.max_height;
-    if (!std::strcmp(param, "DISP")) return hw.disp;
-    if (!std::strcmp(param, "MAX_OBJECTS")) return hw.max_objects;
-    if (!std::strcmp(param, "MIN_WIDTH")) return hw.min_width();
-    if (!std::strcmp(param, "PU")) return hw.levels_per_clock();
-    throw std::invalid_argument(std::string("regmap: unknown parameter ") + param);
+@EVAL@    throw std::invalid_argument(std::string("regmap: unknown parameter ") + param);
   }
 };
 
@@ -445,14 +554,19 @@ struct Reg {
 };
 
 )";
+  head.replace(head.find("@EVAL@"), 6, eval);
+  o << head;
   o << fmt::format("constexpr int kAddrBits = {};\n\n", m.addr_bits);
   o << "// Register byte addresses.\n";
   for (const auto& r : m.regs) o << fmt::format("constexpr uint32_t k{} = 0x{:03X};\n", r.name, r.addr);
-  o << "\n// Field positions: k<REG>_<FIELD>_LSB / _W.\n";
+  o << "\n// Field positions: k<REG>_<FIELD>_LSB / _W; _RESET where the reset value is a number.\n";
   for (const auto& r : m.regs)
-    for (const auto& f : r.fields)
+    for (const auto& f : r.fields) {
       o << fmt::format("constexpr int k{0}_{1}_LSB = {2};\nconstexpr int k{0}_{1}_W = {3};\n", r.name, f.name, f.lsb,
                        f.width);
+      if (f.reset.param.empty())
+        o << fmt::format("constexpr int64_t k{}_{}_RESET = {};\n", r.name, f.name, f.reset.num);
+    }
   size_t nf = 0;
   for (const auto& r : m.regs) nf += r.fields.size();
   o << fmt::format("\ninline const std::array<Field, {}>& fields() {{\n  static const std::array<Field, {}> f{{{{\n",
@@ -472,19 +586,15 @@ struct Reg {
     fi += static_cast<int>(r.fields.size());
   }
   o << "  }};\n  return r;\n}\n\n";
-  // The value registers: one rw, shadowed field named VALUE. Each is the sm::Regs member
-  // of the register's name in lower case, so the C++ lists of them (the AXI-Lite writer,
-  // the register file's keys, the tests) expand this one macro.
+  // The value registers, each the sm::RegValues (sm::Regs) member of the register's name in
+  // lower case (sm_regvalues.hpp), so the C++ lists of them (the AXI-Lite writer, the
+  // register file's keys, the tests) expand this one macro.
   o << "// The pipeline's value registers (one rw, shadowed VALUE field), each the sm::Regs member\n"
-       "// of its name in lower case: X(NAME, member). Expanded wherever C++ lists them.\n"
+       "// of its name in lower case (sm::RegValues, sm_regvalues.hpp): X(NAME, member). Expanded\n"
+       "// wherever C++ lists them.\n"
        "#define SM_REGMAP_VALUE_REGS(X)";
-  for (const auto& r : m.regs) {
-    if (r.fields.size() != 1 || r.fields[0].name != "VALUE" || r.fields[0].access != "rw" || !r.fields[0].shadow)
-      continue;
-    std::string lower;
-    for (char c : r.name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    o << fmt::format(" \\\n  X({}, {})", r.name, lower);
-  }
+  for (const auto& r : m.regs)
+    if (is_value_reg(r)) o << fmt::format(" \\\n  X({}, {})", r.name, lower_name(r.name));
   o << "\n\n";
   o << "// Object list window (read through the object block's read port).\n";
   o << fmt::format("constexpr uint32_t kObjBase = 0x{:X};\nconstexpr uint32_t kObjSize = 0x{:X};\n", m.obj_base,
@@ -795,7 +905,7 @@ void write_if_changed(const std::string& path, const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Generate sm_regmap.vh, sm_regmap.hpp and registers.md from regmap.json"};
+  CLI::App app{"Generate sm_regmap.vh, sm_regmap.hpp, sm_regvalues.hpp and registers.md from regmap.json"};
   std::string in_path, out_dir, defs_path;
   app.add_option("json", in_path, "register map (rtl/regmap.json)")->required();
   app.add_option("outdir", out_dir, "output directory")->required();
@@ -820,6 +930,7 @@ int main(int argc, char** argv) {
     }
     write_if_changed(out_dir + "/sm_regmap.vh", gen_vh(m));
     write_if_changed(out_dir + "/sm_regmap.hpp", gen_hpp(m));
+    write_if_changed(out_dir + "/sm_regvalues.hpp", gen_values_hpp(m));
     write_if_changed(out_dir + "/registers.md", gen_md(m));
     if (!defs_path.empty()) {
       in_path = defs_path;  // the error line names the file at fault
