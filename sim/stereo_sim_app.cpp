@@ -169,8 +169,6 @@ int stereo_sim_main(int argc, char** argv, const ModelInfo& info, const RunFn& r
                     const WaveNamesFn& wave_names) {
   CLI::App app{"Cycle-accurate simulation of the census stereo IP (Verilator)"};
   const sm::HwConfig& hw = info.hw;
-  const bool kWaveBuild = info.wave_build, kWaveVcd = info.wave_vcd, kWaveFst = info.wave_fst;
-  const char* const kTraced = info.traced;
   std::string left, right, seq_dir, video, scene_dir = info.default_scene, calib, out_dir = "out", synth_json, vcd_path;
   std::string regs_file, disp_file;
   std::vector<std::string> regs_at;
@@ -229,7 +227,7 @@ int stereo_sim_main(int argc, char** argv, const ModelInfo& info, const RunFn& r
   std::string wave_list;
   auto* o_wave = app.add_option("--wave,--vcd", vcd_path,
                                 fmt::format("dump a wave window to this file, .vcd{} (e.g. waves/top.vcd); traced: {}",
-                                            kWaveFst ? " or .fst" : "", kTraced));
+                                            info.wave_fst ? " or .fst" : "", info.traced));
   app.add_option("--wave-scope", wave_scopes,
                  "dump only this scope's signals, e.g. TOP.sm_top.u_dp (also sm_top.u_dp or u_dp; repeatable)")
       ->needs(o_wave);
@@ -281,21 +279,21 @@ int stereo_sim_main(int argc, char** argv, const ModelInfo& info, const RunFn& r
       return 0;
     }
     // Verilator's dumpvars() needs the fixed trace runtime of the wave builds (sim/sim.cmake).
-    if (!wave_scopes.empty() && !kWaveBuild)
+    if (!wave_scopes.empty() && !info.wave_build)
       fail(
           fmt::format("--wave-scope needs a wave build (stereo_sim_wave, stereo_sim_small_wave); this simulator "
                       "traces {}",
-                      kTraced));
+                      info.traced));
     for (auto& s : wave_scopes) s = full_scope(s);
-    std::string wave_fmt = kWaveVcd ? "vcd" : "fst";
+    std::string wave_fmt = info.wave_vcd ? "vcd" : "fst";
     if (!vcd_path.empty()) {
       wave_fmt = sm::wave_extension(vcd_path);
       if (wave_fmt != "vcd" && wave_fmt != "fst")
         fail(fmt::format("--wave {}: the file name must end in .vcd or .fst", vcd_path));
-      if ((wave_fmt == "vcd" && !kWaveVcd) || (wave_fmt == "fst" && !kWaveFst))
+      if ((wave_fmt == "vcd" && !info.wave_vcd) || (wave_fmt == "fst" && !info.wave_fst))
         fail(fmt::format("--wave {}: this simulator writes {} only ({})", vcd_path,
-                         kWaveVcd && kWaveFst ? ".vcd and .fst" : (kWaveVcd ? ".vcd" : ".fst"),
-                         kWaveBuild ? "built with SM_WAVE_FORMATS without it" : kTraced));
+                         info.wave_vcd && info.wave_fst ? ".vcd and .fst" : (info.wave_vcd ? ".vcd" : ".fst"),
+                         info.wave_build ? "built with SM_WAVE_FORMATS without it" : info.traced));
       // No window from an earlier run is left to look like this run's when this one fails.
       std::error_code ec;
       fs::remove(vcd_path, ec);

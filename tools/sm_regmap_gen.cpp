@@ -90,6 +90,18 @@ std::string param_expr(const std::string& p) {
   fail("params: " + p + " has no C++ value (kParamExprs in tools/sm_regmap_gen.cpp)");
 }
 
+// The values a field's bits can hold (two's complement when signed).
+int64_t field_lo(const Field& f) { return f.is_signed ? -(int64_t{1} << (f.width - 1)) : 0; }
+int64_t field_hi(const Field& f) {
+  return f.is_signed ? (int64_t{1} << (f.width - 1)) - 1 : (int64_t{1} << f.width) - 1;
+}
+
+std::string lower_name(const std::string& s) {
+  std::string o;
+  for (char c : s) o += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return o;
+}
+
 int64_t parse_num(const json& j, const std::string& what) {
   if (j.is_number_integer()) return j.get<int64_t>();
   if (j.is_string()) {
@@ -183,19 +195,15 @@ Map parse(const json& j) {
       if (f.is_signed && (!f.min.param.empty() || !f.max.param.empty()))
         fail(reg.name + ": a signed clamped field needs numeric min and max");
       if (f.is_signed && f.width == 32) fail(reg.name + ": a signed clamped field must be narrower than 32 bits");
-      if (f.is_signed && (f.min.num < -(int64_t{1} << (f.width - 1)) || f.max.num >= (int64_t{1} << (f.width - 1))))
+      if (f.is_signed && (f.min.num < field_lo(f) || f.max.num > field_hi(f)))
         fail(reg.name + ": min..max does not fit the signed field");
-      if (!f.is_signed &&
-          ((f.min.param.empty() && f.min.num < 0) ||
-           (f.max.param.empty() && (f.max.num >= (int64_t{1} << f.width) || f.max.num >= (int64_t{1} << 31)))))
+      if (!f.is_signed && ((f.min.param.empty() && f.min.num < field_lo(f)) ||
+                           (f.max.param.empty() && (f.max.num > field_hi(f) || f.max.num >= (int64_t{1} << 31)))))
         fail(reg.name + ": min..max does not fit the unsigned field");
     }
-    for (const auto& f : reg.fields) {
-      if (!f.reset.param.empty()) continue;
-      const int64_t lo = f.is_signed ? -(int64_t{1} << (f.width - 1)) : 0;
-      const int64_t hi = f.is_signed ? (int64_t{1} << (f.width - 1)) - 1 : (int64_t{1} << f.width) - 1;
-      if (f.reset.num < lo || f.reset.num > hi) fail(reg.name + "." + f.name + ": reset value does not fit the field");
-    }
+    for (const auto& f : reg.fields)
+      if (f.reset.param.empty() && (f.reset.num < field_lo(f) || f.reset.num > field_hi(f)))
+        fail(reg.name + "." + f.name + ": reset value does not fit the field");
     m.regs.push_back(reg);
   }
   const auto& o = j.at("object_list");
@@ -419,12 +427,6 @@ std::string cpp_string(const std::string& s) {
 // parameters). Each is the sm::RegValues member of the register's name in lower case.
 bool is_value_reg(const Reg& r) {
   return r.fields.size() == 1 && r.fields[0].name == "VALUE" && r.fields[0].access == "rw" && r.fields[0].shadow;
-}
-
-std::string lower_name(const std::string& s) {
-  std::string o;
-  for (char c : s) o += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return o;
 }
 
 // The C++ type of a value register's member: bool for one bit, int when a compile-time
@@ -823,8 +825,7 @@ std::string gen_defs_check_vh(const Defs& d) {
        "// Elaboration checks of sm_top's parameters, included inside sm_top.\n"
        "generate\n";
   for (const auto& l : d.limits) {
-    std::string lower;
-    for (char c : l.name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string lower = lower_name(l.name);
     std::string cond = fmt::format("{0} < `SM_{0}_MIN || {0} > `SM_{0}_MAX", l.name);
     if (l.parity == "even") cond += fmt::format(" || {} % 2 != 0", l.name);
     if (l.parity == "odd") cond += fmt::format(" || {} % 2 != 1", l.name);
