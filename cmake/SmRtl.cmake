@@ -173,9 +173,9 @@ endfunction()
 #   With -DSM_COVERAGE=ON the target and its users get SM_COVERAGE=1
 #   (tests/common/sm_coverage.hpp).
 function(sm_verilated)
-  cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS;TRACE_DEPTH;FAST_GROUPS" "PARAMS;OPT_FAST;OPT_SLOW"
-                        ${ARGN})
-  set(args)
+  cmake_parse_arguments(V "TRACE" "TARGET;TOP;THREADS;TRACE_DEPTH;FAST_GROUPS"
+                        "PARAMS;OPT_FAST;OPT_SLOW;VERILATOR_ARGS" ${ARGN})
+  set(args ${V_VERILATOR_ARGS})
   if(V_TRACE_DEPTH)
     list(APPEND args --trace-depth ${V_TRACE_DEPTH})
   endif()
@@ -201,14 +201,15 @@ function(sm_verilated)
 endfunction()
 
 # sm_rtl_test(NAME <test> TOP <module> SOURCES <tb.cpp ...> [PARAMS ...] [LABELS ...]
-#             [ARGS ...] [TRACE] [TIMEOUT s])
+#             [ARGS ...] [TRACE] [TIMEOUT s] [VERILATOR_ARGS ...])
 # sm_rtl_test(NAME <test> RUN <test of a binary> [ARGS ...] [LABELS ...] [TIMEOUT s])
 #   One Verilated block test at one parameter point, registered with ctest: the RTL
 #   parameters become SM_P_<NAME> definitions, ARGS the bench's command line (its
 #   width, heights, seed, ...: tests/common/sm_block_test.hpp). With RUN, another run
 #   of the binary an earlier sm_rtl_test built (same parameters, other ARGS).
 function(sm_rtl_test)
-  cmake_parse_arguments(T "TRACE" "NAME;TOP;TIMEOUT;RUN" "SOURCES;PARAMS;LABELS;ARGS" ${ARGN})
+  cmake_parse_arguments(T "TRACE" "NAME;TOP;TIMEOUT;RUN" "SOURCES;PARAMS;LABELS;ARGS;VERILATOR_ARGS"
+                        ${ARGN})
   if(T_RUN)
     add_test(NAME ${T_NAME} COMMAND ${T_RUN} ${T_ARGS})
   else()
@@ -223,7 +224,7 @@ function(sm_rtl_test)
     if(T_TRACE)
       set(tr TRACE)
     endif()
-    sm_verilated(TARGET ${T_NAME} TOP ${T_TOP} PARAMS ${T_PARAMS} ${tr})
+    sm_verilated(TARGET ${T_NAME} TOP ${T_TOP} PARAMS ${T_PARAMS} VERILATOR_ARGS ${T_VERILATOR_ARGS} ${tr})
     # Block tests run for seconds; their generated C++ (tens of MB at the paper point)
     # compiles several times faster at -O1 than at -O3.
     target_compile_options(${T_NAME} PRIVATE -O1)
