@@ -843,20 +843,10 @@ std::string gen_defs_hpp(const Defs& d) {
   o << "// " << d.side_desc << "\n";
   o << fmt::format("constexpr int kSideW = {};\n", d.side_w);
   for (const auto& f : d.side) {
-    std::string camel;
-    bool up = true;
-    for (char c : f.name) {
-      if (c == '_') {
-        up = true;
-        continue;
-      }
-      camel += up ? c : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      up = false;
-    }
     o << fmt::format(
         "constexpr int kSide{0}Lsb = {1};  // {2}\nconstexpr int kSide{0}W = {3};\n"
         "constexpr uint8_t kSide{0} = 0x{4:X};  // mask\n",
-        camel, f.lsb, f.desc, f.width, ((1u << f.width) - 1u) << f.lsb);
+        camel(f.name), f.lsb, f.desc, f.width, ((1u << f.width) - 1u) << f.lsb);
   }
   o << "\n// Legal range of each sm_top parameter (HwConfig::validate() checks this table).\n"
        "enum class Parity { kAny, kEven, kOdd };\n"
