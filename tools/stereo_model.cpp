@@ -2,7 +2,9 @@
 // pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16) and/or
 // for viewing as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a colour-mapped PNG.
 // Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
-// names); options given on the command line win. Outputs are all-or-nothing.
+// names); options given on the command line win. With a calibration that holds the
+// rectified camera, metric depth (--depth-file) and a point cloud (--cloud, --cloud-view).
+// Outputs are all-or-nothing.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -17,9 +19,11 @@
 #include <tuple>
 
 #include "calib_file.hpp"
+#include "toolio/sm_depth.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
+#include "toolio/sm_pictures.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "pipeline.hpp"
@@ -28,6 +32,47 @@ namespace {
 
 using sm::tools::ToolError;
 using json = nlohmann::json;
+
+// --depth-file, --cloud, --cloud-max-depth and --cloud-view (docs/calibration.md, "Depth").
+struct DepthOptions {
+  std::string depth_file, cloud, cloud_view;
+  double cloud_max_depth = 0;  // 0: no cut
+  bool any() const { return !depth_file.empty() || !cloud.empty() || !cloud_view.empty(); }
+  void add(CLI::App& app) {
+    app.add_option("--depth-file", depth_file,
+                   "depth in metres (needs --calib with a camera): .pfm = float (+inf = invalid), .png = 16-bit "
+                   "millimetres (0 = invalid)");
+    app.add_option("--cloud", cloud, "point cloud, binary PLY: x y z (m, left camera) + intensity, valid pixels only");
+    app.add_option("--cloud-max-depth", cloud_max_depth,
+                   "leave points farther than this (m) out of the cloud (0: none)");
+    app.add_option("--cloud-view", cloud_view, "bird's-eye view of the point cloud (PNG)");
+  }
+  // Everything that can be checked before the model runs; `camera` from the calibration.
+  void check(const std::optional<sm::RectCamera>& camera, const std::string& calib) const {
+    if (!depth_file.empty() && !sm::tools::is_depth_file_name(depth_file))
+      throw ToolError(fmt::format("{}: --depth-file must end in .pfm or .png", depth_file));
+    if (!cloud.empty() && std::filesystem::path(cloud).extension() != ".ply")
+      throw ToolError(fmt::format("{}: --cloud must end in .ply", cloud));
+    if (!std::isfinite(cloud_max_depth) || cloud_max_depth < 0)
+      throw ToolError(fmt::format("--cloud-max-depth {}: must be finite and >= 0 (metres)", cloud_max_depth));
+    if (any() && calib.empty()) throw ToolError("--depth-file/--cloud/--cloud-view need --calib with a camera");
+    if (any() && !camera)
+      throw ToolError(fmt::format("{}: no 'camera' (focal length, baseline) for --depth-file/--cloud", calib));
+  }
+  void write(sm::tools::OutputSet& outs, const cv::Mat& disp_f, const sm::Image8& rect_left,
+             const sm::RectCamera& cam) const {
+    if (!any()) return;
+    const cv::Mat z = sm::tools::disparity_to_depth(disp_f, cam);
+    if (!depth_file.empty()) outs.write(depth_file, [&](const std::string& t) { sm::tools::write_depth_file(t, z); });
+    const auto pts = sm::tools::depth_to_cloud(z, sm::tools::to_mat(rect_left), cam,
+                                               cloud_max_depth > 0 ? cloud_max_depth : INFINITY);
+    if (!cloud.empty()) outs.write(cloud, [&](const std::string& t) { sm::tools::write_ply(t, pts); });
+    if (!cloud_view.empty())
+      outs.write(cloud_view, [&](const std::string& t) {
+        sm::tools::write_image_atomic(t, sm::tools::cloud_view(pts, {disp_f.cols, disp_f.rows}, cloud_max_depth));
+      });
+  }
+};
 
 int run(int argc, char** argv) {
   std::string left, right, out, colour, disp_file, regs_json, calib, stage = "post", objects_json;
@@ -42,7 +87,9 @@ int run(int argc, char** argv) {
   app.add_option("left", left, "left image (PNG/JPEG; reference view)")->required();
   app.add_option("right", right, "right image")->required();
   app.add_option("-o,--out", out, "disparity PNG for viewing (grey, 0..255 over 0..DISP-1, invalid = 0)");
-  app.add_option("--colour", colour, "colour-mapped disparity PNG (default with -o: <out>_colour.png)");
+  app.add_option("--colour", colour,
+                 "colour-mapped disparity PNG over the data's range, with a colour bar (depth ticks with a "
+                 "calibrated camera) and the invalid colour (default with -o: <out>_colour.png)");
   app.add_option("--disp-file", disp_file,
                  "lossless disparity: .pfm = float PFM (+inf = invalid, Middlebury), .png = 16-bit PNG of "
                  "disparity x 16 (0 = invalid, KITTI)");
@@ -71,10 +118,12 @@ int run(int argc, char** argv) {
                     ->check(CLI::Range(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
+  DepthOptions depth;
+  depth.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
 
-  if (out.empty() && colour.empty() && disp_file.empty())
-    throw ToolError("no output: give -o, --colour and/or --disp-file");
+  if (out.empty() && colour.empty() && disp_file.empty() && !depth.any())
+    throw ToolError("no output: give -o, --colour, --disp-file, --depth-file and/or --cloud");
   if (!disp_file.empty()) {
     std::string ext = std::filesystem::path(disp_file).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -127,10 +176,12 @@ int run(int argc, char** argv) {
     r.sw_table.fill(0);
     std::copy(sw_table.begin(), sw_table.end(), r.sw_table.begin());
   }
+  std::optional<sm::RectCamera> camera;
   if (!calib.empty()) {
     sm::CalibFile c;
     try {
       c = sm::load_calib(calib);
+      sm::check_calib_fits(calib, c, hw);
     } catch (const std::exception& e) {
       throw ToolError(e.what());
     }
@@ -140,7 +191,9 @@ int run(int argc, char** argv) {
     r.grid_l = c.left;
     r.grid_r = c.right;
     if (!o_nr->count()) r.rect_enable = true;
+    camera = c.camera;
   }
+  depth.check(camera, calib);
 
   sm::PipelineResult res;
   try {
@@ -160,9 +213,12 @@ int run(int argc, char** argv) {
     outs.write(out,
                [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_grey(df, hw.disp)); });
   if (!colour.empty())
-    outs.write(colour,
-               [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_colour(df, hw.disp)); });
+    outs.write(colour, [&](const std::string& t) {
+      const cv::Mat pic = sm::tools::disparity_picture(df, sm::tools::data_range(df), camera ? &*camera : nullptr);
+      sm::tools::write_image_atomic(t, pic);
+    });
   if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
+  if (camera) depth.write(outs, df, res.rl, *camera);
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
@@ -185,7 +241,7 @@ int run(int argc, char** argv) {
     long valid = 0;
     for (auto p : d.px) valid += sm::disp_valid(p);
     std::string files;
-    for (const auto* f : {&out, &colour, &disp_file, &objects_json})
+    for (const auto* f : {&out, &colour, &disp_file, &objects_json, &depth.depth_file, &depth.cloud, &depth.cloud_view})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
   }
