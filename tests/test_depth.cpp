@@ -353,6 +353,35 @@ TEST_CASE("stereo_model depth of a synthetic scene: median error below 1 % of th
   CHECK(view.size() == z.size());
 }
 
+TEST_CASE("stereo_model --colour and sm_evaluate --disp-images draw colour bars and legends", "[unit][pictures]") {
+  const fs::path dir = sm::test::fresh_dir(tmp_root() / "pictures");
+  const fs::path scene = dir / "data" / "small";
+  REQUIRE(run(SM_SCENE_EXE, fmt::format("--out {} --width 64 --height 48 --levels 16 --seed 2 --objects 3 "
+                                        "--focal-px 80 --baseline-m 0.1",
+                                        scene.string()))
+              .rc == 0);
+  const std::string pair = fmt::format("{0}/left.png {0}/right.png --disp 16 ", scene.string());
+  REQUIRE(run(SM_STEREO_MODEL_EXE, pair + "--colour " + (dir / "plain.png").string()).rc == 0);
+  REQUIRE(run(SM_STEREO_MODEL_EXE,
+              pair + "--calib " + scene.string() + "/calib.json --colour " + (dir / "depth.png").string())
+              .rc == 0);
+  const cv::Mat plain = cv::imread((dir / "plain.png").string()), depth = cv::imread((dir / "depth.png").string());
+  CHECK(plain.rows == 48);
+  CHECK(plain.cols > 64);          // the colour bar
+  CHECK(depth.cols > plain.cols);  // and its depth ticks
+  const auto r = run(SM_EVALUATE_EXE, fmt::format("{} --levels 16 --methods model,bm -q --disp-images {}",
+                                                  (dir / "data").string(), (dir / "imgs").string()));
+  INFO(r.err);
+  REQUIRE(r.rc == 0);
+  for (const char* f : {"small_gt.png", "small_model.png", "small_model_errors.png", "small_bm_errors.png"}) {
+    const cv::Mat m = cv::imread((dir / "imgs" / f).string());
+    INFO(f);
+    CHECK(m.type() == CV_8UC3);
+    CHECK(m.rows >= 48);
+  }
+  CHECK(cv::imread((dir / "imgs" / "small_model_errors.png").string()).rows > 48);  // the legend
+}
+
 TEST_CASE("stereo_model: depth outputs and calibration files checked before any work", "[robust][depth]") {
   const fs::path dir = sm::test::fresh_dir(tmp_root() / "model_robust");
   const fs::path scene = dir / "scene", out = sm::test::fresh_dir(dir / "out");
