@@ -19,7 +19,7 @@
 #include <tuple>
 
 #include "calib_file.hpp"
-#include "toolio/sm_depth.hpp"
+#include "toolio/sm_depth_options.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
@@ -32,47 +32,6 @@ namespace {
 
 using sm::tools::ToolError;
 using json = nlohmann::json;
-
-// --depth-file, --cloud, --cloud-max-depth and --cloud-view (docs/calibration.md, "Depth").
-struct DepthOptions {
-  std::string depth_file, cloud, cloud_view;
-  double cloud_max_depth = 0;  // 0: no cut
-  bool any() const { return !depth_file.empty() || !cloud.empty() || !cloud_view.empty(); }
-  void add(CLI::App& app) {
-    app.add_option("--depth-file", depth_file,
-                   "depth in metres (needs --calib with a camera): .pfm = float (+inf = invalid), .png = 16-bit "
-                   "millimetres (0 = invalid)");
-    app.add_option("--cloud", cloud, "point cloud, binary PLY: x y z (m, left camera) + intensity, valid pixels only");
-    app.add_option("--cloud-max-depth", cloud_max_depth,
-                   "leave points farther than this (m) out of the cloud (0: none)");
-    app.add_option("--cloud-view", cloud_view, "bird's-eye view of the point cloud (PNG)");
-  }
-  // Everything that can be checked before the model runs; `camera` from the calibration.
-  void check(const std::optional<sm::RectCamera>& camera, const std::string& calib) const {
-    if (!depth_file.empty() && !sm::tools::is_depth_file_name(depth_file))
-      throw ToolError(fmt::format("{}: --depth-file must end in .pfm or .png", depth_file));
-    if (!cloud.empty() && std::filesystem::path(cloud).extension() != ".ply")
-      throw ToolError(fmt::format("{}: --cloud must end in .ply", cloud));
-    if (!std::isfinite(cloud_max_depth) || cloud_max_depth < 0)
-      throw ToolError(fmt::format("--cloud-max-depth {}: must be finite and >= 0 (metres)", cloud_max_depth));
-    if (any() && calib.empty()) throw ToolError("--depth-file/--cloud/--cloud-view need --calib with a camera");
-    if (any() && !camera)
-      throw ToolError(fmt::format("{}: no 'camera' (focal length, baseline) for --depth-file/--cloud", calib));
-  }
-  void write(sm::tools::OutputSet& outs, const cv::Mat& disp_f, const sm::Image8& rect_left,
-             const sm::RectCamera& cam) const {
-    if (!any()) return;
-    const cv::Mat z = sm::tools::disparity_to_depth(disp_f, cam);
-    if (!depth_file.empty()) outs.write(depth_file, [&](const std::string& t) { sm::tools::write_depth_file(t, z); });
-    const auto pts = sm::tools::depth_to_cloud(z, sm::tools::to_mat(rect_left), cam,
-                                               cloud_max_depth > 0 ? cloud_max_depth : INFINITY);
-    if (!cloud.empty()) outs.write(cloud, [&](const std::string& t) { sm::tools::write_ply(t, pts); });
-    if (!cloud_view.empty())
-      outs.write(cloud_view, [&](const std::string& t) {
-        sm::tools::write_image_atomic(t, sm::tools::cloud_view(pts, {disp_f.cols, disp_f.rows}, cloud_max_depth));
-      });
-  }
-};
 
 int run(int argc, char** argv) {
   std::string left, right, out, colour, disp_file, regs_json, calib, stage = "post", objects_json;
@@ -118,7 +77,7 @@ int run(int argc, char** argv) {
                     ->check(CLI::Range(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
-  DepthOptions depth;
+  sm::tools::DepthOptions depth;
   depth.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
 
@@ -218,7 +177,7 @@ int run(int argc, char** argv) {
       sm::tools::write_image_atomic(t, pic);
     });
   if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
-  if (camera) depth.write(outs, df, res.rl, *camera);
+  if (camera) depth.write(outs, df, sm::tools::to_mat(res.rl), *camera);
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
