@@ -266,6 +266,10 @@ TEST_CASE("pictures: data range, invalid colour, colour bar, legends, object lab
   o.y1 = 90;
   const cv::Mat plain = sm::tools::draw_objects(base, {o}, false, false);
   const cv::Mat flagged = sm::tools::draw_objects(base, {o}, true, true);
+  // for a look: <build>/tests/depth_tmp/pictures_unit/
+  const fs::path look = sm::test::fresh_dir(tmp_root() / "pictures_unit");
+  cv::imwrite((look / "objects_flagged.png").string(), flagged);
+  cv::imwrite((look / "disparity_picture.png").string(), pic);
   CHECK(plain.at<cv::Vec3b>(60, 20) == cv::Vec3b(255, 255, 255));  // box edge
   cv::Mat label_area;
   cv::inRange(plain(cv::Rect(21, 31, 20, 12)), cv::Scalar(150, 150, 150), cv::Scalar(255, 255, 255), label_area);

@@ -89,10 +89,15 @@ cv::Mat colour_bar(ColourRange r, int height, const RectCamera* cam) {
   auto row_of = [&](double d) { return top + static_cast<int>(std::lround((r.hi - d) / (r.hi - r.lo) * (bar_h - 1))); };
   const cv::Scalar white(255, 255, 255);
   put_text(img, "disp", {2, th + 1}, s, white);
-  const double step = nice_step(r.hi - r.lo, std::max(2, bar_h / (3 * th)));
+  // disparity ticks at a round step, labels at least 1.5 text heights apart (a short bar
+  // keeps only a few)
+  const double step = nice_step(r.hi - r.lo, std::max(1, bar_h / (3 * th)));
+  int last_label = -1000;
   for (double d = std::ceil(r.lo / step) * step; d <= r.hi + 1e-9; d += step) {
     const int y = row_of(d);
     cv::line(img, {left - 3, y}, {left - 1, y}, white);
+    if (std::abs(y - last_label) < 3 * th / 2) continue;
+    last_label = y;
     put_text(img, tick_text(d, step), {1, std::clamp(y + th / 2, th, height - 1)}, s, white);
   }
   if (cam) {
