@@ -277,6 +277,11 @@ TEST_CASE("pictures: data range, invalid colour, colour bar, legends, object lab
   CHECK(plain.at<cv::Vec3b>(118, 2) == cv::Vec3b(0, 128, 0));
   CHECK(flagged.at<cv::Vec3b>(118, 1) != cv::Vec3b(0, 128, 0));  // the flags' box
 
+  const cv::Mat row = sm::tools::side_by_side({ep, cv::Mat(120, 50, CV_8UC1, cv::Scalar(9))});
+  CHECK(row.size() == cv::Size(210, ep.rows));
+  CHECK(row.at<cv::Vec3b>(119, 200) == cv::Vec3b(9, 9, 9));
+  CHECK(row.at<cv::Vec3b>(ep.rows - 1, 200) == cv::Vec3b(0, 0, 0));  // padding
+
   // cloud view: a point straight ahead at z_max/2 lands at the centre column, half way up
   const cv::Mat view = sm::tools::cloud_view({{0.f, 0.f, 2.f, 200}}, {200, 220}, 4.0);
   CHECK(view.at<cv::Vec3b>(210 - 100, 100) == cv::Vec3b(200, 200, 200));

@@ -208,6 +208,21 @@ cv::Mat draw_objects(const cv::Mat& bgr, const std::vector<Object>& objects, boo
   return img;
 }
 
+cv::Mat side_by_side(const std::vector<cv::Mat>& tiles) {
+  int rows = 0;
+  for (const auto& t : tiles) rows = std::max(rows, t.rows);
+  std::vector<cv::Mat> padded;
+  for (const auto& t : tiles) {
+    cv::Mat c = t;
+    if (c.channels() == 1) cv::cvtColor(t, c, cv::COLOR_GRAY2BGR);
+    cv::copyMakeBorder(c, c, 0, rows - c.rows, 0, 0, cv::BORDER_CONSTANT, cv::Scalar(0, 0, 0));
+    padded.push_back(c);
+  }
+  cv::Mat out;
+  cv::hconcat(padded, out);
+  return out;
+}
+
 cv::Mat labelled(const cv::Mat& img, const std::string& label) {
   cv::Mat t = img.clone();
   const double scale = std::max(0.3, t.cols / 800.0);

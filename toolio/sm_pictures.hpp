@@ -59,6 +59,10 @@ cv::Mat error_map_picture(const cv::Mat& est, const cv::Mat& gt, const cv::Mat& 
 // ("TOO-MANY", "TABLE-FULL") in the bottom-left corner when set.
 cv::Mat draw_objects(const cv::Mat& bgr, const std::vector<Object>& objects, bool too_many, bool table_full);
 
+// The tiles side by side, each padded at the bottom with black to the tallest one (a tile
+// with a legend strip next to one without); grey tiles are converted to BGR.
+cv::Mat side_by_side(const std::vector<cv::Mat>& tiles);
+
 // `img` with `label` in its top-left corner, white on black (stereo_sim's labelled()).
 cv::Mat labelled(const cv::Mat& img, const std::string& label);
 
