@@ -2,9 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <functional>
+
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <vector>
 
 namespace sm {
 
@@ -20,6 +25,34 @@ int pow2_at_least(int v) {
 }
 
 nlohmann::json grid_json(const RectGrid& g) { return nlohmann::json{{"sx", g.sx}, {"sy", g.sy}}; }
+
+// The first key of object `j` that is not in `known`, or "" when all are known.
+std::string unknown_key(const nlohmann::json& j, const std::vector<std::string>& known) {
+  for (const auto& [k, v] : j.items())
+    if (std::find(known.begin(), known.end(), k) == known.end()) return k;
+  return "";
+}
+
+// The "camera" object: every field a finite number, focal length and baseline > 0.
+RectCamera load_camera(const nlohmann::json& j, const std::function<void(const std::string&)>& fail) {
+  if (!j.is_object()) fail("'camera' is not an object");
+  if (const std::string k = unknown_key(j, {"f_px", "cx", "cy", "baseline_m"}); !k.empty())
+    fail(fmt::format("unknown key 'camera.{}'", k));
+  auto num = [&](const char* key, bool positive) {
+    if (!j.contains(key)) fail(fmt::format("missing key 'camera.{}'", key));
+    if (!j[key].is_number()) fail(fmt::format("'camera.{}' is not a number", key));
+    const double v = j[key].get<double>();
+    if (!std::isfinite(v) || (positive && !(v > 0)))
+      fail(fmt::format("'camera.{}' = {} must be {}", key, v, positive ? "finite and > 0" : "finite"));
+    return v;
+  };
+  RectCamera c;
+  c.f_px = num("f_px", true);
+  c.cx = num("cx", false);
+  c.cy = num("cy", false);
+  c.baseline_m = num("baseline_m", true);
+  return c;
+}
 
 }  // namespace
 
@@ -49,6 +82,9 @@ void save_calib(const std::string& path, const CalibFile& c) {
   j["rect_radius_needed"] = c.rect_radius_needed;
   j["left"] = grid_json(c.left);
   j["right"] = grid_json(c.right);
+  if (c.camera)
+    j["camera"] = {
+        {"f_px", c.camera->f_px}, {"cx", c.camera->cx}, {"cy", c.camera->cy}, {"baseline_m", c.camera->baseline_m}};
   std::ofstream f(path);
   if (!f) throw std::runtime_error(fmt::format("{}: cannot open for writing", path));
   f << j.dump(1) << "\n";
@@ -66,6 +102,10 @@ CalibFile load_calib(const std::string& path) {
     fail(fmt::format("malformed JSON ({})", e.what()));
   }
   if (!j.is_object()) fail("not a JSON object");
+  if (const std::string k = unknown_key(j, {"format", "version", "width", "height", "grid_step", "frac_bits", "grid_w",
+                                            "grid_h", "rect_radius_needed", "left", "right", "camera"});
+      !k.empty())
+    fail(fmt::format("unknown key '{}'", k));
   auto get_int = [&](const char* key, int lo, int hi) {
     if (!j.contains(key)) fail(fmt::format("missing key '{}'", key));
     if (!j[key].is_number_integer()) fail(fmt::format("'{}' is not an integer", key));
@@ -87,6 +127,8 @@ CalibFile load_calib(const std::string& path) {
   const size_t n = static_cast<size_t>(gw) * gh;
   auto load_grid = [&](const char* cam, RectGrid& g) {
     if (!j.contains(cam) || !j[cam].is_object()) fail(fmt::format("missing object '{}'", cam));
+    if (const std::string k = unknown_key(j[cam], {"sx", "sy"}); !k.empty())
+      fail(fmt::format("unknown key '{}.{}'", cam, k));
     g.gw = gw;
     g.gh = gh;
     for (const char* comp : {"sx", "sy"}) {
@@ -106,7 +148,14 @@ CalibFile load_calib(const std::string& path) {
   };
   load_grid("left", c.left);
   load_grid("right", c.right);
+  if (j.contains("camera")) c.camera = load_camera(j["camera"], fail);
   return c;
+}
+
+void check_calib_fits(const std::string& path, const CalibFile& c, const HwConfig& hw) {
+  if (c.rect_radius_needed > hw.rect_radius)
+    throw std::runtime_error(fmt::format("{}: 'rect_radius_needed' = {} exceeds the IP's RECT_RADIUS {}", path,
+                                         c.rect_radius_needed, hw.rect_radius));
 }
 
 }  // namespace sm

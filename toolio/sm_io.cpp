@@ -16,6 +16,8 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "sm_signal_cleanup.hpp"
+
 namespace fs = std::filesystem;
 
 namespace sm::tools {
@@ -138,6 +140,7 @@ cv::Mat to_mat(const Image8& img) {
 
 void write_image_atomic(const std::string& path, const cv::Mat& img) {
   const std::string tmp = temp_name(path);
+  const RemoveOnSignal guard(tmp);
   bool ok = false;
   try {
     ok = cv::imwrite(tmp, img);
@@ -154,6 +157,7 @@ void write_image_atomic(const std::string& path, const cv::Mat& img) {
 
 void write_text_atomic(const std::string& path, const std::string& text) {
   const std::string tmp = temp_name(path);
+  const RemoveOnSignal guard(tmp);
   {
     std::ofstream f(tmp, std::ios::binary);
     f << text;

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "sm_io.hpp"
+#include "sm_signal_cleanup.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,12 +30,15 @@ std::string OutputSet::stage(const std::string& path, bool create_parent) {
       for (const auto& d : missing) fs::remove(d, ec);
       throw ToolError(fmt::format("{}: cannot create directory", dir.string()));
     }
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) created_dirs_.push_back(it->string());
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+      created_dirs_.push_back(it->string());
+      created_dirs_on_signal_.push_back(signal_cleanup_add(it->string(), true));
+    }
   }
   const std::string temp =
       (dir / fmt::format(".{}.tmp{}-{}{}", p.stem().string(), getpid(), entries_.size(), p.extension().string()))
           .string();
-  entries_.push_back({path, temp});
+  entries_.push_back({path, temp, signal_cleanup_add(temp)});
   return temp;
 }
 
@@ -70,6 +74,7 @@ void OutputSet::commit() {
     }
   }
   committed_ = true;
+  forget_on_signal();
 }
 
 void OutputSet::discard() noexcept {
@@ -77,8 +82,18 @@ void OutputSet::discard() noexcept {
   for (const auto& e : entries_) fs::remove(e.temp, ec);
   // Innermost first; a folder that is not empty (someone else's file) stays.
   for (auto it = created_dirs_.rbegin(); it != created_dirs_.rend(); ++it) fs::remove(*it, ec);
+  forget_on_signal();
   entries_.clear();
   created_dirs_.clear();
+}
+
+void OutputSet::forget_on_signal() noexcept {
+  for (auto& e : entries_) {
+    signal_cleanup_remove(e.on_signal);
+    e.on_signal = -1;
+  }
+  for (int h : created_dirs_on_signal_) signal_cleanup_remove(h);
+  created_dirs_on_signal_.clear();
 }
 
 }  // namespace sm::tools

@@ -1,7 +1,8 @@
 // All-or-nothing output files for the command-line tools: every output is first written
 // under a temporary name next to its target, and only when all of them are written are
 // they renamed into place. A tool that fails half way (exception, error exit) leaves no
-// partial output: the temporaries are removed, and so are the folders the set created.
+// partial output: the temporaries are removed, and so are the folders the set created
+// (also on SIGINT / SIGTERM: sm_signal_cleanup.hpp).
 #pragma once
 
 #include <functional>
@@ -36,11 +37,14 @@ class OutputSet {
   void discard() noexcept;
 
  private:
+  void forget_on_signal() noexcept;  // drops the signal_cleanup registrations
   struct Entry {
     std::string target, temp;
+    int on_signal = -1;  // signal_cleanup_add handle of `temp`
   };
   std::vector<Entry> entries_;
   std::vector<std::string> created_dirs_;  // outermost first
+  std::vector<int> created_dirs_on_signal_;
   bool committed_ = false;
 };
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -179,6 +180,10 @@ SyntheticScene render_scene(const SceneParams& p) {
   if (p.levels < 2 || p.levels > 255) throw std::invalid_argument(fmt::format("levels {} outside 2..255", p.levels));
   if (p.objects < 0 || p.objects > 64) throw std::invalid_argument(fmt::format("objects {} outside 0..64", p.objects));
   if (p.noise < 0) throw std::invalid_argument("noise must be >= 0");
+  const bool f_ok = std::isfinite(p.focal_px) && p.focal_px > 0, b_ok = std::isfinite(p.baseline_m) && p.baseline_m > 0;
+  if ((p.focal_px != 0 || p.baseline_m != 0) && !(f_ok && b_ok))
+    throw std::invalid_argument(
+        fmt::format("focal length {} px and baseline {} m: give both, finite and > 0", p.focal_px, p.baseline_m));
   const std::vector<Surface> surf = build_surfaces(p);
   if (std::fabs(surf[0].b) >= 0.5) throw std::invalid_argument("background slant too steep");
 
@@ -276,6 +281,11 @@ void write_scene(const SyntheticScene& s, const SceneParams& p, const std::strin
                 {"H_raw_from_rect", mat(s.h_raw_from_rect)},
                 {"H_rect_from_raw", mat(s.h_rect_from_raw)}};
   j["noise_sigma"] = p.noise;
+  const std::optional<RectCamera> cam =
+      p.focal_px > 0
+          ? std::optional<RectCamera>(RectCamera{p.focal_px, (p.width - 1) / 2.0, (p.height - 1) / 2.0, p.baseline_m})
+          : std::nullopt;
+  if (cam) j["camera"] = {{"f_px", cam->f_px}, {"cx", cam->cx}, {"cy", cam->cy}, {"baseline_m", cam->baseline_m}};
   write_text_atomic((d / "camera.json").string(), j.dump(2) + "\n");
 
   // The same cameras as the rectifier's register contents (model/calib_file.hpp): grid
@@ -295,6 +305,7 @@ void write_scene(const SyntheticScene& s, const SceneParams& p, const std::strin
       radius = std::max(radius, std::fabs(raw[1] - gy * kGridStep));
     }
   c.rect_radius_needed = static_cast<int>(std::ceil(radius)) + 1;
+  c.camera = cam;
   const std::string calib = (d / "calib.json").string(), tmp = (d / ".calib.json.tmp").string();
   try {
     save_calib(tmp, c);

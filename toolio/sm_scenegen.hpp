@@ -28,6 +28,11 @@ struct SceneParams {
   double rot_deg = 0.0;  // right camera rotated by this angle about the image centre
   double vshift = 0.0;   // ... and shifted down by this many pixels
   double noise = 0.0;    // Gaussian noise sigma (grey levels), both views
+  // The rectified camera (both > 0, or both 0 = none): written into calib.json's "camera"
+  // with the principal point at the image centre ((W-1)/2, (H-1)/2), so the true depth
+  // of a pixel is focal_px * baseline_m / gt (metres).
+  double focal_px = 0;
+  double baseline_m = 0;
 };
 
 struct SyntheticScene {
@@ -46,7 +51,8 @@ SyntheticScene render_scene(const SceneParams& p);
 
 // Writes left.png right.png gt.png (16-bit, value = d * 256) nonocc.png scale.txt
 // ("256 levels"), camera.json (homographies, gains) and calib.json (the right camera's
-// homography as rectifier grids, model/calib_file.hpp) into dir (created). Every file
+// homography as rectifier grids and, when p gives one, the camera, model/calib_file.hpp)
+// into dir (created). Every file
 // is written under a temporary name and renamed.
 constexpr int kGtScale = 256;
 void write_scene(const SyntheticScene& s, const SceneParams& p, const std::string& dir, bool with_nonocc = true);

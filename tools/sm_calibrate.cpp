@@ -3,13 +3,13 @@
 // Finds the chessboard in every left/right pair, calibrates both cameras and the rig
 // (OpenCV calibrateCamera + stereoCalibrate) at the IP's active image size, computes the
 // rectification (stereoRectify) and its maps (initUndistortRectifyMap), samples them on
-// the 16-pixel register grid and writes the calibration JSON (sm::CalibFile) plus a YAML
-// file of the camera parameters. It then checks the result the way the hardware will
-// compute it: both images are rectified by the model's rectify() (bit-exact with the
-// RTL), the chessboard is found again, and the mean |vertical disparity| of the matched
-// corners is reported. Fails when the rig needs a larger line-buffer radius than the
-// configured RECT_RADIUS. Outputs are all-or-nothing (sm::tools::OutputSet): a failed run
-// leaves no JSON, YAML or rectified image behind.
+// the 16-pixel register grid and writes the calibration JSON (sm::CalibFile, with the
+// rectified left camera for metric depth: focal length, principal point and baseline from
+// P1/P2, in the unit of --square) plus a YAML file of the camera parameters. It then checks the result the way the
+// hardware will compute it: both images are rectified by the model's rectify() (bit-exact with the RTL), the chessboard
+// is found again, and the mean |vertical disparity| of the matched corners is reported. Fails when the rig needs a
+// larger line-buffer radius than the configured RECT_RADIUS. Outputs are all-or-nothing (sm::tools::OutputSet): a
+// failed run leaves no JSON, YAML or rectified image behind, also when interrupted (SIGINT/SIGTERM).
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -98,13 +98,33 @@ std::vector<Pair> find_pairs(const std::string& input) {
     auto full = [&](const std::string& n) { return fs::path(n).is_absolute() ? n : (base / n).string(); };
     pairs.push_back({full(names[i]), full(names[i + 1])});
   }
+  // every entry checked before any work (and without OpenCV's own warning lines)
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string& p = i % 2 ? pairs[i / 2].right : pairs[i / 2].left;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec))
+      throw std::runtime_error(fmt::format("{}: entry {} '{}': {}", input, i + 1, names[i],
+                                           fs::exists(p, ec) ? "not a regular file" : "no such file"));
+  }
   return pairs;
 }
 
-cv::Mat load_gray(const std::string& path) {
-  cv::Mat m = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  if (m.empty()) throw std::runtime_error(fmt::format("{}: cannot read image", path));
-  return m;
+cv::Mat load_gray(const std::string& path) { return sm::tools::read_image(path, cv::IMREAD_GRAYSCALE); }
+
+// The rectified left camera of stereoRectify's projections: P1 = [f 0 cx 0; 0 f cy 0; ...],
+// P2 = [f 0 cx' Tx*f; ...] with the baseline B = -Tx (the right camera to the right of
+// the left one), in the unit of the object points (--square).
+sm::RectCamera rect_camera(const cv::Mat& p1, const cv::Mat& p2) {
+  sm::RectCamera c;
+  c.f_px = p1.at<double>(0, 0);
+  c.cx = p1.at<double>(0, 2);
+  c.cy = p1.at<double>(1, 2);
+  c.baseline_m = -p2.at<double>(0, 3) / p2.at<double>(0, 0);
+  if (!std::isfinite(c.f_px) || !(c.f_px > 0) || !std::isfinite(c.baseline_m) || !(c.baseline_m > 0))
+    throw std::runtime_error(
+        fmt::format("rectified camera f {} px, baseline {}: not a horizontal rig with the right camera on the right",
+                    c.f_px, c.baseline_m));
+  return c;
 }
 
 bool find_corners(const cv::Mat& img, cv::Size board, int win, std::vector<cv::Point2f>& c) {
@@ -143,11 +163,15 @@ int run(int argc, char** argv) {
   int width = hw_default.max_width, height = hw_default.max_height, rect_radius = hw_default.rect_radius;
   app.add_option("input", input, "folder of left*/right* images or an image list file")->required();
   app.add_option("--board", board_s, "inner corners per row x per column")->capture_default_str();
-  app.add_option("--square", square, "square size (unit of T)")->capture_default_str();
+  app.add_option("--square", square,
+                 "chessboard square size in metres (the unit of T and of the baseline; the default 1 gives them "
+                 "in squares, not metres)")
+      ->capture_default_str();
   app.add_option("--width", width, "active image width of the IP")->capture_default_str();
   app.add_option("--height", height, "active image height of the IP")->capture_default_str();
   app.add_option("--rect-radius", rect_radius, "RECT_RADIUS the IP is built with")->capture_default_str();
-  app.add_option("--alpha", alpha, "stereoRectify free scaling (0: valid pixels only, 1: all)")->capture_default_str();
+  app.add_option("--alpha", alpha, "stereoRectify free scaling, 0..1 (0: valid pixels only, 1: all)")
+      ->capture_default_str();
   app.add_option("-o,--out", out_json, "calibration JSON (registers)")->capture_default_str();
   double check_vdisp = 0;
   app.add_option("--check-vdisp", check_vdisp,
@@ -157,7 +181,8 @@ int run(int argc, char** argv) {
   app.add_option("--save-rectified", save_dir,
                  "folder to write the model-rectified pairs to (side by side, PNG; created if missing)");
   app.add_option("--yaml", out_yaml, "camera parameters (cv::FileStorage YAML)")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  sm::tools::quiet_opencv();
 
   cv::Size board;
   {
@@ -170,7 +195,11 @@ int run(int argc, char** argv) {
     throw std::runtime_error(fmt::format("--width/--height {}x{} outside 16..4095", width, height));
   if (rect_radius < 1 || rect_radius > 31)
     throw std::runtime_error(fmt::format("--rect-radius {} outside 1..31", rect_radius));
-  if (!(square > 0)) throw std::runtime_error("--square must be positive");
+  if (!std::isfinite(square) || !(square > 0))
+    throw std::runtime_error(fmt::format("--square {}: must be finite and > 0 (metres)", square));
+  if (!(alpha >= 0 && alpha <= 1)) throw std::runtime_error(fmt::format("--alpha {}: outside 0..1", alpha));
+  if (!std::isfinite(check_vdisp) || check_vdisp < 0)
+    throw std::runtime_error(fmt::format("--check-vdisp {}: must be finite and >= 0", check_vdisp));
 
   const auto pairs = find_pairs(input);
   const cv::Size size(width, height);
@@ -226,6 +255,7 @@ int run(int argc, char** argv) {
   const int need_l = sm::rect_radius_needed(cal.left, width, height);
   const int need_r = sm::rect_radius_needed(cal.right, width, height);
   cal.rect_radius_needed = std::max(need_l, need_r);
+  cal.camera = rect_camera(p1, p2);
 
   // Every output goes to a temporary first; nothing is renamed into place unless the
   // whole run succeeds.
@@ -237,11 +267,15 @@ int run(int argc, char** argv) {
       << src_size.height << "board" << board << "square" << square << "pairs_used" << static_cast<int>(obj.size())
       << "rms_left" << rms_l << "rms_right" << rms_r << "rms_stereo" << rms << "K1" << k1 << "D1" << d1 << "K2" << k2
       << "D2" << d2 << "R" << rot << "T" << tr << "E" << e << "F" << f << "R1" << r1 << "R2" << r2 << "P1" << p1 << "P2"
-      << p2 << "Q" << q << "rect_radius_needed" << cal.rect_radius_needed;
+      << p2 << "Q" << q << "rect_radius_needed" << cal.rect_radius_needed << "f_px" << cal.camera->f_px << "cx"
+      << cal.camera->cx << "cy" << cal.camera->cy << "baseline_m" << cal.camera->baseline_m;
   });
   outs.write(out_json, [&](const std::string& tmp) { sm::save_calib(tmp, cal); });
   fmt::print("pairs used {} of {}; RMS reprojection error: left {:.4f}, right {:.4f}, stereo {:.4f} px\n", obj.size(),
              pairs.size(), rms_l, rms_r, rms);
+  fmt::print("rectified left camera: f {:.2f} px, principal point ({:.2f}, {:.2f}), baseline {:.6g} {}\n",
+             cal.camera->f_px, cal.camera->cx, cal.camera->cy, cal.camera->baseline_m,
+             square == 1.0 ? "squares (give --square in metres for metres)" : "m");
   fmt::print("line-buffer radius needed: left {}, right {} (configured RECT_RADIUS {})\n", need_l, need_r, rect_radius);
 
   // Check with the model's rectify at the configured radius (bit-exact with the RTL).

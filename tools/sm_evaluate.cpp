@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_pictures.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
@@ -217,7 +218,9 @@ int run(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
-  app.add_option("--disp-images", disp_dir, "write <scene>_<method>.png colour disparity maps here");
+  app.add_option("--disp-images", disp_dir,
+                 "write <scene>_<method>.png colour disparity maps (over the ground truth's range, with a colour "
+                 "bar), <scene>_<method>_errors.png error maps with their legend and <scene>_gt.png here");
   app.add_option("--methods", methods_opt,
                  "comma-separated subset of model,bm,bm-dense,sgbm,sgbm-dense,sgbm-hh,sgbm-hh-dense,binsgbm,"
                  "binsgbm-dense,results")
@@ -357,6 +360,8 @@ int run(int argc, char** argv) {
     const int lv = levels ? levels : std::min(254, (sc.levels + 1) / 2 * 2);
     const int plv = peer_levels ? peer_levels : round16(std::max(1, sc.levels));
     Row row{names[i], fmt::format("{}x{}", sc.left.cols, sc.left.rows), lv, plv, {}};
+    cv::Mat gt_f = sc.gt.clone();  // the pictures' colour range: the ground truth's
+    gt_f.setTo(-1.0f, sc.gt <= 0);
     json js = {{"name", names[i]},       {"width", sc.left.cols},
                {"height", sc.left.rows}, {"levels", lv},
                {"peer_levels", plv},     {"scene_levels", sc.levels},
@@ -387,17 +392,18 @@ int run(int argc, char** argv) {
                               {"levels", mlv},
                               {"ms", c.ms >= 0 ? json(c.ms) : json(nullptr)}};
         row.cells.push_back(c);
-        if (!disp_dir.empty())
-          sm::tools::write_image_atomic((fs::path(disp_dir) / fmt::format("{}_{}.png", names[i], out)).string(),
-                                        sm::tools::disp_to_colour(est[k], mlv));
+        if (!disp_dir.empty()) {
+          const fs::path stem = fs::path(disp_dir) / fmt::format("{}_{}", names[i], out);
+          sm::tools::write_image_atomic(stem.string() + ".png",
+                                        sm::tools::disparity_picture(est[k], sm::tools::data_range(gt_f)));
+          sm::tools::write_image_atomic(stem.string() + "_errors.png",
+                                        sm::tools::error_map_picture(est[k], sc.gt, sc.nonocc));
+        }
       }
     }
-    if (!disp_dir.empty()) {
-      cv::Mat g = sc.gt.clone();
-      g.setTo(-1.0f, sc.gt <= 0);
+    if (!disp_dir.empty())
       sm::tools::write_image_atomic((fs::path(disp_dir) / fmt::format("{}_gt.png", names[i])).string(),
-                                    sm::tools::disp_to_colour(g, std::max(lv, plv)));
-    }
+                                    sm::tools::disparity_picture(gt_f, sm::tools::data_range(gt_f)));
     jout["scenes"].push_back(js);
     rows.push_back(row);
   }

@@ -32,6 +32,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--vshift", p.vshift, "right camera vertical offset (pixels)")->capture_default_str();
   app.add_option("--noise", p.noise, "Gaussian noise sigma (grey levels)")->capture_default_str();
+  app.add_option("--focal-px", p.focal_px,
+                 "rectified focal length (px) written into calib.json's camera, with --baseline-m: true depth = "
+                 "focal * baseline / gt");
+  app.add_option("--baseline-m", p.baseline_m, "camera baseline (m) written into calib.json's camera");
   app.add_flag("--no-nonocc", no_nonocc, "do not write nonocc.png");
   app.add_flag("-v,--verbose", verbose, "print a summary");
   CLI11_PARSE(app, argc, argv);

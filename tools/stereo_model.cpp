@@ -2,7 +2,9 @@
 // pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16) and/or
 // for viewing as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a colour-mapped PNG.
 // Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
-// names); options given on the command line win. Outputs are all-or-nothing.
+// names); options given on the command line win. With a calibration that holds the
+// rectified camera, metric depth (--depth-file) and a point cloud (--cloud, --cloud-view).
+// Outputs are all-or-nothing.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -17,9 +19,11 @@
 #include <tuple>
 
 #include "calib_file.hpp"
+#include "toolio/sm_depth_options.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
+#include "toolio/sm_pictures.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "pipeline.hpp"
@@ -42,7 +46,9 @@ int run(int argc, char** argv) {
   app.add_option("left", left, "left image (PNG/JPEG; reference view)")->required();
   app.add_option("right", right, "right image")->required();
   app.add_option("-o,--out", out, "disparity PNG for viewing (grey, 0..255 over 0..DISP-1, invalid = 0)");
-  app.add_option("--colour", colour, "colour-mapped disparity PNG (default with -o: <out>_colour.png)");
+  app.add_option("--colour", colour,
+                 "colour-mapped disparity PNG over the data's range, with a colour bar (depth ticks with a "
+                 "calibrated camera) and the invalid colour (default with -o: <out>_colour.png)");
   app.add_option("--disp-file", disp_file,
                  "lossless disparity: .pfm = float PFM (+inf = invalid, Middlebury), .png = 16-bit PNG of "
                  "disparity x 16 (0 = invalid, KITTI)");
@@ -71,10 +77,12 @@ int run(int argc, char** argv) {
                     ->check(CLI::Range(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
+  sm::tools::DepthOptions depth;
+  depth.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
 
-  if (out.empty() && colour.empty() && disp_file.empty())
-    throw ToolError("no output: give -o, --colour and/or --disp-file");
+  if (out.empty() && colour.empty() && disp_file.empty() && !depth.any())
+    throw ToolError("no output: give -o, --colour, --disp-file, --depth-file and/or --cloud");
   if (!disp_file.empty()) {
     std::string ext = std::filesystem::path(disp_file).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -127,10 +135,12 @@ int run(int argc, char** argv) {
     r.sw_table.fill(0);
     std::copy(sw_table.begin(), sw_table.end(), r.sw_table.begin());
   }
+  std::optional<sm::RectCamera> camera;
   if (!calib.empty()) {
     sm::CalibFile c;
     try {
       c = sm::load_calib(calib);
+      sm::check_calib_fits(calib, c, hw);
     } catch (const std::exception& e) {
       throw ToolError(e.what());
     }
@@ -140,7 +150,9 @@ int run(int argc, char** argv) {
     r.grid_l = c.left;
     r.grid_r = c.right;
     if (!o_nr->count()) r.rect_enable = true;
+    camera = c.camera;
   }
+  depth.check(camera, calib);
 
   sm::PipelineResult res;
   try {
@@ -160,9 +172,12 @@ int run(int argc, char** argv) {
     outs.write(out,
                [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_grey(df, hw.disp)); });
   if (!colour.empty())
-    outs.write(colour,
-               [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_colour(df, hw.disp)); });
+    outs.write(colour, [&](const std::string& t) {
+      const cv::Mat pic = sm::tools::disparity_picture(df, sm::tools::data_range(df), camera ? &*camera : nullptr);
+      sm::tools::write_image_atomic(t, pic);
+    });
   if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
+  if (camera) depth.write(outs, df, sm::tools::to_mat(res.rl), *camera);
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
@@ -185,7 +200,7 @@ int run(int argc, char** argv) {
     long valid = 0;
     for (auto p : d.px) valid += sm::disp_valid(p);
     std::string files;
-    for (const auto* f : {&out, &colour, &disp_file, &objects_json})
+    for (const auto* f : {&out, &colour, &disp_file, &objects_json, &depth.depth_file, &depth.cloud, &depth.cloud_view})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
   }
