@@ -171,6 +171,6 @@ int main(int argc, char** argv) {
     return run_model<SM_VTOP>(req, out);
 #endif
   };
-  return sm::simapp::stereo_sim_main(argc, argv, info, run,
-                                     [](const std::string& path) { return sm::wave_signal_names(path); });
+  return sm::simapp::run_stereo_sim(argc, argv, info, run,
+                                    [](const std::string& path) { return sm::wave_signal_names(path); });
 }
