@@ -74,7 +74,17 @@ sm_vtop(vtop_small_fold ${SM_SMALL_FOLD_PARAMS})
 # stereo_sim's configuration-independent part (sim/stereo_sim_app.hpp), compiled once
 # for every stereo_sim_* executable. It sees no Verilated model (VM_TRACE=0: no trace
 # header), only the harness's plain types.
-add_library(sm_stereo_sim_app STATIC ${CMAKE_CURRENT_SOURCE_DIR}/stereo_sim_app.cpp)
+# The run's stages, one file each (stereo_sim_app.cpp calls them in order).
+add_library(sm_stereo_sim_app STATIC
+  ${CMAKE_CURRENT_SOURCE_DIR}/stereo_sim_app.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_options.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_regplan.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_inputs.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_simulate.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_check.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_report.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_outputs.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_pictures.cpp)
 target_include_directories(sm_stereo_sim_app PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR})
 target_link_libraries(sm_stereo_sim_app PUBLIC sm_model sm_toolio sm_verilated fmt::fmt
                       PRIVATE CLI11::CLI11 nlohmann_json::nlohmann_json ${OpenCV_LIBS})

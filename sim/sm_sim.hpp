@@ -116,167 +116,20 @@ class SimEngine {
   // while the camera streams.
   SimResult run(const std::vector<std::pair<Image8, Image8>>& frames, int width, int height, const CameraTiming& timing,
                 const VcdWindow& vcd = {}, uint64_t max_cycles = 0, const std::vector<HostOp>* host = nullptr) {
-    SimResult res;
-    // Frames started before this run (STATUS.FRAME_COUNT counts since reset, mod 2^16).
-    const uint32_t count_base = host && !host->empty() ? axil_.read(regmap::kSTATUS) & 0xffffu : 0;
-    size_t hi = 0;  // next host operation
-    auto started = [&](uint32_t status) { return static_cast<uint64_t>(((status & 0xffffu) - count_base) & 0xffffu); };
-    res.stats.resize(frames.size());
-    std::mt19937 rng(timing.seed);
-    auto& t = tb_.top();
-    const int hb = timing.continuous ? 0 : timing.hblank;
-    const int vb = timing.continuous ? 0 : timing.vblank_lines;
-    const uint64_t line_period = static_cast<uint64_t>(width + hb);
-    const double ratio = timing.aclk_per_camera_clock(width, height);
-    if (timing.core_hz > 0 && ratio < 1.0)
-      throw std::invalid_argument(fmt::format("core clock {:.3f} MHz is below the camera's pixel clock {:.3f} MHz",
-                                              timing.core_hz / 1e6, timing.clock_hz(width, height) / 1e6));
-    const uint64_t frame_ticks = line_period * static_cast<uint64_t>(height + vb);
-    // aclk cycle of camera clock k (core_hz > 0)
-    auto tick_cycle = [&](uint64_t k) { return static_cast<uint64_t>(std::ceil(static_cast<double>(k) * ratio)); };
-    // The camera: pixel n of frame f is due at a fixed cycle; it never waits for the IP
-    // in reality, so a pixel presented late counts as a stall.
-    size_t f = 0;
-    int x = 0, y = 0;
-    uint64_t due = tb_.cycles();
-    const uint64_t start = tb_.cycles();
-    if (max_cycles == 0)
-      max_cycles = static_cast<uint64_t>(static_cast<double>((frames.size() + 2) * line_period *
-                                                             static_cast<uint64_t>(height + vb + 64) * 4) *
-                                         std::max(ratio, static_cast<double>(timing.clocks_per_pixel))) +
-                   100000;
-    // Output side.
-    DispImage cur;
-    int ox = 0, oy = 0;
-    size_t oframe = 0;
-    std::vector<uint32_t> pkt;
-    // One word of the object stream taken at this edge; a packet ends at tlast.
-    auto take_obj = [&](bool hs, uint32_t word, bool last) {
-      if (!hs) return;
-      pkt.push_back(word);
-      if (last) {
-        res.object_packets.push_back({pkt});
-        pkt.clear();
-      }
-    };
-    bool vcd_on = false;
-    uint64_t vcd_end = 0;
-
-    while (oframe < frames.size()) {
-      if (tb_.cycles() - start > max_cycles)
-        throw std::runtime_error(fmt::format("simulation made no progress: {} of {} frames out after {} cycles", oframe,
-                                             frames.size(), tb_.cycles() - start));
-      // VCD window: opens when the camera reaches the chosen frame/line.
-      if (!vcd.path.empty() && !vcd_on && vcd_end == 0 && f == static_cast<size_t>(vcd.frame) && y == vcd.line &&
-          x == 0) {
-        if (!tb_.open_trace(vcd.path, 99, vcd.scope))
-          throw std::runtime_error("this simulator was built without tracing (--trace)");
-        vcd_on = true;
-        vcd_end = tb_.cycles() + (vcd.cycles ? vcd.cycles : vcd.lines * line_period);
-      }
-      if (vcd_on && tb_.cycles() >= vcd_end) {
-        tb_.close_trace();
-        vcd_on = false;
-      }
-      // Drive the camera.
-      const bool have = f < frames.size() && tb_.cycles() >= due;
-      bool present = have;
-      if (present && timing.idle_percent > 0 && x == 0 && static_cast<int>(rng() % 100) < timing.idle_percent)
-        present = false;  // a late line start: idle cycles between pixels are in the tests' timing
-      if (present && timing.idle_percent > 0 && static_cast<int>(rng() % 100) < timing.idle_percent) present = false;
-      t.s_axis_tvalid = present;
-      if (present) {
-        const auto& fr = frames[f];
-        t.s_axis_tdata = static_cast<uint32_t>(fr.first.at(x, y)) | (static_cast<uint32_t>(fr.second.at(x, y)) << 8);
-        t.s_axis_tuser = (x == 0 && y == 0);
-        t.s_axis_tlast = (x == width - 1);
-      }
-      t.m_axis_tready =
-          !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
-      t.m_axis_obj_tready =
-          !(timing.backpressure_percent > 0 && static_cast<int>(rng() % 100) < timing.backpressure_percent);
-      host_start(host, hi, oframe);
-      t.eval();
-      agent_.sample();
-      const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
-      if (t.s_axis_tvalid && !t.s_axis_tready) ++res.input_stall_cycles;
-      const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
-      const uint32_t od = t.m_axis_tdata;
-      const bool ou = t.m_axis_tuser, ol = t.m_axis_tlast;
-      const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
-      const uint32_t objd = t.m_axis_obj_tdata;
-      const bool objl = t.m_axis_obj_tlast;
-      const uint64_t now = tb_.cycles();
-      tb_.tick();
-      host_done(host, hi, started, res);
-      if (in_hs && timing.core_hz > 0) {
-        if (x == 0 && y == 0) res.stats[f].sof_in_cycle = now;
-        res.stats[f].last_in_cycle = now;
-        if (++x == width) {
-          x = 0;
-          if (++y == height) {
-            y = 0;
-            ++f;
-          }
-        }
-        due = start + tick_cycle(f * frame_ticks + y * line_period + x);
-      } else if (in_hs) {
-        if (x == 0 && y == 0) res.stats[f].sof_in_cycle = now;
-        res.stats[f].last_in_cycle = now;
-        if (++x == width) {
-          x = 0;
-          due = std::max(due + 1, now + 1 + hb);
-          if (++y == height) {
-            y = 0;
-            ++f;
-            due = now + 1 + hb + static_cast<uint64_t>(vb) * line_period;
-          }
-        } else {
-          due = std::max(due + 1, now + 1);
-        }
-      }
-      take_obj(obj_hs, objd, objl);
-      if (out_hs) {
-        if (ox == 0 && oy == 0) {
-          if (!ou && res.framing_error.empty())
-            res.framing_error = fmt::format("frame {}: first pixel without tuser", oframe);
-          cur = DispImage(width, height);
-          res.stats[oframe].first_out_cycle = now;
-        } else if (ou && res.framing_error.empty()) {
-          res.framing_error = fmt::format("frame {}: tuser at x {} y {}", oframe, ox, oy);
-        }
-        if (ol != (ox == width - 1) && res.framing_error.empty())
-          res.framing_error = fmt::format("frame {}: tlast {} at x {} y {}", oframe, ol, ox, oy);
-        cur.at(ox, oy) = static_cast<DispPix>(od);
-        if (++ox == width) {
-          ox = 0;
-          if (++oy == height) {
-            oy = 0;
-            res.stats[oframe].last_out_cycle = now;
-            res.frames.push_back(std::move(cur));
-            ++oframe;
-            if (on_frame) on_frame(oframe, frames.size());
-          }
-        }
-      }
+    RunState s(frames, width, height, timing, vcd, host);
+    start_run(s);
+    if (max_cycles == 0) max_cycles = default_max_cycles(s);
+    while (s.oframe < frames.size()) {
+      if (tb_.cycles() - s.start > max_cycles)
+        throw std::runtime_error(fmt::format("simulation made no progress: {} of {} frames out after {} cycles",
+                                             s.oframe, frames.size(), tb_.cycles() - s.start));
+      update_wave(s);
+      clock_streams(s);
     }
-    // Let the last object packet out, and finish an AXI4-Lite access in flight (the
-    // host's operations for frames beyond the stream are dropped).
-    t.s_axis_tvalid = 0;
-    for (int n = 0; (n < 4 * 64 * 8 + 64 && res.object_packets.size() < frames.size()) || agent_.busy(); ++n) {
-      t.m_axis_obj_tready = 1;
-      t.eval();
-      agent_.sample();
-      const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
-      const uint32_t objd = t.m_axis_obj_tdata;
-      const bool objl = t.m_axis_obj_tlast;
-      tb_.tick();
-      if (agent_.busy()) host_done(host, hi, started, res);
-      take_obj(obj_hs, objd, objl);
-    }
-    if (vcd_on) tb_.close_trace();
-    res.cycles = tb_.cycles() - start;
-    return res;
+    drain(s);
+    if (s.vcd_on) tb_.close_trace();
+    s.res.cycles = tb_.cycles() - s.start;
+    return std::move(s.res);
   }
 
   // Register schedule: starts the next operation when the agent is free (kWaitOutput
@@ -322,6 +175,214 @@ class SimEngine {
   }
 
  private:
+  // One run(): its inputs, the camera's position, the output frame being assembled, the
+  // host's next operation and the wave window.
+  struct RunState {
+    RunState(const std::vector<std::pair<Image8, Image8>>& frames_, int width_, int height_,
+             const CameraTiming& timing_, const VcdWindow& vcd_, const std::vector<HostOp>* host_)
+        : frames(frames_), width(width_), height(height_), timing(timing_), vcd(vcd_), host(host_) {}
+    const std::vector<std::pair<Image8, Image8>>& frames;
+    int width, height;
+    const CameraTiming& timing;
+    const VcdWindow& vcd;
+    const std::vector<HostOp>* host;
+    SimResult res;
+    std::mt19937 rng{1};
+    uint32_t count_base = 0;  // frames started before this run (STATUS.FRAME_COUNT, mod 2^16)
+    size_t hi = 0;            // next host operation
+    int hb = 0, vb = 0;       // blanking: cycles after a line, lines after a frame
+    uint64_t line_period = 0;
+    double ratio = 1;  // aclk cycles per camera clock
+    uint64_t frame_ticks = 0;
+    uint64_t start = 0;
+    uint64_t due = 0;  // cycle the camera's next pixel is due
+    size_t f = 0;      // camera: frame, column, row
+    int x = 0, y = 0;
+    DispImage cur;  // output: the frame being assembled, column, row, frames done
+    int ox = 0, oy = 0;
+    size_t oframe = 0;
+    std::vector<uint32_t> pkt;  // object packet being assembled
+    bool vcd_on = false;
+    uint64_t vcd_end = 0;
+    // frames of this run started, by a STATUS word
+    uint64_t started(uint32_t status) const {
+      return static_cast<uint64_t>(((status & 0xffffu) - count_base) & 0xffffu);
+    }
+  };
+
+  void start_run(RunState& s) {
+    const CameraTiming& timing = s.timing;
+    s.count_base = s.host && !s.host->empty() ? axil_.read(regmap::kSTATUS) & 0xffffu : 0;
+    s.res.stats.resize(s.frames.size());
+    s.rng.seed(timing.seed);
+    s.hb = timing.continuous ? 0 : timing.hblank;
+    s.vb = timing.continuous ? 0 : timing.vblank_lines;
+    s.line_period = static_cast<uint64_t>(s.width + s.hb);
+    s.ratio = timing.aclk_per_camera_clock(s.width, s.height);
+    if (timing.core_hz > 0 && s.ratio < 1.0)
+      throw std::invalid_argument(fmt::format("core clock {:.3f} MHz is below the camera's pixel clock {:.3f} MHz",
+                                              timing.core_hz / 1e6, timing.clock_hz(s.width, s.height) / 1e6));
+    s.frame_ticks = s.line_period * static_cast<uint64_t>(s.height + s.vb);
+    // The camera: pixel n of frame f is due at a fixed cycle; it never waits for the IP
+    // in reality, so a pixel presented late counts as a stall.
+    s.due = tb_.cycles();
+    s.start = tb_.cycles();
+  }
+
+  uint64_t default_max_cycles(const RunState& s) const {
+    return static_cast<uint64_t>(static_cast<double>((s.frames.size() + 2) * s.line_period *
+                                                     static_cast<uint64_t>(s.height + s.vb + 64) * 4) *
+                                 std::max(s.ratio, static_cast<double>(s.timing.clocks_per_pixel))) +
+           100000;
+  }
+
+  // VCD window: opens when the camera reaches the chosen frame/line.
+  void update_wave(RunState& s) {
+    const VcdWindow& vcd = s.vcd;
+    if (!vcd.path.empty() && !s.vcd_on && s.vcd_end == 0 && s.f == static_cast<size_t>(vcd.frame) && s.y == vcd.line &&
+        s.x == 0) {
+      if (!tb_.open_trace(vcd.path, 99, vcd.scope))
+        throw std::runtime_error("this simulator was built without tracing (--trace)");
+      s.vcd_on = true;
+      s.vcd_end = tb_.cycles() + (vcd.cycles ? vcd.cycles : vcd.lines * s.line_period);
+    }
+    if (s.vcd_on && tb_.cycles() >= s.vcd_end) {
+      tb_.close_trace();
+      s.vcd_on = false;
+    }
+  }
+
+  // The camera's pixel (when due and not idle) and the outputs' tready for this clock.
+  void drive_inputs(RunState& s) {
+    auto& t = tb_.top();
+    const CameraTiming& timing = s.timing;
+    const bool have = s.f < s.frames.size() && tb_.cycles() >= s.due;
+    bool present = have;
+    if (present && timing.idle_percent > 0 && s.x == 0 && static_cast<int>(s.rng() % 100) < timing.idle_percent)
+      present = false;  // a late line start: idle cycles between pixels are in the tests' timing
+    if (present && timing.idle_percent > 0 && static_cast<int>(s.rng() % 100) < timing.idle_percent) present = false;
+    t.s_axis_tvalid = present;
+    if (present) {
+      const auto& fr = s.frames[s.f];
+      t.s_axis_tdata =
+          static_cast<uint32_t>(fr.first.at(s.x, s.y)) | (static_cast<uint32_t>(fr.second.at(s.x, s.y)) << 8);
+      t.s_axis_tuser = (s.x == 0 && s.y == 0);
+      t.s_axis_tlast = (s.x == s.width - 1);
+    }
+    t.m_axis_tready =
+        !(timing.backpressure_percent > 0 && static_cast<int>(s.rng() % 100) < timing.backpressure_percent);
+    t.m_axis_obj_tready =
+        !(timing.backpressure_percent > 0 && static_cast<int>(s.rng() % 100) < timing.backpressure_percent);
+  }
+
+  // One clock of the streams and the host: drive, sample before the edge, tick, take.
+  void clock_streams(RunState& s) {
+    auto& t = tb_.top();
+    drive_inputs(s);
+    host_start(s.host, s.hi, s.oframe);
+    t.eval();
+    agent_.sample();
+    const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
+    if (t.s_axis_tvalid && !t.s_axis_tready) ++s.res.input_stall_cycles;
+    const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
+    const uint32_t od = t.m_axis_tdata;
+    const bool ou = t.m_axis_tuser, ol = t.m_axis_tlast;
+    const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
+    const uint32_t objd = t.m_axis_obj_tdata;
+    const bool objl = t.m_axis_obj_tlast;
+    const uint64_t now = tb_.cycles();
+    tb_.tick();
+    host_done(
+        s.host, s.hi, [&s](uint32_t st) { return s.started(st); }, s.res);
+    if (in_hs) advance_camera(s, now);
+    take_obj(s, obj_hs, objd, objl);
+    if (out_hs) take_pixel(s, od, ou, ol, now);
+  }
+
+  // The camera's pixel was taken at cycle `now`: the next one and when it is due.
+  void advance_camera(RunState& s, uint64_t now) {
+    FrameStats& st = s.res.stats[s.f];
+    if (s.x == 0 && s.y == 0) st.sof_in_cycle = now;
+    st.last_in_cycle = now;
+    if (s.timing.core_hz > 0) {
+      if (++s.x == s.width) {
+        s.x = 0;
+        if (++s.y == s.height) {
+          s.y = 0;
+          ++s.f;
+        }
+      }
+      s.due = s.start + static_cast<uint64_t>(
+                            std::ceil(static_cast<double>(s.f * s.frame_ticks + s.y * s.line_period + s.x) * s.ratio));
+      return;
+    }
+    if (++s.x == s.width) {
+      s.x = 0;
+      s.due = std::max(s.due + 1, now + 1 + s.hb);
+      if (++s.y == s.height) {
+        s.y = 0;
+        ++s.f;
+        s.due = now + 1 + s.hb + static_cast<uint64_t>(s.vb) * s.line_period;
+      }
+    } else {
+      s.due = std::max(s.due + 1, now + 1);
+    }
+  }
+
+  // One word of the object stream taken at this edge; a packet ends at tlast.
+  void take_obj(RunState& s, bool hs, uint32_t word, bool last) {
+    if (!hs) return;
+    s.pkt.push_back(word);
+    if (last) {
+      s.res.object_packets.push_back({s.pkt});
+      s.pkt.clear();
+    }
+  }
+
+  // One disparity pixel taken at cycle `now`, its framing checked.
+  void take_pixel(RunState& s, uint32_t od, bool ou, bool ol, uint64_t now) {
+    SimResult& res = s.res;
+    if (s.ox == 0 && s.oy == 0) {
+      if (!ou && res.framing_error.empty())
+        res.framing_error = fmt::format("frame {}: first pixel without tuser", s.oframe);
+      s.cur = DispImage(s.width, s.height);
+      res.stats[s.oframe].first_out_cycle = now;
+    } else if (ou && res.framing_error.empty()) {
+      res.framing_error = fmt::format("frame {}: tuser at x {} y {}", s.oframe, s.ox, s.oy);
+    }
+    if (ol != (s.ox == s.width - 1) && res.framing_error.empty())
+      res.framing_error = fmt::format("frame {}: tlast {} at x {} y {}", s.oframe, ol, s.ox, s.oy);
+    s.cur.at(s.ox, s.oy) = static_cast<DispPix>(od);
+    if (++s.ox < s.width) return;
+    s.ox = 0;
+    if (++s.oy < s.height) return;
+    s.oy = 0;
+    res.stats[s.oframe].last_out_cycle = now;
+    res.frames.push_back(std::move(s.cur));
+    ++s.oframe;
+    if (on_frame) on_frame(s.oframe, s.frames.size());
+  }
+
+  // Let the last object packet out, and finish an AXI4-Lite access in flight (the
+  // host's operations for frames beyond the stream are dropped).
+  void drain(RunState& s) {
+    auto& t = tb_.top();
+    t.s_axis_tvalid = 0;
+    for (int n = 0; (n < 4 * 64 * 8 + 64 && s.res.object_packets.size() < s.frames.size()) || agent_.busy(); ++n) {
+      t.m_axis_obj_tready = 1;
+      t.eval();
+      agent_.sample();
+      const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
+      const uint32_t objd = t.m_axis_obj_tdata;
+      const bool objl = t.m_axis_obj_tlast;
+      tb_.tick();
+      if (agent_.busy())
+        host_done(
+            s.host, s.hi, [&s](uint32_t st) { return s.started(st); }, s.res);
+      take_obj(s, obj_hs, objd, objl);
+    }
+  }
+
   Testbench<Top>& tb_;
   AxilMaster<Top> axil_;
   AxilAgent<Top> agent_;

@@ -1,7 +1,7 @@
 // stereo_sim: cycle-accurate simulation of the stereo IP (Verilated sm_top). This file is
 // the part compiled once per configuration: the Verilated model's run. The program
 // itself (command line, inputs, check against the reference model, report) is
-// stereo_sim_app.cpp, compiled once (stereo_sim_app.hpp says why).
+// stereo_sim_app.cpp and its stages, compiled once (stereo_sim_app.hpp says why).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -56,58 +56,81 @@ bool in_scope(const std::string& name, const std::string& scope) {
   return rest.empty() || rest[0] == '.' || (rest[0] == '[' && rest.find('.') == std::string::npos);
 }
 
+// Each scope must hold at least one traced signal: a trace of it alone is written and
+// read back before the run (no clock moves), and --wave-scopes lists them all. Returns
+// false when it only listed them.
+template <class Top>
+bool probe_scopes(sm::Testbench<Top>& tb, const RunRequest& req) {
+  const std::string& wave_path = req.window.path;
+  const fs::path dir = wave_path.empty() ? fs::temp_directory_path() : fs::path(wave_path).parent_path();
+  if (!dir.empty()) fs::create_directories(dir);
+  const std::string probe =
+      ((dir.empty() ? fs::path(".") : dir) / fmt::format(".stereo_sim_probe_{}.{}", ::getpid(), req.wave_fmt)).string();
+  sm::simapp::PartFile probe_guard{probe, "", false};
+  // The top level's own signals (its ports) are always in the probe.
+  auto names_of = [&](sm::TraceScope sel) {
+    if (!sel.scopes.empty()) sel.scopes.push_back({"TOP", 1});
+    if (!tb.probe_trace(probe, sel)) fail("this simulator was built without tracing");
+    return sm::wave_signal_names(probe);
+  };
+  if (req.list_scopes) {
+    std::vector<std::string> scopes;
+    for (const auto& n : names_of({})) {
+      for (size_t p = n.find('.'); p != std::string::npos; p = n.find('.', p + 1)) scopes.push_back(n.substr(0, p));
+    }
+    std::sort(scopes.begin(), scopes.end());
+    scopes.erase(std::unique(scopes.begin(), scopes.end()), scopes.end());
+    for (const auto& sc : scopes) fmt::print("{}\n", sc);
+    return false;
+  }
+  for (const auto& sc : req.wave_scopes) {
+    const auto names = names_of({{{sc, req.wave_depth}}});
+    if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return in_scope(n, sc); }))
+      fail(
+          fmt::format("--wave-scope {}: no traced signal in this scope (this simulator traces {}; "
+                      "--wave-scopes lists its scopes)",
+                      sc, kTraced));
+  }
+  return true;
+}
+
+// The wave window is written as <stem>.part.<ext>, renamed when it is complete.
+void start_wave_part(const std::string& wave_path, sm::simapp::PartFile& part) {
+  const fs::path p(wave_path);
+  fs::create_directories(p.parent_path().empty() ? fs::path(".") : p.parent_path());
+  part.final_path = wave_path;
+  part.path = (p.parent_path() / (p.stem().string() + ".part" + p.extension().string())).string();
+  std::error_code ec;
+  fs::remove(part.path, ec);
+}
+
+// What the host reads back at the end: STATUS and the error registers.
+template <class Top>
+void read_status(sm::SimEngine<Top>& sim, RunResult& out) {
+  const auto& regs = sm::regmap::registers();
+  for (size_t i = 0; i < regs.size(); ++i) {
+    const std::string name = regs[i].name;
+    if (name != "STATUS" && name != "IN_FIFO" && name.rfind("ERR_", 0) != 0) continue;
+    unsigned resp = 0;
+    const uint32_t word = sim.axil().read(regs[i].addr, &resp);
+    if (resp != 0) fail(fmt::format("status read of {} refused", name));
+    out.status.emplace_back(i, word);
+  }
+}
+
 template <class Top>
 bool run_model(const RunRequest& req, RunResult& out) {
   sm::Testbench<Top> tb;
   sm::CoverageOnExit cov{tb->contextp()};  // the coverage build's data (SM_COVERAGE_FILE)
   const std::string& wave_path = req.window.path;
-  // Each scope must hold at least one traced signal: a trace of it alone is written
-  // and read back before the run (no clock moves), and --wave-scopes lists them all.
-  if (req.list_scopes || !req.wave_scopes.empty()) {
-    const fs::path dir = wave_path.empty() ? fs::temp_directory_path() : fs::path(wave_path).parent_path();
-    if (!dir.empty()) fs::create_directories(dir);
-    const std::string probe =
-        ((dir.empty() ? fs::path(".") : dir) / fmt::format(".stereo_sim_probe_{}.{}", ::getpid(), req.wave_fmt))
-            .string();
-    sm::simapp::PartFile probe_guard{probe, "", false};
-    // The top level's own signals (its ports) are always in the probe.
-    auto names_of = [&](sm::TraceScope sel) {
-      if (!sel.scopes.empty()) sel.scopes.push_back({"TOP", 1});
-      if (!tb.probe_trace(probe, sel)) fail("this simulator was built without tracing");
-      return sm::wave_signal_names(probe);
-    };
-    if (req.list_scopes) {
-      std::vector<std::string> scopes;
-      for (const auto& n : names_of({})) {
-        for (size_t p = n.find('.'); p != std::string::npos; p = n.find('.', p + 1)) scopes.push_back(n.substr(0, p));
-      }
-      std::sort(scopes.begin(), scopes.end());
-      scopes.erase(std::unique(scopes.begin(), scopes.end()), scopes.end());
-      for (const auto& sc : scopes) fmt::print("{}\n", sc);
-      return false;
-    }
-    for (const auto& sc : req.wave_scopes) {
-      const auto names = names_of({{{sc, req.wave_depth}}});
-      if (std::none_of(names.begin(), names.end(), [&](const std::string& n) { return in_scope(n, sc); }))
-        fail(
-            fmt::format("--wave-scope {}: no traced signal in this scope (this simulator traces {}; "
-                        "--wave-scopes lists its scopes)",
-                        sc, kTraced));
-    }
-  }
+  if ((req.list_scopes || !req.wave_scopes.empty()) && !probe_scopes(tb, req)) return false;
   sm::SimEngine<Top> sim(tb);
   sim.reset();
   sm::write_registers(sim.axil(), *req.regs0, sm::verilated_config());
   sm::VcdWindow vw = req.window;
   sm::simapp::PartFile part;
   if (!wave_path.empty()) {
-    const fs::path p(wave_path);
-    fs::create_directories(p.parent_path().empty() ? fs::path(".") : p.parent_path());
-    // Written as <stem>.part.<ext>, renamed when the window is complete.
-    part.final_path = wave_path;
-    part.path = (p.parent_path() / (p.stem().string() + ".part" + p.extension().string())).string();
-    std::error_code ec;
-    fs::remove(part.path, ec);
+    start_wave_part(wave_path, part);
     vw.path = part.path;
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -125,16 +148,7 @@ bool run_model(const RunRequest& req, RunResult& out) {
     fs::rename(part.path, part.final_path);
     part.done = true;
   }
-  // What the host reads back at the end: STATUS and the error registers.
-  const auto& regs = sm::regmap::registers();
-  for (size_t i = 0; i < regs.size(); ++i) {
-    const std::string name = regs[i].name;
-    if (name != "STATUS" && name != "IN_FIFO" && name.rfind("ERR_", 0) != 0) continue;
-    unsigned resp = 0;
-    const uint32_t word = sim.axil().read(regs[i].addr, &resp);
-    if (resp != 0) fail(fmt::format("status read of {} refused", name));
-    out.status.emplace_back(i, word);
-  }
+  read_status(sim, out);
   return true;
 }
 
@@ -171,6 +185,6 @@ int main(int argc, char** argv) {
     return run_model<SM_VTOP>(req, out);
 #endif
   };
-  return sm::simapp::stereo_sim_main(argc, argv, info, run,
-                                     [](const std::string& path) { return sm::wave_signal_names(path); });
+  return sm::simapp::run_stereo_sim(argc, argv, info, run,
+                                    [](const std::string& path) { return sm::wave_signal_names(path); });
 }

@@ -1,7 +1,9 @@
 // stereo_sim in two parts, so that the large configuration-independent part (command
 // line, inputs, reference-model check, report, images: ~25 s of compile time) is compiled
 // once for every stereo_sim_* executable instead of once per configuration:
-// - stereo_sim_app.cpp (library sm_stereo_sim_app): the program, stereo_sim_main();
+// - stereo_sim_app.cpp (library sm_stereo_sim_app): the program, run_stereo_sim(), which
+//   runs its stages in order (sm_sim_options, sm_sim_regplan, sm_sim_inputs,
+//   sm_sim_simulate, sm_sim_check, sm_sim_report, sm_sim_outputs, sm_sim_pictures);
 // - stereo_sim.cpp (one object per configuration): the Verilated model's side, run() on
 //   the Testbench / SimEngine of that model, and main().
 #pragma once
@@ -9,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -60,7 +63,12 @@ using RunFn = std::function<bool(const RunRequest& req, RunResult& out)>;
 // The signal names of a wave file this executable can read (sm::wave_signal_names).
 using WaveNamesFn = std::function<std::vector<std::string>(const std::string& path)>;
 
-int stereo_sim_main(int argc, char** argv, const ModelInfo& info, const RunFn& run, const WaveNamesFn& wave_names);
+// The program: options, register plan, inputs, simulation, check, report, pictures.
+// Returns the exit code.
+int run_stereo_sim(int argc, char** argv, const ModelInfo& info, const RunFn& run, const WaveNamesFn& wave_names);
+
+// The stages' errors: one line "stereo_sim: error: <msg>", exit code 2.
+[[noreturn]] inline void fail(const std::string& msg) { throw std::runtime_error(msg); }
 
 // A file written under a temporary name and renamed when complete; a failed run leaves
 // none behind.

@@ -1,0 +1,15 @@
+// stereo_sim's lossless disparity files (--disp-file, --disp-each-frame).
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "sm_sim.hpp"
+#include "sm_sim_options.hpp"
+
+namespace sm::simapp {
+
+// opt.disp_file of the last frame's `disp` (float disparity) and, with
+// --disp-each-frame, <stem>_NNN<ext> of every frame of `res`.
+void write_disparity_files(const SimOptions& opt, const SimResult& res, const cv::Mat& disp);
+
+}  // namespace sm::simapp

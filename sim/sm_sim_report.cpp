@@ -1,0 +1,317 @@
+// stereo_sim's report (sm_sim_report.hpp).
+#include "sm_sim_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_objects_json.hpp"
+#include "sm_regmap.hpp"
+#include "sm_regs_io.hpp"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace sm::simapp {
+
+namespace {
+
+// The register values of a frame, by the register file's key names.
+json regs_json(const Regs& r, int grid_bank) {
+  json j;
+  for (const RegWord& w : register_words(r)) {
+    std::string k = w.name;
+    std::transform(k.begin(), k.end(), k.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    j[k] = (k == "offset_l" || k == "offset_r") ? json(static_cast<int32_t>(w.value)) : json(w.value);
+  }
+  j["grid_bank"] = grid_bank;
+  return j;
+}
+
+json object_json(const ObjectPacket& p) {
+  json j = {{"valid", p.valid}, {"count", p.objects.size()}, {"too_many", p.too_many}, {"table_full", p.table_full},
+            {"lost", p.lost},   {"objects", json::array()}};
+  for (const auto& o : p.objects) {
+    json b = tools::object_box_json(o);
+    b.update(json{{"pixels", o.count}, {"sum_disp", o.sum_disp}, {"nearest_disp", o.max_disp}});
+    j["objects"].push_back(b);
+  }
+  return j;
+}
+
+// The status and error registers read back, field by field: report.json's "status" and
+// one text line per register.
+json decode_status(const RunResult& run, std::vector<std::string>& lines) {
+  json status;
+  for (const auto& [ri, word] : run.status) {
+    const auto& reg = regmap::registers()[ri];
+    const std::string name = reg.name;
+    json j = {{"word", word}};
+    std::string line = fmt::format("{:<13} 0x{:08x}", name, word);
+    for (int i = 0; i < reg.num_fields; ++i) {
+      const auto& fd = regmap::fields()[static_cast<size_t>(reg.first_field + i)];
+      const std::string fname = std::string(fd.name).substr(name.size() + 1);
+      const uint32_t v = (word & fd.mask()) >> fd.lsb;
+      j[fname] = v;
+      line += fmt::format("  {} {}", fname, v);
+    }
+    status[name] = j;
+    lines.push_back(line);
+  }
+  return status;
+}
+
+FrameFigures frame_figures(const SimOptions& opt, const RegisterPlan& plan, const SimRun& run, const json& status) {
+  const SimResult& res = run.out.res;
+  const CameraTiming& timing = run.timing;
+  const int width = plan.width, height = plan.height, fold = run.fold;
+  FrameFigures g;
+  const auto& s0 = res.stats.front();
+  g.frame_cycles = s0.last_out_cycle - s0.sof_in_cycle + 1;
+  g.input_cycles = s0.last_in_cycle - s0.sof_in_cycle + 1;
+  g.tail_cycles = s0.last_out_cycle - s0.last_in_cycle;
+  g.latency = s0.first_out_cycle - s0.sof_in_cycle;
+  g.camera_clock = timing.clock_hz(width, height);
+  const double aclk_per_cam = timing.aclk_per_camera_clock(width, height);
+  g.core_hz = timing.aclk_hz(width, height);
+  g.line_period = (width + (opt.continuous ? 0 : opt.hblank)) * aclk_per_cam;
+  if (res.stats.size() >= 2)
+    g.period = res.stats.back().last_out_cycle - res.stats[res.stats.size() - 2].last_out_cycle;
+  g.pixels = static_cast<uint64_t>(width) * height;
+  // The IP needs F = DISP / PU clocks per pixel in steady state; its own rate bounds the clock.
+  g.ip_cycles_per_frame =
+      std::max<uint64_t>(g.pixels * fold, opt.continuous && timing.core_hz == 0 ? g.period : g.pixels * fold);
+  g.min_clock_30 = 30.0 * static_cast<double>(g.ip_cycles_per_frame);
+  // With this camera: its pixels must not arrive faster than one per F aclk cycles
+  // (sm_seq's input FIFO rule, docs/streams.md "Pacing").
+  g.min_core_camera = fold * g.camera_clock;
+  const double camera_period = (opt.continuous ? static_cast<double>(g.pixels)
+                                               : static_cast<double>(width + opt.hblank) * (height + opt.vblank)) *
+                               aclk_per_cam;
+  g.fifo_max = status.contains("IN_FIFO") ? status["IN_FIFO"]["LEVEL_MAX"].get<uint64_t>() : 0;
+  g.fps_ok =
+      res.input_stall_cycles == 0 && (g.period == 0 || static_cast<double>(g.period) <= std::ceil(camera_period));
+  return g;
+}
+
+json config_json(const HwConfig& hw, const RegisterPlan& plan) {
+  json c = {{"max_width", hw.max_width},
+            {"max_height", hw.max_height},
+            {"disp", hw.disp},
+            {"census", hw.census},
+            {"sw", hw.sw},
+            {"rect_radius", hw.rect_radius},
+            {"max_objects", hw.max_objects},
+            {"width", plan.width},
+            {"height", plan.height}};
+  c["pu"] = hw.levels_per_clock();
+  return c;
+}
+
+void add_timing(const SimOptions& opt, const SimRun& run, const FrameFigures& g, json& rep) {
+  rep["timing"] = {{"continuous", opt.continuous},
+                   {"hblank", opt.continuous ? 0 : opt.hblank},
+                   {"vblank_lines", opt.continuous ? 0 : opt.vblank},
+                   {"camera_pixel_clock_hz", g.camera_clock},
+                   {"core_clock_hz", g.core_hz}};
+  rep["clocks_per_pixel"] = run.fold;
+  rep["min_core_clock_hz_this_camera"] = g.min_core_camera;
+  rep["input_fifo_level_max"] = g.fifo_max;
+  rep["cycles_per_frame_sof_to_last_pixel"] = g.frame_cycles;
+  rep["input_cycles_per_frame"] = g.input_cycles;  // sof in -> last pixel in: W*H + camera blanking
+  rep["camera_blanking_cycles_per_frame"] = g.input_cycles - std::min(g.input_cycles, g.pixels);
+  rep["last_pixel_in_to_out_cycles"] = g.tail_cycles;
+  rep["steady_state_frame_period_cycles"] = g.period;
+  rep["latency_cycles"] = g.latency;
+  rep["latency_lines"] = static_cast<double>(g.latency) / g.line_period;
+  rep["input_stall_cycles"] = run.out.res.input_stall_cycles;
+  rep["min_clock_hz_for_30fps"] = g.min_clock_30;
+  rep["fps_at_clock"] = {{"clock_mhz", opt.clock_mhz},
+                         {"fps", opt.clock_mhz * 1e6 / static_cast<double>(g.ip_cycles_per_frame)}};
+  rep["meets_30fps_with_camera_at_core_clock"] = g.fps_ok;
+}
+
+void add_check(const RegisterPlan& plan, const SimResult& res, const ModelCheck& check, json& rep) {
+  rep["framing_ok"] = res.framing_error.empty();
+  if (!res.framing_error.empty()) rep["framing_error"] = res.framing_error;
+  rep["bit_exact"] = !check.done ? json(nullptr) : json(check.mismatches == 0);
+  rep["mismatches"] = check.mismatches;
+  if (check.mismatches) rep["first_mismatch"] = check.first_mismatch;
+  rep["register_schedule"] = {
+      {"files", json::array()}, {"axi_writes", res.host_writes}, {"ok", res.host_errors.empty()}};
+  for (const auto& [f, file] : plan.sched) rep["register_schedule"]["files"].push_back({{"frame", f}, {"file", file}});
+  if (!res.host_errors.empty()) rep["register_schedule"]["errors"] = res.host_errors;
+}
+
+// Per frame: its registers, what the host changed for it, the RTL's object packet.
+json frame_results(const RegisterPlan& plan, const SimRun& run, const ModelCheck& check,
+                   std::vector<ObjectPacket>& packets) {
+  const SimResult& res = run.out.res;
+  json frames = json::array();
+  for (size_t f = 0; f < plan.regs.size(); ++f) {
+    json fr = {
+        {"frame", f}, {"registers", regs_json(plan.regs[f], run.host[f].grid_bank)}, {"changed", run.host[f].changed}};
+    if (f < res.object_packets.size()) {
+      packets.push_back(decode_object_packet(res.object_packets[f].words));
+      fr["object_packet"] = object_json(packets.back());
+    } else {
+      fr["object_packet"] = nullptr;
+    }
+    if (check.done) fr["bit_exact"] = check.frame_mismatches[f] == 0;
+    frames.push_back(fr);
+  }
+  return frames;
+}
+
+// Synthesis figures: the given report (it must be valid), else the one `synth_paper` /
+// `synth_small` built for this configuration, else the one committed in docs/synth.
+void add_synthesis(const SimOptions& opt, const ModelInfo& info, json& rep) {
+  std::string path = opt.synth_json;
+  const bool given = !path.empty();
+  if (!given) {
+    for (const std::string& cand : {info.synth_json, info.synth_json_docs})
+      if (fs::exists(cand)) {
+        path = cand;
+        break;
+      }
+  }
+  if (path.empty()) return;
+  std::ifstream sj(path);
+  json s = json::parse(sj, nullptr, false);
+  if (s.is_discarded() || !s.contains("total")) {
+    if (given) throw std::runtime_error(fmt::format("{}: not a synthesis report", path));
+    fmt::print(stderr, "note: {} is not a synthesis report, ignored\n", path);
+  } else {
+    rep["synthesis"] = s["total"];
+    rep["synthesis_report"] = path;
+  }
+}
+
+}  // namespace
+
+SimReport make_report(const SimOptions& opt, const ModelInfo& info, const SimInput& in, const RegisterPlan& plan,
+                      const SimRun& run, const ModelCheck& check, const cv::Mat& disp) {
+  SimReport r;
+  const json status = decode_status(run.out, r.status_lines);
+  r.fig = frame_figures(opt, plan, run, status);
+  json& rep = r.json;
+  const size_t nframes = in.frames.size();
+  const double wall = run.out.wall;
+  rep["input"] = in.name;
+  rep["config"] = config_json(info.hw, plan);
+  rep["frames"] = nframes;
+  add_timing(opt, run, r.fig, rep);
+  add_check(plan, run.out.res, check, rep);
+  rep["frame_results"] = frame_results(plan, run, check, r.packets);
+  rep["status"] = status;
+  rep["sim_wall_seconds"] = wall;
+  rep["sim_frames_per_second"] = nframes / wall;
+  rep["sim_cycles_per_second"] = run.out.res.cycles / wall;
+  if (!in.gt.empty()) {
+    rep["bad1_percent"] = tools::bad1(disp, in.gt, in.mask).bad_pct();
+    rep["ground_truth"] = {{"resized", !in.gt_note.empty()}, {"disparity_scale", in.gt_scale}};
+    if (!in.gt_note.empty()) rep["ground_truth"]["note"] = in.gt_note;
+  }
+  add_synthesis(opt, info, rep);
+  rep["disparity_file"] = opt.disp_file;
+  return r;
+}
+
+namespace {
+
+void print_figures(const SimOptions& opt, const HwConfig& hw, const SimRun& run, const FrameFigures& g) {
+  const SimResult& res = run.out.res;
+  fmt::print(
+      "  cycles per frame (sof in -> last pixel out): {} = {} input (W*H = {} pixels + {} {}) + {} "
+      "last pixel in -> out\n",
+      g.frame_cycles, g.input_cycles, g.pixels, g.input_cycles - std::min(g.input_cycles, g.pixels),
+      run.timing.core_hz > 0 ? "cycles between them: camera cadence and blanking" : "camera blanking", g.tail_cycles);
+  if (g.period) fmt::print("  steady-state frame period: {} cycles\n", g.period);
+  fmt::print("  latency (sof in -> first pixel out): {} cycles = {:.2f} lines\n", g.latency,
+             static_cast<double>(g.latency) / g.line_period);
+  fmt::print("  clocks per pixel: {} (DISP {} / PU {}); core clock {:.3f} MHz, camera pixel clock {:.3f} MHz\n",
+             run.fold, hw.disp, hw.levels_per_clock(), g.core_hz / 1e6, g.camera_clock / 1e6);
+  fmt::print("  input stalls: {} cycles; input FIFO high-water mark: {} pixels\n", res.input_stall_cycles, g.fifo_max);
+  fmt::print(
+      "  minimum core clock for 30 frames/s: {:.3f} MHz (F x W x H x 30); with this camera {:.3f} MHz (F x its "
+      "pixel clock); at {} MHz: {:.1f} frames/s\n",
+      g.min_clock_30 / 1e6, g.min_core_camera / 1e6, opt.clock_mhz,
+      opt.clock_mhz * 1e6 / static_cast<double>(g.ip_cycles_per_frame));
+  fmt::print("  30 frames/s with this camera at this core clock ({:.3f} MHz): {}\n", g.core_hz / 1e6,
+             g.fps_ok ? "yes" : "NO");
+}
+
+void print_check(const SimOptions& opt, const RegisterPlan& plan, const SimResult& res, const ModelCheck& check) {
+  fmt::print("  framing: {}\n", res.framing_error.empty() ? "ok" : res.framing_error);
+  if (check.done)
+    fmt::print(
+        "  bit-exact vs model: {}{}\n", check.mismatches == 0 ? "yes" : "NO, ",
+        check.mismatches == 0 ? "" : fmt::format("{} mismatches, first: {}", check.mismatches, check.first_mismatch));
+  if (!plan.sched.empty() || opt.late_regs)
+    fmt::print("  register schedule: {} file(s), {} AXI4-Lite writes while streaming{}{}\n", plan.sched.size(),
+               res.host_writes, opt.late_regs ? " (deliberately one frame late)" : "",
+               res.host_errors.empty() ? "" : "; " + res.host_errors.front());
+}
+
+void print_objects(const SimRun& run, const ModelCheck& check, const std::vector<ObjectPacket>& packets) {
+  fmt::print("  objects (from m_axis_obj):\n");
+  for (size_t f = 0; f < run.host.size(); ++f) {
+    std::string changed;
+    for (const auto& c : run.host[f].changed) changed += (changed.empty() ? "" : ",") + c;
+    if (f >= packets.size()) {
+      fmt::print("    frame {}: no packet\n", f);
+      continue;
+    }
+    const ObjectPacket& p = packets[f];
+    fmt::print("    frame {}: {} object(s){}{}{}{}{}{}\n", f, p.objects.size(), p.too_many ? ", TOO-MANY" : "",
+               p.table_full ? ", TABLE-FULL" : "", p.lost ? ", LOST (a packet before was dropped)" : "",
+               p.valid ? "" : ", MALFORMED packet",
+               !check.done || check.frame_mismatches[f] == 0 ? "" : ", differs from model",
+               changed.empty() ? "" : "  [changed: " + changed + "]");
+    for (size_t i = 0; i < p.objects.size(); ++i) {
+      const Object& o = p.objects[i];
+      fmt::print("      #{} x {}..{} y {}..{}  {} px  mean d {}  nearest d {}\n", i, o.x0, o.x1, o.y0, o.y1, o.count,
+                 o.mean_disp, o.max_disp);
+    }
+  }
+}
+
+}  // namespace
+
+void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
+                  const SimRun& run, const ModelCheck& check, const SimReport& rep) {
+  const size_t nframes = in.frames.size();
+  const json& j = rep.json;
+  fmt::print("stereo_sim: {} frame(s) of {}x{}, DISP {}, census {}x{}, SW {}x{}\n", nframes, plan.width, plan.height,
+             hw.disp, hw.census, hw.census, hw.sw, hw.sw);
+  print_figures(opt, hw, run, rep.fig);
+  print_check(opt, plan, run.out.res, check);
+  print_objects(run, check, rep.packets);
+  fmt::print("  status read back over AXI4-Lite:\n");
+  for (const auto& l : rep.status_lines) fmt::print("    {}\n", l);
+  if (j.contains("bad1_percent"))
+    fmt::print("  bad-1.0 vs ground truth: {:.2f} %{}\n", j["bad1_percent"].get<double>(),
+               in.gt_note.empty() ? "" : " (" + in.gt_note + ")");
+  if (j.contains("synthesis")) {
+    const json& t = j["synthesis"];
+    fmt::print("  synthesis: {} LUTs ({} LUT-RAM, {} SRL), {} FFs, {} RAMB36, {} DSP, {} LUT levels  [{}]\n",
+               t.value("luts", 0), t.value("lutram", 0), t.value("srl", 0), t.value("ffs", 0), t.value("bram36", 0.0),
+               t.value("dsp", 0), t.value("lut_levels", 0), j["synthesis_report"].get<std::string>());
+  }
+  const double wall = run.out.wall;
+  fmt::print("  simulation: {:.2f} s wall, {:.2f} frames/s, {:.0f} cycles/s\n", wall, nframes / wall,
+             run.out.res.cycles / wall);
+  fmt::print("  outputs in {}/ (lossless disparity: {})\n", opt.out_dir, opt.disp_file);
+}
+
+int report_exit_code(const SimRun& run, const ModelCheck& check) {
+  const SimResult& res = run.out.res;
+  return (check.mismatches == 0 && res.framing_error.empty() && res.host_errors.empty()) ? 0 : 1;
+}
+
+}  // namespace sm::simapp
