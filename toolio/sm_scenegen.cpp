@@ -179,6 +179,9 @@ SyntheticScene render_scene(const SceneParams& p) {
   if (p.levels < 2 || p.levels > 255) throw std::invalid_argument(fmt::format("levels {} outside 2..255", p.levels));
   if (p.objects < 0 || p.objects > 64) throw std::invalid_argument(fmt::format("objects {} outside 0..64", p.objects));
   if (p.noise < 0) throw std::invalid_argument("noise must be >= 0");
+  for (double v : {p.bg_disp, p.bg_slant_x, p.bg_slant_y, p.gain_l, p.offset_l, p.gain_r, p.offset_r, p.rot_deg,
+                   p.vshift, p.noise})
+    if (!std::isfinite(v)) throw std::invalid_argument("scene parameters must be finite numbers");
   const std::vector<Surface> surf = build_surfaces(p);
   if (std::fabs(surf[0].b) >= 0.5) throw std::invalid_argument("background slant too steep");
 

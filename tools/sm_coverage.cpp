@@ -29,6 +29,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "toolio/sm_cli.hpp"
+
 namespace {
 
 using json = nlohmann::ordered_json;
@@ -161,9 +163,7 @@ void write_subset(const std::string& path, const Data& d, Kind kind) {
   if (!out) fail(fmt::format("{}: write failed", path));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Per-module line and toggle coverage of Verilator coverage data"};
   std::vector<std::string> inputs;
   std::string json_path, line_dat, toggle_dat;
@@ -178,19 +178,19 @@ int main(int argc, char** argv) {
   app.add_option("--toggle-dat", toggle_dat, "write the toggle points (summed) to this .dat");
   app.add_option("--line-min", line_min, "count at which a line or branch point is covered")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(sm::tools::int_in(1, INT64_MAX));
   app.add_option("--toggle-min", toggle_min, "count at which a toggle point (one bit) is covered")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(sm::tools::int_in(1, INT64_MAX));
   app.add_option("--goal-line", goal_line, "line goal in percent")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(sm::tools::finite_in(0, 100));
   app.add_option("--goal-toggle", goal_toggle, "toggle goal in percent")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(sm::tools::finite_in(0, 100));
   app.add_flag("--markdown", markdown, "print the table as markdown");
   app.add_flag("--list-uncovered", list, "list the uncovered points of the modules below a goal");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto rc = sm::tools::parse_cli(app, argc, argv)) return *rc;
 
   Data d;
   for (const auto& f : inputs) read_file(f, d);
@@ -314,4 +314,10 @@ int main(int argc, char** argv) {
   if (!line_dat.empty()) write_subset(line_dat, d, Kind::kLine);
   if (!toggle_dat.empty()) write_subset(toggle_dat, d, Kind::kToggle);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return sm::tools::run_guarded("sm_coverage", [&] { return run(argc, argv); });
 }
