@@ -18,6 +18,7 @@
 #include <tuple>
 
 #include "calib_file.hpp"
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
@@ -103,7 +104,7 @@ int run(int argc, char** argv) {
   auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
   auto* o_swt = app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated (1..32)")
                     ->delimiter(',')
-                    ->check(CLI::Range(0, 3))
+                    ->check(sm::tools::int_in(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
