@@ -138,6 +138,12 @@ TEST_CASE("outputs that cannot be written are refused before any work", "[robust
   expect_error(run(SM_STEREO_MODEL_EXE, fx.pair() + " -o " + fx.out.string()), 1, "stereo_model",
                "cannot write: is a folder");
   expect_error(run(SM_SCENE_EXE, "--out " + file + "/s"), 1, "sm_scene", "--out " + file + "/s: cannot write");
+  // sm_coverage: an unwritable second output, or a bad input, leaves no first output either
+  const std::string dat = fx.file("c.dat", "# SystemC::Coverage-3\n");
+  expect_error(run(SM_COVERAGE_EXE, dat + " --json " + fx.o("c.json") + " --line-dat " + nodir), 1, "sm_coverage",
+               "--line-dat " + nodir + ": cannot write");
+  const std::string bad = fx.file("bad.dat", "# SystemC::Coverage-3\nC 'x' 5x\n");
+  expect_error(run(SM_COVERAGE_EXE, bad + " --json " + fx.o("c.json")), 1, "sm_coverage", "bad.dat:2: bad count");
   // no progress line: the evaluation never started
   CHECK(run(SM_EVALUATE_EXE, fx.scene.string() + " --levels 0 --methods bm --json " + nodir).err.find("[1/") ==
         std::string::npos);
