@@ -209,12 +209,13 @@ std::pair<int, int> synthetic_size(const std::string& text) {
 // The files named on the command line, checked before any work: the register file reads
 // and applies (its keys and ranges), the outputs can be written (the --disp-images folder
 // is created when the outputs are committed).
-void check_files(const std::string& regs_file, const std::string& json_path, const std::string& disp_dir) {
+void check_files(const std::string& regs_file, int levels, const std::string& json_path, const std::string& disp_dir) {
   if (!regs_file.empty()) {
     sm::tools::check_input_file(regs_file);
-    sm::HwConfig hw;  // the largest scene: the sizes are the scene's when the file is applied
+    sm::HwConfig hw;  // the largest scene (the sizes are the scene's), --levels where given
     hw.max_width = sm::defs::limit("MAX_WIDTH").max;
     hw.max_height = sm::defs::limit("MAX_HEIGHT").max;
+    if (levels) hw.disp = levels;
     sm::Regs r = sm::Regs::defaults(hw);
     sm::tools::apply_regs_json(regs_file, hw, r);
   }
@@ -273,11 +274,11 @@ int run(int argc, char** argv) {
                  "the scene's, --occ wins when given");
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  check_files(regs_file, json_path, disp_dir);
-  sm::tools::quiet_opencv();
-  cv::setNumThreads(1);
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
     throw ToolError(fmt::format("--levels {}: must be 0 or even 4..254", levels));
+  check_files(regs_file, levels, json_path, disp_dir);
+  sm::tools::quiet_opencv();
+  cv::setNumThreads(1);
   if (peer_levels != 0 && (peer_levels < 16 || peer_levels > 256 || peer_levels % 16))
     throw ToolError(fmt::format("--peer-levels {}: must be 0 or a multiple of 16, 16..256", peer_levels));
   if (streak_rows.empty()) throw ToolError("--streak-rows: empty");

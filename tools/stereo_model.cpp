@@ -2,7 +2,9 @@
 // pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16) and/or
 // for viewing as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a colour-mapped PNG.
 // Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
-// names); options given on the command line win. Outputs are all-or-nothing.
+// names; its width / height resize the images to that active size, as in stereo_sim);
+// options given on the command line win. Outputs are checked writable before any work and
+// written all-or-nothing.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
