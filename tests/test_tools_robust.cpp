@@ -262,6 +262,12 @@ TEST_CASE("sm_synth_report: reports whose keys have the wrong type", "[robust][t
     expect_error(run(SM_SYNTH_REPORT_EXE, "combine --top t --family f --config c -o " + fx.o("sum.json") + " " + f), 1,
                  "sm_synth_report", "bad.json: " + shown);
   }
+  // a Yosys stat file with a count of the wrong type: the file named, no report
+  const std::string bad_stat =
+      fx.file("bad_stat.json", R"({"modules": {"\\top": {"num_cells_by_type": {"LUT6": "3"}}}})");
+  expect_error(run(SM_SYNTH_REPORT_EXE,
+                   "report --quiet --stat " + bad_stat + " --top top --family xc7 --config c -o " + fx.o("r.json")),
+               1, "sm_synth_report", "bad_stat.json: unexpected Yosys JSON: type must be number");
   // a part's instance count: digits only
   expect_error(
       run(SM_SYNTH_REPORT_EXE, "combine --top t --family f --config c -o " + fx.o("sum.json") + " " + good + "@x"), 1,

@@ -98,6 +98,16 @@ void check_report(const std::string& path, const json& r) {
   }
 }
 
+// f() on a Yosys JSON file: a value of an unexpected type is one error line naming the file.
+template <class F>
+auto yosys_json(const std::string& path, F&& f) {
+  try {
+    return f();
+  } catch (const json::exception& e) {
+    fail(fmt::format("{}: unexpected Yosys JSON: {}", path, sm::tools::detail::json_error_text(e.what())));
+  }
+}
+
 // A report for show / combine: load + check_report.
 json load_report(const std::string& path) {
   json r = load(path);
@@ -619,7 +629,7 @@ int run(int argc, char** argv) {
 
   if (*rep) {
     json stat = load_stat(stat_path);
-    StatResult s = parse_stat(stat, top, instances);
+    StatResult s = yosys_json(stat_path, [&] { return parse_stat(stat, top, instances); });
     json r =
         report_head(stat.value("creator", ""), base_name(norm(top)), family, config, params, "single run", seconds);
     r["command"] = command;
@@ -630,7 +640,8 @@ int run(int argc, char** argv) {
       r["blocks"][b]["instances"] = s.instances[b];
     }
     if (!net_path.empty()) {
-      Depth d = logic_depth(load(net_path), top);
+      const json net = load(net_path);
+      const Depth d = yosys_json(net_path, [&] { return logic_depth(net, top); });
       r["total"]["lut_levels"] = d.levels;
       r["total"]["lut_levels_reg2reg"] = d.levels_reg2reg;
       r["total"]["carry_on_path"] = d.carry_on_path;
