@@ -261,10 +261,10 @@ TEST_CASE("sm_scene rejects bad parameters cleanly", "[unit][tools][cli]") {
   const fs::path out = tmp_root() / "scene_bad";
   fs::remove_all(out);
   fs::create_directories(out);
-  expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --width 8"), "image size");
+  expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --width 8"), "--width: 8: outside 16..4095");
   expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --levels 16 --bg-disp 30"), "exceeds levels");
   std::ofstream((out / "file").string()) << "x";
-  expect_error(run(SM_SCENE_EXE, "--out " + (out / "file").string()), "cannot create directory");
+  expect_error(run(SM_SCENE_EXE, "--out " + (out / "file").string()), "file: cannot write: not a folder");
   expect_only(out, {"file"});
 }
 

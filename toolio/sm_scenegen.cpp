@@ -184,6 +184,9 @@ SyntheticScene render_scene(const SceneParams& p) {
   if ((p.focal_px != 0 || p.baseline_m != 0) && !(f_ok && b_ok))
     throw std::invalid_argument(
         fmt::format("focal length {} px and baseline {} m: give both, finite and > 0", p.focal_px, p.baseline_m));
+  for (double v : {p.bg_disp, p.bg_slant_x, p.bg_slant_y, p.gain_l, p.offset_l, p.gain_r, p.offset_r, p.rot_deg,
+                   p.vshift, p.noise})
+    if (!std::isfinite(v)) throw std::invalid_argument("scene parameters must be finite numbers");
   const std::vector<Surface> surf = build_surfaces(p);
   if (std::fabs(surf[0].b) >= 0.5) throw std::invalid_argument("background slant too steep");
 

@@ -18,16 +18,20 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/stereo.hpp>
-#include <sstream>
+#include <regex>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_pictures.hpp"
+#include "toolio/sm_outputs.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
+#include "sm_defs.hpp"
 
 namespace {
 
@@ -192,6 +196,34 @@ struct Table {
   }
 };
 
+// --synthetic-size WxH: two integers 16..4095 (the scene generator's sizes), nothing else.
+std::pair<int, int> synthetic_size(const std::string& text) {
+  static const std::regex re("([0-9]{1,4})x([0-9]{1,4})");
+  std::smatch m;
+  if (std::regex_match(text, m, re)) {
+    const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+    if (w >= 16 && w <= 4095 && h >= 16 && h <= 4095) return {w, h};
+  }
+  throw ToolError(fmt::format("--synthetic-size {}: expected WxH, each 16..4095", text));
+}
+
+// The files named on the command line, checked before any work: the register file reads
+// and applies (its keys and ranges), the outputs can be written (the --disp-images folder
+// is created when the outputs are committed).
+void check_files(const std::string& regs_file, int levels, const std::string& json_path, const std::string& disp_dir) {
+  if (!regs_file.empty()) {
+    sm::tools::check_input_file(regs_file);
+    sm::HwConfig hw;  // the largest scene (the sizes are the scene's), --levels where given
+    hw.max_width = sm::defs::limit("MAX_WIDTH").max;
+    hw.max_height = sm::defs::limit("MAX_HEIGHT").max;
+    if (levels) hw.disp = levels;
+    sm::Regs r = sm::Regs::defaults(hw);
+    sm::tools::apply_regs_json(regs_file, hw, r);
+  }
+  sm::tools::check_outputs({{"--json", json_path}});
+  if (!disp_dir.empty()) sm::tools::check_output_folder("--disp-images", disp_dir);
+}
+
 int run(int argc, char** argv) {
   std::string dataset, json_path, disp_dir;
   std::vector<std::string> scenes_opt,
@@ -204,8 +236,8 @@ int run(int argc, char** argv) {
   std::vector<int> streak_rows{1, 5};
   bool quiet = false;
   CLI::App app{"bad-1.0, streak measure and run time of the model and OpenCV matchers on a stereo dataset"};
-  app.add_option("dataset", dataset,
-                 "dataset folder (scene subfolders with left/right/gt.png, scale.txt) or one scene folder");
+  auto* o_dataset = app.add_option(
+      "dataset", dataset, "dataset folder (scene subfolders with left/right/gt.png, scale.txt) or one scene folder");
   app.add_option("--scenes", scenes_opt, "comma-separated scene names (default: all)")->delimiter(',');
   app.add_option("--json", json_path, "write the results as JSON");
   app.add_option("--levels", levels, "model: disparity levels (0: per scene, from scale.txt, made even)")
@@ -216,7 +248,7 @@ int run(int argc, char** argv) {
   app.add_option("--streak-rows", streak_rows,
                  "streak measure: report streaks up to these many rows thick (comma-separated, each 1..8)")
       ->delimiter(',')
-      ->check(CLI::Range(1, 8))
+      ->check(sm::tools::int_in(1, 8))
       ->capture_default_str();
   app.add_option("--disp-images", disp_dir,
                  "write <scene>_<method>.png colour disparity maps (over the ground truth's range, with a colour "
@@ -230,11 +262,14 @@ int run(int argc, char** argv) {
                  "score another program's disparities: folder of <scene>.pfm (+inf = invalid) or <scene>.png "
                  "(value / --results-scale, 0 = invalid); adds the method 'results'");
   app.add_option("--results-scale", results_scale, "PNG results: disparity = value / scale (KITTI: 256)")
+      ->check(sm::tools::finite_in(1e-3, 1e6))
       ->capture_default_str();
-  app.add_option("--synthetic", synthetic, "evaluate N synthetic scenes (sm_scene seeds 1..N) instead of a dataset");
+  app.add_option("--synthetic", synthetic, "evaluate N synthetic scenes (sm_scene seeds 1..N) instead of a dataset")
+      ->check(sm::tools::int_in(1, 1000))
+      ->excludes(o_dataset);
   app.add_option("--synthetic-size", synth_size, "WxH of the synthetic scenes")->capture_default_str();
   app.add_option("--occ", occ, "model: DP occlusion penalty register")
-      ->check(CLI::Range(0, 255))
+      ->check(sm::tools::int_in(0, 255))
       ->capture_default_str();
   app.add_option("--regs", regs_file,
                  "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
@@ -242,22 +277,20 @@ int run(int argc, char** argv) {
                  "the scene's, --occ wins when given");
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  sm::tools::quiet_opencv();
-  cv::setNumThreads(1);
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
     throw ToolError(fmt::format("--levels {}: must be 0 or even 4..254", levels));
+  check_files(regs_file, levels, json_path, disp_dir);
+  sm::tools::quiet_opencv();
+  cv::setNumThreads(1);
   if (peer_levels != 0 && (peer_levels < 16 || peer_levels > 256 || peer_levels % 16))
     throw ToolError(fmt::format("--peer-levels {}: must be 0 or a multiple of 16, 16..256", peer_levels));
   if (streak_rows.empty()) throw ToolError("--streak-rows: empty");
-  if (!(results_scale > 0)) throw ToolError(fmt::format("--results-scale {}: must be positive", results_scale));
   if (!results_dir.empty() && !fs::is_directory(results_dir))
     throw ToolError(fmt::format("{}: not a directory", results_dir));
 
   std::vector<Method> methods;
   {
     const bool occ_given = app.count("--occ") > 0;
-    if (!regs_file.empty() && !fs::is_regular_file(regs_file))
-      throw ToolError(fmt::format("{}: no such file", regs_file));
     const auto all = all_methods(occ, occ_given, regs_file, results_dir, results_scale);
     auto names_opt = methods_opt;
     names_opt.erase(std::remove(names_opt.begin(), names_opt.end(), ""), names_opt.end());
@@ -280,11 +313,7 @@ int run(int argc, char** argv) {
   std::vector<std::function<sm::tools::Scene()>> loaders;
   std::vector<std::string> names;
   if (synthetic > 0) {
-    int w = 0, h = 0;
-    char x = 0;
-    std::stringstream ss(synth_size);
-    if (!(ss >> w >> x >> h) || x != 'x')
-      throw ToolError(fmt::format("--synthetic-size '{}': expected WxH", synth_size));
+    const auto [w, h] = synthetic_size(synth_size);
     const int lv = levels ? levels : 128;
     for (int seed = 1; seed <= synthetic; ++seed) {
       names.push_back(fmt::format("synthetic{}", seed));
@@ -324,11 +353,8 @@ int run(int argc, char** argv) {
     if (loaders.empty())
       throw ToolError(fmt::format("{}: no scenes (folders with left.png right.png gt.png scale.txt)", dataset));
   }
-  if (!disp_dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(disp_dir, ec);
-    if (!fs::is_directory(disp_dir)) throw ToolError(fmt::format("{}: cannot create directory", disp_dir));
-  }
+  // Every output under a temporary name, renamed into place once the whole run succeeded.
+  sm::tools::OutputSet outs;
 
   json jout;
   jout["dataset"] = synthetic > 0 ? fmt::format("synthetic x{} ({})", synthetic, synth_size) : dataset;
@@ -394,16 +420,27 @@ int run(int argc, char** argv) {
         row.cells.push_back(c);
         if (!disp_dir.empty()) {
           const fs::path stem = fs::path(disp_dir) / fmt::format("{}_{}", names[i], out);
-          sm::tools::write_image_atomic(stem.string() + ".png",
-                                        sm::tools::disparity_picture(est[k], sm::tools::data_range(gt_f)));
-          sm::tools::write_image_atomic(stem.string() + "_errors.png",
-                                        sm::tools::error_map_picture(est[k], sc.gt, sc.nonocc));
+          outs.write(
+              stem.string() + ".png",
+              [&](const std::string& t) {
+                sm::tools::write_image_atomic(t, sm::tools::disparity_picture(est[k], sm::tools::data_range(gt_f)));
+              },
+              true);
+          outs.write(
+              stem.string() + "_errors.png",
+              [&](const std::string& t) {
+                sm::tools::write_image_atomic(t, sm::tools::error_map_picture(est[k], sc.gt, sc.nonocc));
+              },
+              true);
         }
       }
     }
     if (!disp_dir.empty())
-      sm::tools::write_image_atomic((fs::path(disp_dir) / fmt::format("{}_gt.png", names[i])).string(),
-                                    sm::tools::disparity_picture(gt_f, sm::tools::data_range(gt_f)));
+      outs.write((fs::path(disp_dir) / fmt::format("{}_gt.png", names[i])).string(),
+                 [&](const std::string& t) {
+                   sm::tools::write_image_atomic(t, sm::tools::disparity_picture(gt_f, sm::tools::data_range(gt_f)));
+                 },
+                 true);
     jout["scenes"].push_back(js);
     rows.push_back(row);
   }
@@ -467,7 +504,9 @@ int run(int argc, char** argv) {
                                 {"streak", jst},
                                 {"ms", timed ? json(mean_of(k, [](const Cell& c) { return c.ms; })) : json(nullptr)}};
   }
-  if (!json_path.empty()) sm::tools::write_text_atomic(json_path, jout.dump(2) + "\n");
+  if (!json_path.empty())
+    outs.write(json_path, [&](const std::string& t) { sm::tools::write_text_atomic(t, jout.dump(2) + "\n"); });
+  outs.commit();
   return 0;
 }
 
