@@ -36,11 +36,11 @@ struct Frame {
 
 bool classic(const std::string& n) { return n == "tsukuba" || n == "venus" || n == "teddy" || n == "cones"; }
 
-Frame run_scene(const std::string& dir) {
+Frame run_scene(const std::string& dir, int levels) {
   const Scene s = load_scene(dir);
   Frame f;
   f.name = std::filesystem::path(dir).filename().string();
-  f.levels = std::min(254, (s.levels + 1) / 2 * 2);  // as sm_evaluate --levels 0
+  f.levels = levels ? levels : std::min(254, (s.levels + 1) / 2 * 2);  // 0: as sm_evaluate --levels 0
   HwConfig hw;
   hw.disp = f.levels;
   hw.max_width = s.left.cols;
@@ -124,9 +124,9 @@ void study_subpix(const std::vector<Frame>& fr) {
 void study_valid(const std::vector<Frame>& fr) {
   header(false);
   // occ_en always on in the checked mode: without it the DP's fill paints phantom bars
-  for (int lr = -1; lr <= 2; ++lr)
-    for (int agree = -1; agree <= 2; ++agree)
-      for (int uniq = 0; uniq <= 2; ++uniq) {
+  for (int lr = -1; lr <= 4; ++lr)
+    for (int agree = -1; agree <= 4; ++agree)
+      for (int uniq = 0; uniq <= 1; ++uniq) {
         OutputRegs r;
         r.lr_en = lr >= 0;
         r.lr_t = static_cast<uint8_t>(std::max(lr, 0));
@@ -200,6 +200,10 @@ int run(int argc, char** argv) {
   app.add_option("dataset", dataset, "dataset folder (../shared/datasets layout)")->required();
   app.add_option("--scenes", scenes, "comma-separated scene names (default: all)")->delimiter(',');
   std::string dump_dir;
+  int levels = HwConfig{}.disp;
+  app.add_option("--levels", levels, "disparity levels (0: per scene, as sm_evaluate --levels 0)")
+      ->check(CLI::Range(0, 254))
+      ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
   app.add_option("--study", studies, "comma-separated subset of subpix,valid,conf")->delimiter(',');
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
@@ -209,7 +213,7 @@ int run(int argc, char** argv) {
     const std::string n = std::filesystem::path(d).filename().string();
     if (!scenes.empty() && std::find(scenes.begin(), scenes.end(), n) == scenes.end()) continue;
     fmt::print(stderr, "sm_output_study: {} ...\n", n);
-    fr.push_back(run_scene(d));
+    fr.push_back(run_scene(d, levels));
   }
   if (fr.empty()) throw ToolError(fmt::format("{}: no scenes", dataset));
   if (!dump_dir.empty()) dump_features(fr, dump_dir);
