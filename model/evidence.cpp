@@ -1,12 +1,14 @@
 #include "evidence.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace sm {
 
 Evidence::Evidence(int w, int h)
     : d(w, h),
       matched(w, h),
+      gap(w, h),
       fill_bg(w, h),
       cm(w, h),
       c0(w, h),
@@ -46,8 +48,25 @@ void right_wta(const uint8_t* agg, int w, int nd, std::vector<uint8_t>& out) {
   }
 }
 
+void run_gaps(const std::vector<int>& match, uint8_t* out) {
+  const int n = static_cast<int>(match.size());
+  int left = -1;
+  for (int x = 0; x < n;) {
+    if (match[static_cast<size_t>(x)] >= 0) {
+      left = match[static_cast<size_t>(x)];
+      out[x++] = 0;
+      continue;
+    }
+    int e = x;
+    while (e < n && match[static_cast<size_t>(e)] < 0) ++e;
+    const int g = (left < 0 || e == n) ? 255 : std::min(254, std::abs(match[static_cast<size_t>(e)] - left));
+    for (; x < e; ++x) out[x] = static_cast<uint8_t>(g);
+  }
+}
+
 void evidence_line(const uint8_t* agg, int w, int nd, const DpLine& line, int y, Evidence& ev) {
   fill_background(line.match, &ev.fill_bg.at(0, y));
+  run_gaps(line.match, &ev.gap.at(0, y));
   std::vector<uint8_t> rw;
   right_wta(agg, w, nd, rw);
   for (int x = 0; x < w; ++x) {

@@ -16,7 +16,9 @@ struct OutputRegs {
                            // 2: the WTA band (A at WTA-2..WTA+2 stored per pixel), fitted at the DP level
   uint8_t subpix_fit = 0;  // 0: parabola, 1: equiangular (V) fit
   // ---- validity (VALID_CTRL); a failing enabled rule clears the valid bit ----
-  uint8_t occ_en = 1;   // unmatched by the trellis (occluded), or x < d (left border): invalid
+  uint8_t occ_en = 1;   // unmatched by the trellis (occluded) where the matches around its run
+                        // differ by more than occ_t, or x < d (left border): invalid
+  uint8_t occ_t = 1;    // 1: the single-level steps of slanted surfaces stay valid (filled)
   uint8_t fill_bg = 1;  // occ_en = 0: unmatched pixels take the background fill (min of the
                         // left match and every match right of them), never nearer than the
                         // DP's fill; 0: the DP's fill (left of the first match: disp(first))

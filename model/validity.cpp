@@ -6,7 +6,7 @@ namespace sm {
 
 unsigned valid_failures(const Evidence& ev, int x, int y, int d_out, const OutputRegs& r) {
   unsigned f = 0;
-  if (!ev.matched.at(x, y)) f |= kFailOcc;
+  if (!ev.matched.at(x, y) && ev.gap.at(x, y) > r.occ_t) f |= kFailOcc;
   if (x < d_out) f |= kFailBorder;
   if (ev.c2.at(x, y) - ev.c1.at(x, y) < r.uniq_t) f |= kFailUniq;
   if (std::abs(static_cast<int>(ev.d.at(x, y)) - ev.dw.at(x, y)) > r.agree_t) f |= kFailAgree;

@@ -107,6 +107,7 @@ TEST_CASE("validity rules agree with a brute-force reading on random lines", "[u
     r.agree_en = rng() & 1;
     r.tex_en = rng() & 1;
     r.lr_en = rng() & 1;
+    r.occ_t = static_cast<uint8_t>(rng() % 3);
     r.lr_t = static_cast<uint8_t>(rng() % 3);
     for (int x = 0; x < w; ++x) {
       const uint8_t* a = &agg[static_cast<size_t>(x) * nd];
@@ -118,7 +119,14 @@ TEST_CASE("validity rules agree with a brute-force reading on random lines", "[u
       const int d = static_cast<int>(disp_value(line.disp[static_cast<size_t>(x)]));
       const int d_out = static_cast<int>(rng() % nd);
       bool ok = true;
-      if (r.occ_en && (match[static_cast<size_t>(x)] < 0 || x < d_out)) ok = false;
+      if (r.occ_en && x < d_out) ok = false;
+      if (r.occ_en && match[static_cast<size_t>(x)] < 0) {  // the run's neighbour matches
+        int a = x, b = x;
+        while (a >= 0 && match[static_cast<size_t>(a)] < 0) --a;
+        while (b < w && match[static_cast<size_t>(b)] < 0) ++b;
+        if (a < 0 || b == w || std::abs(match[static_cast<size_t>(a)] - match[static_cast<size_t>(b)]) > r.occ_t)
+          ok = false;
+      }
       if (r.uniq_en && second - a[wta] < r.uniq_t) ok = false;
       if (r.agree_en && std::abs(d - wta) > r.agree_t) ok = false;
       if (r.tex_en && hi - a[wta] < r.tex_t) ok = false;

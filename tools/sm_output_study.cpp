@@ -138,6 +138,13 @@ void study_valid(const std::vector<Frame>& fr) {
         print_row(fmt::format("occ on, lr {} agree {} uniq {}", t(lr), t(agree), uniq ? t(uniq) : "off"),
                   score(fr, r, 0, false), false);
       }
+  for (int occ_t = 1; occ_t <= 3; ++occ_t)
+    for (int lr = 1; lr <= 3; ++lr) {
+      OutputRegs r;
+      r.occ_t = static_cast<uint8_t>(occ_t);
+      r.lr_t = static_cast<uint8_t>(lr);
+      print_row(fmt::format("defaults + occ_t {} lr {}", occ_t, lr), score(fr, r, 0, false), false);
+    }
   for (int tex = 2; tex <= 8; tex += 2) {
     OutputRegs r;
     r.tex_en = 1;

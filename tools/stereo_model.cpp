@@ -1,5 +1,6 @@
 // stereo_model: runs the bit-exact reference model (model/pipeline.hpp) on one stereo
-// pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16) and/or
+// pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16; --mode dense /
+// checked: the Q.4 sub-pixel output, checked with invalid pixels, and --confidence) and/or
 // for viewing as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a colour-mapped PNG.
 // Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
 // names); options given on the command line win. Outputs are all-or-nothing.
@@ -18,10 +19,12 @@
 
 #include "calib_file.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "outword.hpp"
 #include "pipeline.hpp"
 
 namespace {
@@ -50,6 +53,14 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"dp", "post"}))
       ->capture_default_str();
   app.add_option("--objects-json", objects_json, "write the object list as JSON");
+  std::string mode = "integer", conf_png;
+  app.add_option("--mode", mode,
+                 "disparity written: integer (the --stage output), dense (post + Q.4 fraction, every pixel valid) or "
+                 "checked (Q.4, pixels failing the validity rules invalid) -- the planned output word, "
+                 "model/outword.hpp")
+      ->check(CLI::IsMember({"integer", "dense", "checked"}))
+      ->capture_default_str();
+  app.add_option("--confidence", conf_png, "write the 8-bit confidence of --mode dense/checked as a grey PNG");
   app.add_option("--regs", regs_json, "JSON file of HwConfig/Regs fields (keys = field names)");
   app.add_option("--calib", calib, "calibration JSON (model/calib_file.hpp): rectification grids");
   auto* o_mw = app.add_option("--max-width", hw.max_width, "MAX_WIDTH (default: image width)");
@@ -75,6 +86,10 @@ int run(int argc, char** argv) {
 
   if (out.empty() && colour.empty() && disp_file.empty())
     throw ToolError("no output: give -o, --colour and/or --disp-file");
+  if (mode != "integer" && stage == "dp")
+    throw ToolError("--mode " + mode + " works on the post output, not --stage dp");
+  if (mode == "integer" && !conf_png.empty()) throw ToolError("--confidence needs --mode dense or checked");
+
   if (!disp_file.empty()) {
     std::string ext = std::filesystem::path(disp_file).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -149,7 +164,13 @@ int run(int argc, char** argv) {
     throw ToolError(fmt::format("bad configuration: {}", e.what()));
   }
   const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
-  const cv::Mat df = sm::tools::disp_to_float(d);
+  if (mode != "integer" && stage == "dp")
+    throw ToolError("--mode " + mode + " works on the post output, not --stage dp");
+  if (mode == "integer" && !conf_png.empty()) throw ToolError("--confidence needs --mode dense or checked");
+  const sm::OutImage word = mode == "integer" ? sm::OutImage{}
+                                              : sm::make_output(res.evidence, res.post, hw.disp,
+                                                                mode == "dense" ? sm::dense_mode(r.out) : r.out);
+  const cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
   if (colour.empty() && !out.empty()) {
     const std::filesystem::path p(out);
     colour = (p.parent_path() / (p.stem().string() + "_colour.png")).string();
@@ -163,6 +184,8 @@ int run(int argc, char** argv) {
     outs.write(colour,
                [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_colour(df, hw.disp)); });
   if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
+  if (!conf_png.empty())
+    outs.write(conf_png, [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::out_to_conf(word)); });
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
@@ -183,9 +206,12 @@ int run(int argc, char** argv) {
     }
     fmt::print("  {:<12} {:9.1f} ms\n", "total", total);
     long valid = 0;
-    for (auto p : d.px) valid += sm::disp_valid(p);
+    if (mode == "integer")
+      for (auto p : d.px) valid += sm::disp_valid(p);
+    else
+      for (auto w : word.px) valid += sm::out_valid(w);
     std::string files;
-    for (const auto* f : {&out, &colour, &disp_file, &objects_json})
+    for (const auto* f : {&out, &colour, &disp_file, &objects_json, &conf_png})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
   }
