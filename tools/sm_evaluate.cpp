@@ -200,14 +200,14 @@ void score_accuracy(const cv::Mat& est, const cv::Mat& conf, const sm::tools::Sc
                     sm::tools::Sparsification& sparse, bool& has_conf) {
   acc = sm::tools::disp_metrics(est, sc.gt, sc.nonocc);
   has_conf = !conf.empty();
-  if (has_conf) sparse = sm::tools::sparsification(est, conf, sc.gt, sc.nonocc, 20);
+  if (has_conf) sparse = sm::tools::sparsification(est, conf, sc.gt, sc.nonocc, 100);
 }
 
 json accuracy_json(const sm::tools::DispMetrics& a, const sm::tools::Sparsification& sp, bool has_conf) {
   json j = {{"bad05_pct", a.pct(a.bad05)}, {"bad1_pct", a.pct(a.bad1)},  {"bad2_pct", a.pct(a.bad2)},
             {"mae_valid", a.mae()},        {"density_pct", a.density()}, {"bad1_valid_pct", a.bad1_of_valid()}};
   if (has_conf)
-    j["sparsification"] = {{"kept_step", 0.05},
+    j["sparsification"] = {{"kept_step", 0.01},
                            {"curve", sp.curve},
                            {"oracle", sp.oracle},
                            {"auc", sp.auc},
@@ -240,7 +240,7 @@ void print_accuracy_tables(const TableFn& table, const AllCols& all_cols, const 
       [](const auto& c) { return fmt::format("{:.2f}", c.acc.bad1_of_valid()); },
       [](const auto& c) { return c.acc.bad1_of_valid(); }, "{:.2f}", all_cols);
   table(
-      "confidence: area under the sparsification curve (bad-1.0 % of the kept pixels, 5 % steps), oracle in "
+      "confidence: area under the sparsification curve (bad-1.0 % of the kept pixels, 1 % steps), oracle in "
       "brackets",
       false, [](const auto& c) { return fmt::format("{:.3f} ({:.3f})", c.sparse.auc, c.sparse.oracle_auc); },
       [](const auto& c) { return c.sparse.auc; }, "{:.3f}", conf_cols);
