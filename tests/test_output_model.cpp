@@ -234,3 +234,34 @@ TEST_CASE("no phantom surfaces in the built-in scene's occluded spans", "[unit][
     CHECK(ph <= n / 400);
   }
 }
+
+TEST_CASE("accuracy metrics and sparsification: hand-computed values", "[unit][output]") {
+  // errors 0.2, 0.6, invalid, 2.0; the fifth pixel has no ground truth
+  const cv::Mat est = (cv::Mat_<float>(1, 5) << 1.0f, 2.6f, -1.0f, 5.0f, 7.0f);
+  const cv::Mat gt = (cv::Mat_<float>(1, 5) << 1.2f, 2.0f, 3.0f, 3.0f, 0.0f);
+  const auto m = tools::disp_metrics(est, gt, cv::Mat());
+  CHECK(m.evaluated == 4);
+  CHECK(m.valid == 3);
+  CHECK(m.bad05 == 3);  // 0.6, invalid, 2.0
+  CHECK(m.bad1 == 2);   // invalid, 2.0
+  CHECK(m.bad2 == 1);   // invalid only: 2.0 is not above 2
+  CHECK(m.bad1_valid == 1);
+  CHECK(m.mae() == Approx((0.2 + 0.6 + 2.0) / 3).epsilon(1e-5));
+  CHECK(m.density() == Approx(75.0));
+  // bad-1.0 flags 0, 0, 1, 1: confidences 200, 100, 0, 50 drop the bad ones first
+  const cv::Mat conf = (cv::Mat_<uint8_t>(1, 5) << 200, 100, 0, 50, 255);
+  const auto s = tools::sparsification(est, conf, gt, cv::Mat(), 4);
+  REQUIRE(s.curve.size() == 4);
+  CHECK(s.curve[0] == Approx(0.0));
+  CHECK(s.curve[1] == Approx(0.0));
+  CHECK(s.curve[2] == Approx(100.0 / 3));
+  CHECK(s.curve[3] == Approx(50.0));
+  CHECK(s.auc == Approx((100.0 / 3 + 50.0) / 4));
+  CHECK(s.oracle_auc == Approx(s.auc));
+  // one confidence for all: every kept share has the mean error (ties at their mean)
+  const auto flat = tools::sparsification(est, cv::Mat(1, 5, CV_8UC1, cv::Scalar(7)), gt, cv::Mat(), 4);
+  for (double v : flat.curve) CHECK(v == Approx(50.0));
+  // the reverse order keeps the bad pixels first
+  const cv::Mat rev = (cv::Mat_<uint8_t>(1, 5) << 0, 50, 200, 100, 0);
+  CHECK(tools::sparsification(est, rev, gt, cv::Mat(), 4).curve[0] == Approx(100.0));
+}
