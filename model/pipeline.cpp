@@ -69,6 +69,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   std::vector<uint8_t> agg_line(keep_volumes ? 0 : row);
   std::vector<const uint8_t*> win(static_cast<size_t>(sw));
   r.dp = DispImage(w, h);
+  r.evidence = Evidence(w, h);
   DpScratch scratch;
   DpLine line;
   std::vector<uint8_t> pen;     // the row's occlusion penalties (edge_penalties)
@@ -106,6 +107,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     edge_penalties(&r.rl.px[static_cast<size_t>(ya) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
     trellis_line_pen(a, w, pen.data(), hw, scratch, line);
     std::copy(line.disp.begin(), line.disp.end(), &r.dp.at(0, ya));
+    evidence_line(a, w, nd, line, ya, r.evidence);
     const auto t2 = clock::now();
     ms[2] += since(t0, t1);
     ms[3] += since(t1, t2);
@@ -115,6 +117,8 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps);
   lap("post");
+  r.out = make_output(r.evidence, r.post, nd, regs.out);
+  lap("output");
   r.objects = separate_objects(r.post, regs, hw);
   lap("objects");
   return r;

@@ -9,6 +9,8 @@
 #include "aggregate.hpp"
 #include "census.hpp"
 #include "dp.hpp"
+#include "evidence.hpp"
+#include "outword.hpp"
 #include "post.hpp"
 #include "pre.hpp"
 #include "sm_types.hpp"
@@ -24,6 +26,8 @@ struct PipelineResult {
   DispImage post;                     // after the enabled post-processing filters
   std::vector<DispImage> post_steps;  // after each filter step F0..F3 (enabled or not)
   ObjectList objects;
+  Evidence evidence;  // per-pixel evidence of the output stage (model/evidence.hpp)
+  OutImage out;       // planned output word per pixel at regs.out (model/outword.hpp)
   std::vector<std::pair<std::string, double>> stage_ms;  // wall time per stage
 };
 

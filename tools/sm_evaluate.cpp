@@ -3,7 +3,10 @@
 // StereoSGBM and StereoBinarySGBM (opencv_contrib "stereo"; filtered and dense variants,
 // by default each at the scene's own disparity range) on a stereo dataset in the
 // ../shared/datasets layout, or on synthetic scenes from the sm_scene generator. Invalid
-// outputs count as bad (dense comparison). Disparity files made by another program
+// outputs count as bad (dense comparison); beside bad-1.0 every output gets bad-0.5, bad-2.0,
+// the mean absolute error and bad-1.0 over its valid pixels and its density, and the model's
+// sub-pixel outputs (model_subpix: dense, model_checked: the validity rules; model/outword.hpp)
+// the sparsification of their confidence. Disparity files made by another program
 // (--results: <scene>.pfm or <scene>.png) are scored the same way. docs/evaluation.md.
 #include <fmt/format.h>
 
@@ -28,8 +31,10 @@
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_pictures.hpp"
 #include "toolio/sm_outputs.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "toolio/sm_scenegen.hpp"
+#include "outword.hpp"
 #include "pipeline.hpp"
 #include "sm_defs.hpp"
 
@@ -39,12 +44,23 @@ namespace fs = std::filesystem;
 using sm::tools::ToolError;
 using json = nlohmann::json;
 
-// One method: run() gives one or more disparity maps (CV_32F, < 0 invalid), one per name in
-// `outputs` (the model: the DP output and each post-processing step; everything else: one).
+// What a method's run gives: one disparity map (CV_32F, < 0 invalid) per name in `outputs`
+// and, where it has one, the output's confidence (CV_8U; empty otherwise).
+struct MethodOut {
+  std::vector<cv::Mat> disp, conf;
+};
+MethodOut maps(std::vector<cv::Mat> disp) {
+  const size_t n = disp.size();
+  return {std::move(disp), std::vector<cv::Mat>(n)};
+}
+
+// One method: run() gives one or more disparity maps, one per name in `outputs` (the model:
+// the DP output, each post-processing step and the sub-pixel dense and checked outputs;
+// everything else: one).
 struct Method {
-  std::string name;                                                              // --methods name
-  std::vector<std::string> outputs;                                              // table columns / JSON keys
-  std::function<std::vector<cv::Mat>(const sm::tools::Scene&, int levels)> run;  // one map per output
+  std::string name;                                                   // --methods name
+  std::vector<std::string> outputs;                                   // table columns / JSON keys
+  std::function<MethodOut(const sm::tools::Scene&, int levels)> run;  // one map per output
   bool peer = false;  // an OpenCV matcher: runs at --peer-levels (else at --levels)
   bool timed = true;  // false: read from a file, no run time
 };
@@ -105,6 +121,16 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
   return from_fixed16(d);
 }
 
+// The model's output stage (model/outword.hpp) in its two modes: dense (every pixel valid,
+// the DP's fill, the Q.4 fraction) with its confidence, and checked (the registers' rules).
+void add_output_modes(const sm::PipelineResult& res, int levels, const sm::OutputRegs& regs, MethodOut& o) {
+  const sm::OutImage dense = sm::make_output(res.evidence, res.post, levels, sm::dense_mode(regs));
+  o.disp.push_back(sm::tools::out_to_float(dense));
+  o.conf.push_back(sm::tools::out_to_conf(dense));
+  o.disp.push_back(sm::tools::out_to_float(sm::make_output(res.evidence, res.post, levels, regs)));
+  o.conf.emplace_back();
+}
+
 std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs_file, const std::string& results_dir,
                                 double results_scale) {
   std::vector<Method> m;
@@ -112,7 +138,7 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
   // after each step: the DP output, F0 (band filter), F0+F1 (5x1 vertical median), F0+F1+F2
   // (3x3), F0+F1+F2+F3 (5x3) = the model's output.
   m.push_back({"model",
-               {"model_dp", "model_f0", "model_f1", "model_f1f2", "model"},
+               {"model_dp", "model_f0", "model_f1", "model_f1f2", "model", "model_subpix", "model_checked"},
                [occ, occ_given, regs_file](const sm::tools::Scene& s, int levels) {
                  sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
                  hw.disp = levels;
@@ -137,14 +163,15 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
                      sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false);
                  if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
                    throw std::logic_error("model: expected four post-processing steps ending in the output");
-                 return std::vector<cv::Mat>{
-                     sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
-                     sm::tools::disp_to_float(res.post_steps[1]), sm::tools::disp_to_float(res.post_steps[2]),
-                     sm::tools::disp_to_float(res.post)};
+                 MethodOut o = maps({sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
+                                     sm::tools::disp_to_float(res.post_steps[1]),
+                                     sm::tools::disp_to_float(res.post_steps[2]), sm::tools::disp_to_float(res.post)});
+                 add_output_modes(res, hw.disp, regs.out, o);
+                 return o;
                }});
   using Scene = sm::tools::Scene;
   auto peer = [&m](const std::string& name, std::function<cv::Mat(const Scene&, int)> f) {
-    m.push_back({name, {name}, [f](const Scene& s, int nd) { return std::vector<cv::Mat>{f(s, nd)}; }, true});
+    m.push_back({name, {name}, [f](const Scene& s, int nd) { return maps({f(s, nd)}); }, true});
   };
   peer("bm", [](const Scene& s, int nd) { return run_bm(s, nd, false); });
   peer("bm-dense", [](const Scene& s, int nd) { return run_bm(s, nd, true); });
@@ -165,11 +192,66 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
                  if (d.size() != s.left.size())
                    throw ToolError(fmt::format("{}: size {}x{} differs from the scene's {}x{}", f, d.cols, d.rows,
                                                s.left.cols, s.left.rows));
-                 return std::vector<cv::Mat>{d};
+                 return maps({d});
                },
                false,
                false});
   return m;
+}
+
+// Accuracy of one output (docs/evaluation.md, "Sub-pixel, validity and confidence"): the
+// metrics of toolio/sm_metrics.hpp and, when the output has a confidence, its sparsification.
+void score_accuracy(const cv::Mat& est, const cv::Mat& conf, const sm::tools::Scene& sc, sm::tools::DispMetrics& acc,
+                    sm::tools::Sparsification& sparse, bool& has_conf) {
+  acc = sm::tools::disp_metrics(est, sc.gt, sc.nonocc);
+  has_conf = !conf.empty();
+  if (has_conf) sparse = sm::tools::sparsification(est, conf, sc.gt, sc.nonocc, 100);
+}
+
+json accuracy_json(const sm::tools::DispMetrics& a, const sm::tools::Sparsification& sp, bool has_conf) {
+  json j = {{"bad05_pct", a.pct(a.bad05)}, {"bad1_pct", a.pct(a.bad1)},  {"bad2_pct", a.pct(a.bad2)},
+            {"mae_valid", a.mae()},        {"density_pct", a.density()}, {"bad1_valid_pct", a.bad1_of_valid()}};
+  if (has_conf)
+    j["sparsification"] = {{"kept_step", 0.01},
+                           {"curve", sp.curve},
+                           {"oracle", sp.oracle},
+                           {"auc", sp.auc},
+                           {"oracle_auc", sp.oracle_auc}};
+  return j;
+}
+
+// The accuracy tables (one column per output, a mean row): bad-0.5/1.0/2.0 with invalid
+// pixels counted bad, the mean absolute error and bad-1.0 over the valid pixels, the
+// density, and for the outputs with a confidence the sparsification AUC against the oracle.
+template <class TableFn, class AllCols, class ConfCols>
+void print_accuracy_tables(const TableFn& table, const AllCols& all_cols, const ConfCols& conf_cols) {
+  auto pct = [&](const char* title, long sm::tools::DispMetrics::*field) {
+    table(
+        title, false, [field](const auto& c) { return fmt::format("{:.2f}", c.acc.pct(c.acc.*field)); },
+        [field](const auto& c) { return c.acc.pct(c.acc.*field); }, "{:.2f}", all_cols);
+  };
+  pct("bad-0.5 % (invalid = bad)", &sm::tools::DispMetrics::bad05);
+  pct("bad-2.0 % (invalid = bad)", &sm::tools::DispMetrics::bad2);
+  table(
+      "mean absolute error (px) over the valid pixels", false,
+      [](const auto& c) { return fmt::format("{:.3f}", c.acc.mae()); }, [](const auto& c) { return c.acc.mae(); },
+      "{:.3f}", all_cols);
+  table(
+      "density % (valid share of the evaluated pixels)", false,
+      [](const auto& c) { return fmt::format("{:.2f}", c.acc.density()); },
+      [](const auto& c) { return c.acc.density(); }, "{:.2f}", all_cols);
+  table(
+      "bad-1.0 % over the valid pixels", false,
+      [](const auto& c) { return fmt::format("{:.2f}", c.acc.bad1_of_valid()); },
+      [](const auto& c) { return c.acc.bad1_of_valid(); }, "{:.2f}", all_cols);
+  table(
+      "confidence: area under the sparsification curve (bad-1.0 % of the kept pixels, 1 % steps), oracle in "
+      "brackets",
+      false, [](const auto& c) { return fmt::format("{:.3f} ({:.3f})", c.sparse.auc, c.sparse.oracle_auc); },
+      [](const auto& c) { return c.sparse.auc; }, "{:.3f}", conf_cols);
+  table(
+      "confidence: oracle AUC", false, [](const auto& c) { return fmt::format("{:.3f}", c.sparse.oracle_auc); },
+      [](const auto& c) { return c.sparse.oracle_auc; }, "{:.3f}", conf_cols);
 }
 
 // A markdown table (header, rows of cells), printed with padded columns under a title.
@@ -369,6 +451,9 @@ int run(int argc, char** argv) {
   jout["scenes"] = json::array();
   struct Cell {
     sm::tools::BadStats bad;
+    sm::tools::DispMetrics acc;        // bad-0.5/1.0/2.0, MAE, density
+    sm::tools::Sparsification sparse;  // outputs with a confidence only
+    bool has_conf = false;
     std::vector<sm::tools::StreakStats> streak;  // one per --streak-rows
     double ms = -1;                              // < 0: not timed
   };
@@ -398,12 +483,16 @@ int run(int argc, char** argv) {
       if (!quiet)
         fmt::print(stderr, "[{}/{}] {} ({}, {} levels): {} ...\n", step, total_steps, names[i], row.size, mlv, m.name);
       const auto t0 = std::chrono::steady_clock::now();
-      const std::vector<cv::Mat> est = m.run(sc, mlv);
+      const MethodOut mo = m.run(sc, mlv);
+      const std::vector<cv::Mat>& est = mo.disp;
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       if (est.size() != m.outputs.size()) throw std::logic_error(m.name + ": wrong number of outputs");
       for (size_t k = 0; k < est.size(); ++k) {
         const std::string& out = m.outputs[k];
-        Cell c{sm::tools::bad1(est[k], sc.gt, sc.nonocc), {}, m.timed && out == m.name ? ms : -1.0};
+        Cell c;
+        c.bad = sm::tools::bad1(est[k], sc.gt, sc.nonocc);
+        c.ms = m.timed && out == m.name ? ms : -1.0;
+        score_accuracy(est[k], mo.conf[k], sc, c.acc, c.sparse, c.has_conf);
         json jst = json::array();
         for (int t : streak_rows) {
           c.streak.push_back(sm::tools::streaks(est[k], sc.gt, sc.nonocc, t));
@@ -416,6 +505,7 @@ int run(int argc, char** argv) {
                               {"smooth", c.streak[0].smooth},
                               {"streak", jst},
                               {"levels", mlv},
+                              {"accuracy", accuracy_json(c.acc, c.sparse, c.has_conf)},
                               {"ms", c.ms >= 0 ? json(c.ms) : json(nullptr)}};
         row.cells.push_back(c);
         if (!disp_dir.empty()) {
@@ -490,6 +580,7 @@ int run(int argc, char** argv) {
                     streak_rows[i] == 1 ? "" : "s"),
         true, [i](const Cell& c) { return fmt::format("{:.2f}", c.streak[i].streak_pct()); },
         [i](const Cell& c) { return c.streak[i].streak_pct(); }, "{:.2f}", all_cols);
+  print_accuracy_tables(table, all_cols, [&](size_t k) { return !rows.empty() && rows[0].cells[k].has_conf; });
   table(
       "ms per frame (single thread; the model's steps come from one run)", false,
       [](const Cell& c) { return fmt::format("{:.0f}", c.ms); }, [](const Cell& c) { return c.ms; }, "{:.0f}",
@@ -501,6 +592,11 @@ int run(int argc, char** argv) {
       jst.push_back(
           {{"max_rows", streak_rows[i]}, {"pct", mean_of(k, [i](const Cell& c) { return c.streak[i].streak_pct(); })}});
     jout["mean"][outputs[k]] = {{"bad1_pct", mean_of(k, [](const Cell& c) { return c.bad.bad_pct(); })},
+                                {"bad05_pct", mean_of(k, [](const Cell& c) { return c.acc.pct(c.acc.bad05); })},
+                                {"bad2_pct", mean_of(k, [](const Cell& c) { return c.acc.pct(c.acc.bad2); })},
+                                {"mae_valid", mean_of(k, [](const Cell& c) { return c.acc.mae(); })},
+                                {"density_pct", mean_of(k, [](const Cell& c) { return c.acc.density(); })},
+                                {"bad1_valid_pct", mean_of(k, [](const Cell& c) { return c.acc.bad1_of_valid(); })},
                                 {"streak", jst},
                                 {"ms", timed ? json(mean_of(k, [](const Cell& c) { return c.ms; })) : json(nullptr)}};
   }

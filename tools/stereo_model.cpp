@@ -1,5 +1,6 @@
 // stereo_model: runs the bit-exact reference model (model/pipeline.hpp) on one stereo
-// pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16) and/or
+// pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16; --mode dense /
+// checked: the Q.4 sub-pixel output, checked with invalid pixels, and --confidence) and/or
 // for viewing as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a colour-mapped PNG.
 // Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
 // names; its width / height resize the images to that active size, as in stereo_sim);
@@ -24,11 +25,13 @@
 #include "toolio/sm_depth_options.hpp"
 #include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_pictures.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "outword.hpp"
 #include "pipeline.hpp"
 #include "sm_defs.hpp"
 
@@ -40,8 +43,8 @@ using json = nlohmann::json;
 // The outputs, checked before any work: at least one, --disp-file .pfm or .png, every one
 // writable, no two the same file. Sets the default --colour (<out>_colour.png with -o).
 void check_outputs(const std::string& out, std::string& colour, const std::string& disp_file,
-                   const std::string& objects_json, const sm::tools::DepthOptions& depth) {
-  if (out.empty() && colour.empty() && disp_file.empty() && objects_json.empty() && !depth.any())
+                   const std::string& objects_json, const std::string& conf_png, const sm::tools::DepthOptions& depth) {
+  if (out.empty() && colour.empty() && disp_file.empty() && objects_json.empty() && conf_png.empty() && !depth.any())
     throw ToolError("no output: give -o, --colour, --disp-file, --objects-json, --depth-file and/or --cloud");
   if (!disp_file.empty()) {
     std::string ext = std::filesystem::path(disp_file).extension().string();
@@ -57,6 +60,7 @@ void check_outputs(const std::string& out, std::string& colour, const std::strin
                             {"--colour", colour},
                             {"--disp-file", disp_file},
                             {"--objects-json", objects_json},
+                            {"--confidence", conf_png},
                             {"--depth-file", depth.depth_file},
                             {"--cloud", depth.cloud},
                             {"--cloud-view", depth.cloud_view}});
@@ -98,6 +102,14 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"dp", "post"}))
       ->capture_default_str();
   app.add_option("--objects-json", objects_json, "write the object list as JSON");
+  std::string mode = "integer", conf_png;
+  app.add_option("--mode", mode,
+                 "disparity written: integer (the --stage output), dense (post + Q.4 fraction, every pixel valid) or "
+                 "checked (Q.4, pixels failing the validity rules invalid) -- the planned output word, "
+                 "model/outword.hpp")
+      ->check(CLI::IsMember({"integer", "dense", "checked"}))
+      ->capture_default_str();
+  app.add_option("--confidence", conf_png, "write the 8-bit confidence of --mode dense/checked as a grey PNG");
   app.add_option("--regs", regs_json, "JSON file of HwConfig/Regs fields (keys = field names)");
   app.add_option("--calib", calib, "calibration JSON (model/calib_file.hpp): rectification grids");
   auto* o_mw = app.add_option("--max-width", hw.max_width, "MAX_WIDTH (default: image width)");
@@ -123,9 +135,12 @@ int run(int argc, char** argv) {
   depth.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
 
-  check_outputs(out, colour, disp_file, objects_json, depth);
+  check_outputs(out, colour, disp_file, objects_json, conf_png, depth);
   if (!regs_json.empty()) sm::tools::check_input_file(regs_json);
   if (!calib.empty()) sm::tools::check_input_file(calib);
+  if (mode != "integer" && stage == "dp")
+    throw ToolError("--mode " + mode + " works on the post output, not --stage dp");
+  if (mode == "integer" && !conf_png.empty()) throw ToolError("--confidence needs --mode dense or checked");
   sm::tools::quiet_opencv();
   cv::Mat left_m = sm::tools::load_grey_mat(left), right_m = sm::tools::load_grey_mat(right);
   if (left_m.size() != right_m.size())
@@ -212,7 +227,10 @@ int run(int argc, char** argv) {
     throw ToolError(fmt::format("bad configuration: {}", e.what()));
   }
   const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
-  const cv::Mat df = sm::tools::disp_to_float(d);
+  const sm::OutImage word = mode == "integer" ? sm::OutImage{}
+                                              : sm::make_output(res.evidence, res.post, hw.disp,
+                                                                mode == "dense" ? sm::dense_mode(r.out) : r.out);
+  const cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;
   if (!out.empty())
@@ -225,6 +243,8 @@ int run(int argc, char** argv) {
     });
   if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
   if (camera) depth.write(outs, df, sm::tools::to_mat(res.rl), *camera);
+  if (!conf_png.empty())
+    outs.write(conf_png, [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::out_to_conf(word)); });
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
     j["objects"] = json::array();
@@ -245,9 +265,13 @@ int run(int argc, char** argv) {
     }
     fmt::print("  {:<12} {:9.1f} ms\n", "total", total);
     long valid = 0;
-    for (auto p : d.px) valid += sm::disp_valid(p);
+    if (mode == "integer")
+      for (auto p : d.px) valid += sm::disp_valid(p);
+    else
+      for (auto w : word.px) valid += sm::out_valid(w);
     std::string files;
-    for (const auto* f : {&out, &colour, &disp_file, &objects_json, &depth.depth_file, &depth.cloud, &depth.cloud_view})
+    for (const auto* f :
+         {&out, &colour, &disp_file, &objects_json, &conf_png, &depth.depth_file, &depth.cloud, &depth.cloud_view})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
   }
