@@ -11,6 +11,7 @@
 #include "calib_file.hpp"
 #include "pipeline.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "sm_sim_preflight.hpp"
 
 namespace sm::simapp {
 
@@ -34,6 +35,7 @@ void check_hw_keys(const std::string& path, const HwConfig& got, const HwConfig&
 
 // A calibration file this IP can hold (its rig's line-buffer radius within RECT_RADIUS).
 CalibFile load_fitting_calib(const std::string& path, const HwConfig& hw) {
+  check_readable_file("", path);  // "<path>: is a directory", not a stream error
   CalibFile c = load_calib(path);
   check_calib_fits(path, c, hw);
   return c;

@@ -185,6 +185,9 @@ TEST_CASE("--regs, --calib, --regs-at naming a folder or nothing: the path and t
   expect_refused(sim("dir_regs", "--regs " + q(dir)), {"--regs " + dir, "is a directory"});
   expect_refused(sim("dir_calib", "--calib " + q(dir)), {"--calib " + dir, "is a directory"});
   expect_refused(sim("dir_regs_at", "--frames 2 --regs-at 1=" + q(dir)), {"--regs-at " + dir, "is a directory"});
+  const fs::path regs = kTmp / "regs_calib_dir.json";
+  std::ofstream(regs) << nlohmann::json{{"calib", dir}}.dump() << "\n";
+  expect_refused(sim("dir_regs_calib", "--regs " + q(regs)), {regs.string(), "'calib'", "is a directory"});
   expect_refused(sim("missing_left", "--left " + q(kTmp / "nope_l.png") + " --right " + q(kTmp / "nope_r.png")),
                  {"--left", "nope_l.png", "no such file"});
 }
