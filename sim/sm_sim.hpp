@@ -242,7 +242,11 @@ class SimEngine {
     if (!vcd.path.empty() && !s.vcd_on && s.vcd_end == 0 && s.f == static_cast<size_t>(vcd.frame) && s.y == vcd.line &&
         s.x == 0) {
       if (!tb_.open_trace(vcd.path, 99, vcd.scope))
+#if VM_TRACE
+        throw std::runtime_error(fmt::format("{}: cannot open the wave file for writing", vcd.path));
+#else
         throw std::runtime_error("this simulator was built without tracing (--trace)");
+#endif
       s.vcd_on = true;
       s.vcd_end = tb_.cycles() + (vcd.cycles ? vcd.cycles : vcd.lines * s.line_period);
     }

@@ -3,8 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -60,10 +65,41 @@ void read_sequence(const SimOptions& opt, Sizer& size, SimInput& in) {
   in.name = dir;
 }
 
-// A side-by-side stereo video: left half, right half.
+// FFmpeg prints its own complaints ("[png @ 0x...] ...") on stderr, past OpenCV's log
+// level; the one error line is ours, so stderr is parked on /dev/null while it decodes.
+class QuietStderr {
+ public:
+  QuietStderr() {
+    std::fflush(stderr);
+    saved_ = dup(2);
+    const int nul = open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && nul >= 0) dup2(nul, 2);
+    if (nul >= 0) close(nul);
+  }
+  ~QuietStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      dup2(saved_, 2);
+      close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+// A side-by-side stereo video: left half, right half. A video that ends before the
+// frames its header declares (truncated, damaged) is an error, not a shorter run.
 void read_video(const SimOptions& opt, Sizer& size, SimInput& in) {
+  // FFmpeg would play a single picture as a one-frame video
+  if (cv::haveImageReader(opt.video))
+    fail(fmt::format("--video {}: a picture, not a video (a pair is --left/--right)", opt.video));
+  QuietStderr quiet;
   cv::VideoCapture cap(opt.video);
-  if (!cap.isOpened()) fail(fmt::format("{}: cannot open video", opt.video));
+  if (!cap.isOpened()) fail(fmt::format("{}: not a video OpenCV can read", opt.video));
+  const double declared = cap.get(cv::CAP_PROP_FRAME_COUNT);
   cv::Mat f, g;
   while (static_cast<int>(in.frames.size()) < opt.frames && cap.read(f)) {
     if (f.cols < 2) fail(fmt::format("{}: frame too narrow", opt.video));
@@ -77,6 +113,10 @@ void read_video(const SimOptions& opt, Sizer& size, SimInput& in) {
     in.frames.emplace_back(std::move(l), std::move(r));
   }
   if (in.frames.empty()) fail(fmt::format("{}: no frames could be read", opt.video));
+  const size_t want = std::min(static_cast<size_t>(opt.frames), declared > 0 ? static_cast<size_t>(declared) : 0);
+  if (in.frames.size() < want)
+    fail(fmt::format("{}: only {} of the {} frames it declares could be read (truncated or damaged)", opt.video,
+                     in.frames.size(), static_cast<size_t>(declared)));
   in.name = opt.video;
 }
 
@@ -98,8 +138,29 @@ void fit_ground_truth(const tools::Scene& sc, int width, int height, SimInput& i
                            sc.gt.rows, in.gt_scale);
 }
 
+// A scene's left.png and right.png, and its ground truth when it has gt.png (which needs
+// scale.txt, the factor of its disparities). Without gt.png the run is not scored.
+tools::Scene load_sim_scene(const std::string& dir) {
+  const fs::path d(dir);
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) fail(fmt::format("--scene {}: no such folder", dir));
+  if (fs::exists(d / "gt.png", ec)) {
+    if (!fs::exists(d / "scale.txt", ec))
+      fail(fmt::format("{}: no such file (gt.png's disparities need its scale)", (d / "scale.txt").string()));
+    return tools::load_scene(dir);
+  }
+  tools::Scene sc;
+  sc.dir = dir;
+  sc.left = tools::load_grey_mat((d / "left.png").string());
+  sc.right = tools::load_grey_mat((d / "right.png").string());
+  if (sc.left.size() != sc.right.size())
+    fail(fmt::format("{}: left {}x{} and right {}x{} differ in size", dir, sc.left.cols, sc.left.rows, sc.right.cols,
+                     sc.right.rows));
+  return sc;
+}
+
 void read_scene(const SimOptions& opt, Sizer& size, SimInput& in) {
-  const tools::Scene sc = tools::load_scene(opt.scene_dir);
+  const tools::Scene sc = load_sim_scene(opt.scene_dir);
   const Image8 l = size(sc.left);
   const Image8 r = size(sc.right);
   for (int i = 0; i < opt.frames; ++i) in.frames.emplace_back(l, r);
@@ -120,7 +181,8 @@ SimInput open_inputs(const SimOptions& opt, int width, int height) {
     read_video(opt, size, in);
   else
     read_scene(opt, size, in);
-  if (size.resized && !opt.quiet) fmt::print(stderr, "note: input resized to the active size {}x{}\n", width, height);
+  // a warning, not progress: shown with -q too
+  if (size.resized) fmt::print(stderr, "note: input resized to the active size {}x{}\n", width, height);
   return in;
 }
 

@@ -30,6 +30,7 @@ struct SimOptions {
   bool continuous = false;
   int hblank = 80, vblank = 22;
   double pixel_clock = 0, clock_mhz = 100.0, core_mhz = 0;
+  bool core_mhz_given = false;  // asks for the 30 frames/s check: a NO is exit code 3
   // waves
   std::string wave_path;                 // --wave (empty: none)
   std::string wave_fmt;                  // "vcd" or "fst" (check_wave_options)

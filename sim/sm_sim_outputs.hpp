@@ -5,11 +5,12 @@
 
 #include "sm_sim.hpp"
 #include "sm_sim_options.hpp"
+#include "toolio/sm_outputs.hpp"
 
 namespace sm::simapp {
 
 // opt.disp_file of the last frame's `disp` (float disparity) and, with
-// --disp-each-frame, <stem>_NNN<ext> of every frame of `res`.
-void write_disparity_files(const SimOptions& opt, const SimResult& res, const cv::Mat& disp);
+// --disp-each-frame, <stem>_NNN<ext> of every frame of `res`, staged in `outs`.
+void write_disparity_files(tools::OutputSet& outs, const SimOptions& opt, const SimResult& res, const cv::Mat& disp);
 
 }  // namespace sm::simapp

@@ -41,6 +41,11 @@ cv::Mat error_map(const cv::Mat& est, const cv::Mat& gt, const cv::Mat& mask) {
   return m;
 }
 
+void stage_image(tools::OutputSet& outs, const std::string& path, const cv::Mat& img) {
+  outs.write(
+      path, [&](const std::string& temp) { tools::write_image_atomic(temp, img); }, true);
+}
+
 cv::Mat bgr(const Image8& im) {
   cv::Mat c;
   cv::cvtColor(tools::to_mat(im), c, cv::COLOR_GRAY2BGR);
@@ -59,13 +64,14 @@ cv::Mat ground_truth_row(const HwConfig& hw, const SimInput& in, const cv::Mat& 
 
 }  // namespace
 
-void write_disparity_pictures(const std::string& dir, const cv::Mat& disp, const HwConfig& hw) {
-  tools::write_image_atomic(dir + "/disparity.png", tools::disp_to_grey(disp, hw.disp));
-  tools::write_image_atomic(dir + "/disparity_color.png", tools::disp_to_colour(disp, hw.disp));
+void write_disparity_pictures(tools::OutputSet& outs, const std::string& dir, const cv::Mat& disp, const HwConfig& hw) {
+  stage_image(outs, dir + "/disparity.png", tools::disp_to_grey(disp, hw.disp));
+  stage_image(outs, dir + "/disparity_color.png", tools::disp_to_colour(disp, hw.disp));
 }
 
-void write_panel(const std::string& dir, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
-                 const ModelCheck& check, const std::vector<ObjectPacket>& packets, const cv::Mat& disp, double bad1) {
+void write_panel(tools::OutputSet& outs, const std::string& dir, const HwConfig& hw, const SimInput& in,
+                 const RegisterPlan& plan, const ModelCheck& check, const std::vector<ObjectPacket>& packets,
+                 const cv::Mat& disp, double bad1) {
   const auto& frame = in.frames.back();
   const PipelineResult m =
       !check.done ? run_pipeline(frame.first, frame.second, hw, plan.regs.back(), false) : check.model.back();
@@ -81,7 +87,7 @@ void write_panel(const std::string& dir, const HwConfig& hw, const SimInput& in,
   if (!in.gt.empty()) rows.push_back(ground_truth_row(hw, in, disp, bad1));
   cv::Mat panel;
   cv::vconcat(rows, panel);
-  tools::write_image_atomic(dir + "/panel.png", panel);
+  stage_image(outs, dir + "/panel.png", panel);
 }
 
 }  // namespace sm::simapp

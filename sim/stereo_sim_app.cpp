@@ -18,11 +18,13 @@
 #include <filesystem>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_outputs.hpp"
 #include "sm_sim_check.hpp"
 #include "sm_sim_inputs.hpp"
 #include "sm_sim_options.hpp"
 #include "sm_sim_outputs.hpp"
 #include "sm_sim_pictures.hpp"
+#include "sm_sim_preflight.hpp"
 #include "sm_sim_regplan.hpp"
 #include "sm_sim_report.hpp"
 #include "sm_sim_simulate.hpp"
@@ -40,9 +42,10 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   }
   check_wave_options(info, opt);
   tools::quiet_opencv();
-  // registers before any input is read: a bad file simulates nothing
-  RegisterPlan plan = plan_registers(opt, hw);
+  // every file and folder before any work: a bad one simulates nothing, writes nothing
   check_disp_file_option(opt);
+  check_files(opt);
+  RegisterPlan plan = plan_registers(opt, hw);
   const SimInput in = open_inputs(opt, plan.width, plan.height);
   fit_plan_to_input(plan, in.frames.size());
   const SimRun run = simulate(opt, hw, in, plan, run_model);
@@ -50,13 +53,17 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   const ModelCheck check = check_against_model(opt.no_check, hw, in, plan, run.out.res);
   const cv::Mat disp = tools::disp_to_float(run.out.res.frames.back());
   const SimReport rep = make_report(opt, info, in, plan, run, check, disp);
-  std::filesystem::create_directories(opt.out_dir);
-  write_disparity_pictures(opt.out_dir, disp, hw);
-  write_disparity_files(opt, run.out.res, disp);
-  write_panel(opt.out_dir, hw, in, plan, check, rep.packets, disp, rep.json.value("bad1_percent", 0.0));
-  tools::write_text_atomic(opt.out_dir + "/report.json", rep.json.dump(2) + "\n");
+  // all outputs or none
+  tools::OutputSet outs;
+  write_disparity_pictures(outs, opt.out_dir, disp, hw);
+  write_disparity_files(outs, opt, run.out.res, disp);
+  write_panel(outs, opt.out_dir, hw, in, plan, check, rep.packets, disp, rep.json.value("bad1_percent", 0.0));
+  const std::string text = rep.json.dump(2) + "\n";
+  outs.write(
+      opt.out_dir + "/report.json", [&](const std::string& t) { tools::write_text_atomic(t, text); }, true);
+  outs.commit();
   print_report(opt, hw, in, plan, run, check, rep);
-  return report_exit_code(run, check);
+  return report_exit_code(opt, run, check, rep);
 }
 
 }  // namespace
