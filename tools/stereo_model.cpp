@@ -18,6 +18,7 @@
 
 #include "calib_file.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_reg_options.hpp"
@@ -164,7 +165,9 @@ int run(int argc, char** argv) {
                [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::disp_to_colour(df, hw.disp)); });
   if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
   if (!objects_json.empty()) {
-    json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
+    json j = {{"too_many_objects", res.objects.too_many_objects},
+              {"table_full", res.objects.table_full},
+              {"notes", sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r)}};
     j["objects"] = json::array();
     for (const auto& o : res.objects.objects) {
       json b = sm::tools::object_box_json(o);
@@ -188,6 +191,8 @@ int run(int argc, char** argv) {
     for (const auto* f : {&out, &colour, &disp_file, &objects_json})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
+    for (const std::string& l : sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r))
+      fmt::print("  {}\n", l);
   }
   return 0;
 }
