@@ -217,6 +217,7 @@ struct LabelTable {
   int cand = 0;                // the label a new component gets
   bool cand_ok = true;         // ... exists (false: every label busy)
   int used = 0;                // labels 0..used-1 were allocated in this frame (the scan's range)
+  int n_busy = 0;              // busy labels (diagnostics)
   bool last_near = false;      // the previous pixel was labelled ...
   int last_lab = 0;            // ... with this label
 };
@@ -242,7 +243,10 @@ void advance(LabelTable& t, const std::vector<uint8_t>& freed, const std::vector
              bool alloc) {
   const int n = static_cast<int>(t.busy.size());
   for (int l = 0; l < n; ++l)
-    if (freed[l]) t.busy[l] = 0;
+    if (freed[l]) {
+      t.busy[l] = 0;
+      --t.n_busy;
+    }
   if (sol) {
     t.uprev = t.ucur;
     std::fill(t.ucur.begin(), t.ucur.end(), 0);
@@ -301,6 +305,8 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
           alloc = true;
           t.parent[lab] = lab;
           t.busy[lab] = 1;
+          ++t.n_busy;
+          ++res.labels_started;
           t.used = std::max(t.used, lab + 1);
           t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
         } else {
@@ -308,6 +314,7 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
           near = false;
         }
       }
+      res.labels_peak = std::max(res.labels_peak, t.n_busy);
       advance(t, freed, busy_before, x == 0, alloc);
       up_near[x] = near;
       up_d[x] = d;

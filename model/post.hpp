@@ -59,6 +59,10 @@ struct ObjectList {
   std::vector<Object> objects;    // at most hw.max_objects, in label order
   bool too_many_objects = false;  // more components of >= obj_min_pixels than listed
   bool table_full = false;        // a pixel found no free label: it was dropped (background)
+  // Diagnostics of the label table (not in the packet): labels allocated in the frame (what
+  // a table without recycling would need) and the most busy at once (what LABEL_SLOTS must hold).
+  int labels_started = 0;
+  int labels_peak = 0;
 };
 
 // One-pass labelling of the near pixels (valid, d >= regs.obj_near; an invalid pixel never

@@ -167,6 +167,8 @@ int run(int argc, char** argv) {
   if (!objects_json.empty()) {
     json j = {{"too_many_objects", res.objects.too_many_objects},
               {"table_full", res.objects.table_full},
+              {"labels_started", res.objects.labels_started},
+              {"labels_peak", res.objects.labels_peak},
               {"notes", sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r)}};
     j["objects"] = json::array();
     for (const auto& o : res.objects.objects) {
@@ -191,6 +193,8 @@ int run(int argc, char** argv) {
     for (const auto* f : {&out, &colour, &disp_file, &objects_json})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
+    fmt::print("  labels: {} started, at most {} in use at once (LABEL_SLOTS {})\n", res.objects.labels_started,
+               res.objects.labels_peak, hw.label_slots);
     for (const std::string& l : sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r))
       fmt::print("  {}\n", l);
   }
