@@ -194,79 +194,137 @@ void add_pixel(Stats& s, int x, int y, unsigned d) {
   s.sum += d;
   s.maxd = std::max(s.maxd, d);
 }
+void fold_stats(Stats& s, Stats& a) {  // a is absorbed into s
+  s.x0 = std::min(s.x0, a.x0);
+  s.y0 = std::min(s.y0, a.y0);
+  s.x1 = std::max(s.x1, a.x1);
+  s.y1 = std::max(s.y1, a.y1);
+  s.count += a.count;
+  s.sum += a.sum;
+  s.maxd = std::max(s.maxd, a.maxd);
+  a.alive = false;
+}
+
+// The label table of section 8 as sm_objects keeps it: the flat equivalence table, the
+// statistics, and the bookkeeping that recycles labels within the frame.
+struct LabelTable {
+  explicit LabelTable(int slots) : parent(slots, 0), st(slots), busy(slots, 0), ucur(slots, 0), uprev(slots, 0) {}
+  std::vector<int> parent;  // root of each busy label
+  std::vector<Stats> st;
+  std::vector<uint8_t> busy;   // allocated and not yet freed
+  std::vector<uint8_t> ucur;   // written into the row buffer on this row, before the last pixel
+  std::vector<uint8_t> uprev;  // ... on the previous row
+  int cand = 0;                // the label a new component gets
+  bool cand_ok = true;         // ... exists (false: every label busy)
+  int used = 0;                // labels 0..used-1 were allocated in this frame (the scan's range)
+  int n_busy = 0;              // busy labels (diagnostics)
+  bool last_near = false;      // the previous pixel was labelled ...
+  int last_lab = 0;            // ... with this label
+};
+
+// Labels freed before a pixel: busy, not written into the row buffer on this row or the
+// previous one (so no pixel still to be labelled can name them), and either absorbed by a
+// merge or the root of a component that has ended smaller than min_pixels.
+std::vector<uint8_t> free_mask(const LabelTable& t, unsigned min_pixels) {
+  const int n = static_cast<int>(t.busy.size());
+  std::vector<uint8_t> f(n, 0);
+  for (int l = 0; l < n; ++l) {
+    const bool referenced = t.ucur[l] || t.uprev[l] || (t.last_near && t.last_lab == l);
+    const bool absorbed = t.parent[l] != l;
+    f[l] = t.busy[l] && !referenced && (absorbed || t.st[l].count < min_pixels);
+  }
+  return f;
+}
+
+// After a pixel: apply the frees, move the row-buffer marks, and choose the next
+// candidate from the table as it was before the pixel (busy_before): the lowest free
+// label other than the candidate, taken when the candidate was allocated or none was free.
+void advance(LabelTable& t, const std::vector<uint8_t>& freed, const std::vector<uint8_t>& busy_before, bool sol,
+             bool alloc) {
+  const int n = static_cast<int>(t.busy.size());
+  for (int l = 0; l < n; ++l)
+    if (freed[l]) {
+      t.busy[l] = 0;
+      --t.n_busy;
+    }
+  if (sol) {
+    t.uprev = t.ucur;
+    std::fill(t.ucur.begin(), t.ucur.end(), 0);
+    if (t.last_near) t.uprev[t.last_lab] = 1;
+  } else if (t.last_near) {
+    t.ucur[t.last_lab] = 1;
+  }
+  if (alloc || !t.cand_ok) {
+    int c = -1;
+    for (int l = 0; l < n && c < 0; ++l)
+      if (!busy_before[l] && !(t.cand_ok && l == t.cand)) c = l;
+    t.cand_ok = c >= 0;
+    t.cand = std::max(c, 0);
+  }
+}
 }  // namespace
 
 ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw) {
   const unsigned dmask = (1u << clog2(hw.disp)) - 1;
-  const int slots = hw.label_slots;
   ObjectList res;
-  std::vector<int> parent(slots);
-  for (int i = 0; i < slots; ++i) parent[i] = i;
-  std::vector<Stats> st(slots);
-  int next = 0;
+  LabelTable t(hw.label_slots);
   // The row buffer (previous row) and the left neighbour, as the hardware keeps them.
   std::vector<uint8_t> up_near(in.w, 0);
   std::vector<unsigned> up_d(in.w, 0);
   std::vector<int> up_lab(in.w, 0);
-  bool l_near = false;
   unsigned l_d = 0;
-  int l_lab = 0;
   for (int y = 0; y < in.h; ++y)
     for (int x = 0; x < in.w; ++x) {
       const DispPix p = in.at(x, y);
       const unsigned d = p & dmask;
-      bool near = disp_valid(p) && d >= regs.obj_near;
+      const std::vector<uint8_t> freed = free_mask(t, regs.obj_min_pixels);
+      const std::vector<uint8_t> busy_before = t.busy;
+      bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
+      bool alloc = false;
       int lab = 0;
       if (near) {
-        const bool uok =
-            y > 0 && up_near[x] &&
-            static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(up_d[x]))) <= regs.obj_tol;
-        const bool lok = x > 0 && l_near &&
-                         static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(l_d))) <= regs.obj_tol;
-        const int ur = parent[up_lab[x]];
-        const int lr = l_lab;
+        auto close = [&](unsigned e) {
+          return static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(e))) <= regs.obj_tol;
+        };
+        const bool uok = y > 0 && up_near[x] && close(up_d[x]);
+        const bool lok = x > 0 && t.last_near && close(l_d);
+        const int ur = t.parent[up_lab[x]];
+        const int lr = t.last_lab;
         if (uok && lok && ur != lr) {
           const int s = std::min(ur, lr), a = std::max(ur, lr);
-          for (int i = 0; i < slots; ++i)
-            if (parent[i] == a) parent[i] = s;
-          Stats& S = st[s];
-          const Stats& A = st[a];
-          S.x0 = std::min(S.x0, A.x0);
-          S.y0 = std::min(S.y0, A.y0);
-          S.x1 = std::max(S.x1, A.x1);
-          S.y1 = std::max(S.y1, A.y1);
-          S.count += A.count;
-          S.sum += A.sum;
-          S.maxd = std::max(S.maxd, A.maxd);
-          st[a].alive = false;
-          add_pixel(S, x, y, d);
+          for (int& q : t.parent)
+            if (q == a) q = s;
+          fold_stats(t.st[s], t.st[a]);
+          add_pixel(t.st[s], x, y, d);
           lab = s;
         } else if (uok || lok) {
           lab = uok ? ur : lr;
-          add_pixel(st[lab], x, y, d);
-        } else if (next < slots) {
-          lab = next++;
-          Stats& S = st[lab];
-          S.x0 = S.x1 = x;
-          S.y0 = S.y1 = y;
-          S.count = 1;
-          S.sum = d;
-          S.maxd = d;
-          S.alive = true;
+          add_pixel(t.st[lab], x, y, d);
+        } else if (t.cand_ok) {
+          lab = t.cand;
+          alloc = true;
+          t.parent[lab] = lab;
+          t.busy[lab] = 1;
+          ++t.n_busy;
+          ++res.labels_started;
+          t.used = std::max(t.used, lab + 1);
+          t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
         } else {
           res.table_full = true;  // no free label: the pixel is dropped (background)
           near = false;
         }
       }
+      res.labels_peak = std::max(res.labels_peak, t.n_busy);
+      advance(t, freed, busy_before, x == 0, alloc);
       up_near[x] = near;
       up_d[x] = d;
       up_lab[x] = lab;
-      l_near = near;
+      t.last_near = near;
+      t.last_lab = lab;
       l_d = d;
-      l_lab = lab;
     }
-  for (int i = 0; i < next; ++i) {
-    const Stats& s = st[i];
+  for (int i = 0; i < t.used; ++i) {
+    const Stats& s = t.st[i];
     if (!s.alive || s.count < regs.obj_min_pixels) continue;
     if (static_cast<int>(res.objects.size()) >= hw.max_objects) {
       res.too_many_objects = true;

@@ -8,8 +8,10 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "post.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_json_file.hpp"
+#include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "sm_test_util.hpp"
 
@@ -350,4 +352,29 @@ TEST_CASE("strict JSON files: one value, no key twice in one object", "[unit][to
   const fs::path d = scratch("strict_json");
   CHECK_THROWS_WITH(sm::tools::read_json_file(d.string()), d.string() + ": is a directory");
   CHECK_THROWS_WITH(sm::tools::read_json_file((d / "none.json").string()), Catch::EndsWith("none.json: no such file"));
+}
+
+TEST_CASE("object flags: one explanation per flag, naming what to change", "[unit][tools]") {
+  sm::HwConfig hw;
+  hw.max_objects = 8;
+  hw.label_slots = 64;
+  sm::Regs regs = sm::Regs::defaults(hw);
+  regs.obj_min_pixels = 64;
+  sm::ObjectList l;
+  CHECK(object_flag_lines(sm::object_packet(l, false)[0], hw, regs).empty());
+  l.table_full = true;
+  std::vector<std::string> s = object_flag_lines(sm::object_packet(l, false)[0], hw, regs);
+  REQUIRE(s.size() == 1);
+  CHECK(s[0].rfind("TABLE-FULL:", 0) == 0);
+  CHECK(s[0].find("LABEL_SLOTS = 64") != std::string::npos);
+  CHECK(s[0].find("OBJ_MIN_PIXELS = 64") != std::string::npos);
+  l.table_full = false;
+  l.too_many_objects = true;
+  s = object_flag_lines(sm::object_packet(l, true)[0], hw, regs);
+  REQUIRE(s.size() == 2);
+  CHECK(s[0].rfind("TOO-MANY:", 0) == 0);
+  CHECK(s[0].find("MAX_OBJECTS = 8") != std::string::npos);
+  CHECK(s[1].rfind("LOST:", 0) == 0);
+  CHECK(s[1].find("m_axis_obj_tready") != std::string::npos);
+  CHECK(object_flag_lines(0xA5000700u, hw, regs).size() == 3);
 }

@@ -246,6 +246,16 @@ SyntheticScene render_scene(const SceneParams& p) {
   return out;
 }
 
+std::vector<PlacedObject> placed_objects(const SceneParams& p) {
+  const std::vector<Surface> surf = build_surfaces(p);
+  std::vector<PlacedObject> out;
+  for (size_t i = 1; i < surf.size(); ++i) {
+    const Surface& o = surf[i];
+    out.push_back({o.shape == Shape::kDisc, o.cx, o.cy, o.rx, o.ry, static_cast<int>(o.a)});
+  }
+  return out;
+}
+
 void write_scene(const SyntheticScene& s, const SceneParams& p, const std::string& dir, bool with_nonocc) {
   namespace fs = std::filesystem;
   std::error_code ec;

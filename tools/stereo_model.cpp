@@ -26,6 +26,7 @@
 #include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_metrics.hpp"
+#include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_pictures.hpp"
@@ -246,7 +247,11 @@ int run(int argc, char** argv) {
   if (!conf_png.empty())
     outs.write(conf_png, [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::out_to_conf(word)); });
   if (!objects_json.empty()) {
-    json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
+    json j = {{"too_many_objects", res.objects.too_many_objects},
+              {"table_full", res.objects.table_full},
+              {"labels_started", res.objects.labels_started},
+              {"labels_peak", res.objects.labels_peak},
+              {"notes", sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r)}};
     j["objects"] = json::array();
     for (const auto& o : res.objects.objects) {
       json b = sm::tools::object_box_json(o);
@@ -274,6 +279,10 @@ int run(int argc, char** argv) {
          {&out, &colour, &disp_file, &objects_json, &conf_png, &depth.depth_file, &depth.cloud, &depth.cloud_view})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
+    fmt::print("  labels: {} started, at most {} in use at once (LABEL_SLOTS {})\n", res.objects.labels_started,
+               res.objects.labels_peak, hw.label_slots);
+    for (const std::string& l : sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r))
+      fmt::print("  {}\n", l);
   }
   return 0;
 }
