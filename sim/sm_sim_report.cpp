@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "sm_regmap.hpp"
 #include "sm_regs_io.hpp"
@@ -35,7 +36,7 @@ json regs_json(const Regs& r, int grid_bank) {
 
 json object_json(const ObjectPacket& p) {
   json j = {{"valid", p.valid}, {"count", p.objects.size()}, {"too_many", p.too_many}, {"table_full", p.table_full},
-            {"lost", p.lost},   {"objects", json::array()}};
+            {"lost", p.lost},   {"objects", json::array()},  {"notes", p.notes}};
   for (const auto& o : p.objects) {
     json b = tools::object_box_json(o);
     b.update(json{{"pixels", o.count}, {"sum_disp", o.sum_disp}, {"nearest_disp", o.max_disp}});
@@ -159,7 +160,7 @@ void add_check(const RegisterPlan& plan, const SimResult& res, const ModelCheck&
 }
 
 // Per frame: its registers, what the host changed for it, the RTL's object packet.
-json frame_results(const RegisterPlan& plan, const SimRun& run, const ModelCheck& check,
+json frame_results(const HwConfig& hw, const RegisterPlan& plan, const SimRun& run, const ModelCheck& check,
                    std::vector<ObjectPacket>& packets) {
   const SimResult& res = run.out.res;
   json frames = json::array();
@@ -168,6 +169,8 @@ json frame_results(const RegisterPlan& plan, const SimRun& run, const ModelCheck
         {"frame", f}, {"registers", regs_json(plan.regs[f], run.host[f].grid_bank)}, {"changed", run.host[f].changed}};
     if (f < res.object_packets.size()) {
       packets.push_back(decode_object_packet(res.object_packets[f].words));
+      if (!res.object_packets[f].words.empty())
+        packets.back().notes = tools::object_flag_lines(res.object_packets[f].words[0], hw, plan.regs[f]);
       fr["object_packet"] = object_json(packets.back());
     } else {
       fr["object_packet"] = nullptr;
@@ -222,7 +225,7 @@ SimReport make_report(const SimOptions& opt, const ModelInfo& info, const SimInp
   rep["frames"] = nframes;
   add_timing(opt, run, r.fig, rep);
   add_check(plan, run.out.res, check, rep);
-  rep["frame_results"] = frame_results(plan, run, check, r.packets);
+  rep["frame_results"] = frame_results(info.hw, plan, run, check, r.packets);
   rep["status"] = status;
   rep["sim_wall_seconds"] = wall;
   rep["sim_frames_per_second"] = nframes / wall;
@@ -296,6 +299,7 @@ void print_objects(const SimRun& run, const ModelCheck& check, const std::vector
       fmt::print("      #{} x {}..{} y {}..{}  {} px  mean d {}  nearest d {}\n", i, o.x0, o.x1, o.y0, o.y1, o.count,
                  o.mean_disp, o.max_disp);
     }
+    for (const std::string& n : p.notes) fmt::print("      {}\n", n);
   }
 }
 
