@@ -61,7 +61,8 @@ std::shared_ptr<const tools::RegOptions> add_register_options(CLI::App& app, con
                  "written over AXI4-Lite while frame FRAME-1 streams (repeatable)");
   app.add_option("--calib", o.calib, "calibration JSON from sm_calibrate (written over AXI4-Lite)");
   // every other value register (--occ, --occ-edge, --gain-l, ...), written before the first frame
-  return std::make_shared<const tools::RegOptions>(app, Regs::defaults(hw), std::set<std::string>{"WIDTH", "HEIGHT"},
+  return std::make_shared<const tools::RegOptions>(app, Regs::defaults(hw), hw,
+                                                   std::set<std::string>{"WIDTH", "HEIGHT"},
                                                    std::map<std::string, std::string>{{"FILTER_ENABLE", "--filters"}});
 }
 
