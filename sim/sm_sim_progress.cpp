@@ -36,16 +36,17 @@ void SimProgress::row(size_t frame, int row) {
     fmt::print(stderr, "\r{:<72}", line);
   else
     fmt::print(stderr, "stereo_sim: {}\n", line);
-  shown_ = true;
 }
 
 void SimProgress::frame(size_t done, size_t total) {
   if (quiet_) return;
-  const std::string line = fmt::format("simulated frame {}/{} ({:.1f} s)", done, total, seconds());
+  const double s = seconds();
+  const std::string line = fmt::format("simulated frame {}/{} ({:.1f} s)", done, total, s);
   if (tty_) {
     fmt::print(stderr, "\r{:<72}", line);
     if (done == total) fmt::print(stderr, "\n");
-  } else {
+  } else if (done == total || s >= next_) {  // a log: the last frame, else as often as the row lines
+    next_ = s + kLogEvery;
     fmt::print(stderr, "{}\n", line);
   }
 }

@@ -24,8 +24,7 @@ class SimProgress {
   int height_;
   bool quiet_, tty_;
   Clock::time_point t0_;
-  double next_ = 0;     // seconds: the next progress line is due
-  bool shown_ = false;  // a progress line was printed (a terminal's needs ending)
+  double next_ = 0;  // seconds: the next progress line is due
 };
 
 }  // namespace sm::simapp
