@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "toolio/sm_depth.hpp"
@@ -140,7 +141,9 @@ void write_panel(const std::string& dir, const PanelData& p) {
       {labelled(tools::disparity_picture(disp_z, p.range, p.cam), "disparity"), objects_tile(p, m, disp_z, k)}));
   if (!in.gt.empty()) rows.push_back(ground_truth_row(p, disp_z, k));
   if (p.cam) rows.push_back(cloud_tile(p, m.rl, {2 * disp_z.cols, disp_z.rows}));
-  tools::write_image_atomic(dir + "/panel.png", stack_rows(rows));
+  // the strongest PNG compression: magnified tiles are runs of equal pixels (the small
+  // configuration's panel: 69 KB instead of 298 KB at OpenCV's default level)
+  tools::write_image_atomic(dir + "/panel.png", stack_rows(rows), {cv::IMWRITE_PNG_COMPRESSION, 9});
 }
 
 }  // namespace sm::simapp
