@@ -43,6 +43,8 @@ void SimProgress::frame(size_t done, size_t total) {
   const double s = seconds();
   const std::string line = fmt::format("simulated frame {}/{} ({:.1f} s)", done, total, s);
   if (tty_) {
+    // once the row lines run (they name the frame too), only the last frame's line
+    if (done < total && s >= kFirstLine) return;
     fmt::print(stderr, "\r{:<72}", line);
     if (done == total) fmt::print(stderr, "\n");
   } else if (done == total || s >= next_) {  // a log: the last frame, else as often as the row lines
