@@ -111,6 +111,9 @@ class SimEngine {
 
   // Progress callback: called with (frames done, frames total) after each output frame.
   std::function<void(size_t, size_t)> on_frame;
+  // Progress within a frame: called with (output frame, row) after each complete output
+  // row (once per row: the per-clock loop stays cheap).
+  std::function<void(size_t, int)> on_row;
 
   // `host`: a register schedule (plan_register_schedule) the host runs over AXI4-Lite
   // while the camera streams.
@@ -359,6 +362,7 @@ class SimEngine {
     s.cur.at(s.ox, s.oy) = static_cast<DispPix>(od);
     if (++s.ox < s.width) return;
     s.ox = 0;
+    if (on_row) on_row(s.oframe, s.oy);
     if (++s.oy < s.height) return;
     s.oy = 0;
     res.stats[s.oframe].last_out_cycle = now;

@@ -87,7 +87,8 @@ std::shared_ptr<const tools::RegOptions> add_register_options(CLI::App& app, con
                  "written over AXI4-Lite while frame FRAME-1 streams (repeatable)");
   app.add_option("--calib", o.calib, "calibration JSON from sm_calibrate (written over AXI4-Lite)");
   // every other value register (--occ, --occ-edge, --gain-l, ...), written before the first frame
-  return std::make_shared<const tools::RegOptions>(app, Regs::defaults(hw), std::set<std::string>{"WIDTH", "HEIGHT"},
+  return std::make_shared<const tools::RegOptions>(app, Regs::defaults(hw), hw,
+                                                   std::set<std::string>{"WIDTH", "HEIGHT"},
                                                    std::map<std::string, std::string>{{"FILTER_ENABLE", "--filters"}});
 }
 
@@ -152,6 +153,7 @@ void add_output_options(CLI::App& app, SimOptions& o) {
                  "lossless disparity of the last frame: .pfm = float PFM (+inf = invalid, Middlebury), .png = "
                  "16-bit PNG of disparity x 16 (0 = invalid, KITTI style) (default: <out>/disparity.pfm)");
   app.add_flag("--disp-each-frame", o.disp_each, "also write every frame's disparity as <disp-file stem>_NNN<ext>");
+  o.depth.add(app);  // the last frame's; the camera is --calib's, else the --scene folder's calib.json
   app.add_option("--synth-json", o.synth_json,
                  "synthesis report JSON (default: build/synth, else docs/synth, for this configuration)");
   app.add_flag("--no-check", o.no_check, "skip the reference-model comparison");

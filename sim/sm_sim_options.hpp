@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sm_types.hpp"
+#include "toolio/sm_depth_options.hpp"
 #include "stereo_sim_app.hpp"
 
 namespace sm::simapp {
@@ -44,6 +45,7 @@ struct SimOptions {
   std::string out_dir = "out";
   std::string disp_file;  // default <out>/disparity.pfm
   bool disp_each = false;
+  tools::DepthOptions depth;  // --depth-file, --cloud, --cloud-max-depth, --cloud-view (sm_sim_depth)
   std::string synth_json;
   bool no_check = false, quiet = false;
 };

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,7 @@
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
 #include "sm_sim_interrupt.hpp"
+#include "sm_sim_progress.hpp"
 #include "sm_vconfig.hpp"
 #include "sm_wave_names.hpp"
 #include "stereo_sim_app.hpp"
@@ -139,14 +141,12 @@ bool run_model(const RunRequest& req, RunResult& out) {
     part_on_signal = sm::tools::RemoveOnSignal(part.path);
     vw.path = part.path;
   }
+  // the wave's time stamps in the core clock's real period (ps)
+  tb.set_clock_period_ps(static_cast<uint64_t>(std::llround(1e12 / req.timing.aclk_hz(req.width, req.height))));
   const auto t0 = std::chrono::steady_clock::now();
-  sim.on_frame = [&](size_t done, size_t total) {
-    if (req.quiet) return;
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    fmt::print(stderr, "\rsimulated frame {}/{} ({:.1f} s)", done, total, s);
-    sm::simapp::set_progress_line_open(done != total);
-    if (done == total) fmt::print(stderr, "\n");
-  };
+  sm::simapp::SimProgress progress(req.frames->size(), req.height, req.quiet);
+  sim.on_row = [&](size_t frame, int row) { progress.row(frame, row); };
+  sim.on_frame = [&](size_t done, size_t total) { progress.frame(done, total); };
   out.res = sim.run(*req.frames, req.width, req.height, req.timing, vw, 0, req.host);
   out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   tb.close_trace();

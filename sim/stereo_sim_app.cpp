@@ -10,7 +10,7 @@
 // This file is the part compiled once; the Verilated model's run is stereo_sim.cpp
 // (stereo_sim_app.hpp). The run's stages, in the order the data flows through them, are
 // each in their own file: sm_sim_options, sm_sim_regplan, sm_sim_inputs, sm_sim_simulate,
-// sm_sim_check, sm_sim_report, sm_sim_outputs, sm_sim_pictures.
+// sm_sim_check, sm_sim_report, sm_sim_outputs, sm_sim_depth, sm_sim_pictures.
 #include "stereo_sim_app.hpp"
 
 #include <fmt/format.h>
@@ -20,6 +20,7 @@
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "sm_sim_check.hpp"
+#include "sm_sim_depth.hpp"
 #include "sm_sim_inputs.hpp"
 #include "sm_sim_options.hpp"
 #include "sm_sim_outputs.hpp"
@@ -41,6 +42,7 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
     return 0;
   }
   check_wave_options(info, opt);
+  const SimCamera cam = resolve_camera(opt, hw);  // before the plan: a scene's calib.json is its --calib
   tools::quiet_opencv();
   // every file and folder before any work: a bad one simulates nothing, writes nothing
   check_disp_file_option(opt);
@@ -52,17 +54,25 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   if (!run.ran) return 0;  // --wave-scopes
   const ModelCheck check = check_against_model(opt.no_check, hw, in, plan, run.out.res);
   const cv::Mat disp = tools::disp_to_float(run.out.res.frames.back());
-  const SimReport rep = make_report(opt, info, in, plan, run, check, disp);
+  SimReport rep = make_report(opt, info, in, plan, run, check, disp);
+  add_calibration_report(cam, rep.json);
+  const RectCamera* camera = cam.camera ? &*cam.camera : nullptr;
+  const tools::ColourRange range = picture_range(in, disp);
+  const PipelineResult model = last_frame_model(hw, in, plan, check);
   // all outputs or none
   tools::OutputSet outs;
-  write_disparity_pictures(outs, opt.out_dir, disp, hw);
+  write_disparity_pictures(outs, opt.out_dir, disp, hw, range, camera);
   write_disparity_files(outs, opt, run.out.res, disp);
-  write_panel(outs, opt.out_dir, hw, in, plan, check, rep.packets, disp, rep.json.value("bad1_percent", 0.0));
+  write_depth_outputs(outs, opt, cam, disp, model.rl);
+  write_panel(outs, opt.out_dir,
+              {&in, &model, &disp, range, &rep.packets, camera, opt.depth.cloud_max_depth,
+               rep.json.value("bad1_percent", 0.0)});
   const std::string text = rep.json.dump(2) + "\n";
   outs.write(
       opt.out_dir + "/report.json", [&](const std::string& t) { tools::write_text_atomic(t, text); }, true);
   outs.commit();
   print_report(opt, hw, in, plan, run, check, rep);
+  if (!cam.note.empty()) fmt::print("calibration: {}\n", cam.note);
   return report_exit_code(opt, run, check, rep);
 }
 

@@ -137,12 +137,12 @@ cv::Mat to_mat(const Image8& img) {
   return m;
 }
 
-void write_image_atomic(const std::string& path, const cv::Mat& img) {
+void write_image_atomic(const std::string& path, const cv::Mat& img, const std::vector<int>& params) {
   const std::string tmp = temp_name(path);
   const RemoveOnSignal guard(tmp);
   bool ok = false;
   try {
-    ok = cv::imwrite(tmp, img);
+    ok = cv::imwrite(tmp, img, params);
   } catch (const cv::Exception&) {
     ok = false;
   }

@@ -56,8 +56,9 @@ Image8 to_image8(const cv::Mat& grey);  // CV_8UC1 -> Image8
 cv::Mat to_mat(const Image8& img);      // Image8 -> CV_8UC1 (copy)
 
 // Writes an image so that no partial file is ever left under `path`: encode to a
-// temporary name in the same directory, then rename. Throws ToolError.
-void write_image_atomic(const std::string& path, const cv::Mat& img);
+// temporary name in the same directory, then rename (`params`: cv::imwrite's, e.g. the PNG
+// compression level). Throws ToolError.
+void write_image_atomic(const std::string& path, const cv::Mat& img, const std::vector<int>& params = {});
 void write_text_atomic(const std::string& path, const std::string& text);
 
 // Disparity as float pixels, negative = invalid (no output).

@@ -98,6 +98,13 @@ int64_t register_value(const std::string& name, const Regs& r) {
   throw ToolError(fmt::format("{}: not a value register", name));
 }
 
+std::pair<int64_t, int64_t> register_limits(const std::string& name, const HwConfig& hw) {
+  const regmap::Reg* reg = find_register(name);
+  if (!reg) throw ToolError(fmt::format("{}: not a register", name));
+  const Range rg = register_range(*reg, hw);
+  return {rg.lo, rg.hi};
+}
+
 void set_register(const std::string& name, int64_t v, const HwConfig& hw, Regs& r, const std::string& what) {
   const auto& setters = register_setters();
   const regmap::Reg* reg = find_register(name);

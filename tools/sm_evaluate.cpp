@@ -19,6 +19,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
+#include <optional>
 #include <opencv2/core.hpp>
 #include <opencv2/stereo.hpp>
 #include <regex>
@@ -33,6 +34,7 @@
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_metrics.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "calib_file.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
@@ -131,6 +133,19 @@ void add_output_modes(const sm::PipelineResult& res, int levels, const sm::Outpu
   o.conf.emplace_back();
 }
 
+// The scene folder's calib.json (sm_scene writes one; a raw, unrectified pair needs it),
+// when it is for the scene's size: its rectifier grids for the model. Nothing for a scene
+// without one (the Middlebury scenes are rectified). Throws when it does not fit `hw`.
+std::optional<sm::CalibFile> scene_calib(const sm::tools::Scene& s, const sm::HwConfig& hw) {
+  if (s.dir.empty()) return std::nullopt;
+  const std::string path = (fs::path(s.dir) / "calib.json").string();
+  if (!fs::exists(path)) return std::nullopt;
+  sm::CalibFile c = sm::load_calib(path);
+  if (c.width != s.left.cols || c.height != s.left.rows) return std::nullopt;
+  sm::check_calib_fits(path, c, hw);
+  return c;
+}
+
 std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs_file, const std::string& results_dir,
                                 double results_scale) {
   std::vector<Method> m;
@@ -158,6 +173,11 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
                    regs.height = hw.max_height;
                    if (occ_given) regs.occ = static_cast<uint8_t>(occ);
                    hw.validate();
+                 }
+                 if (const auto c = scene_calib(s, hw)) {  // a raw pair: rectified by the IP's grids
+                   regs.grid_l = c->left;
+                   regs.grid_r = c->right;
+                   regs.rect_enable = true;
                  }
                  const auto res =
                      sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false);
@@ -477,6 +497,10 @@ int run(int argc, char** argv) {
                {"height", sc.left.rows}, {"levels", lv},
                {"peer_levels", plv},     {"scene_levels", sc.levels},
                {"gt_scale", sc.scale},   {"nonocc_mask", !sc.nonocc.empty()}};
+    // the scene's calib.json rectifies the model's input (the OpenCV matchers get the raw pair)
+    const bool has_calib = !sc.dir.empty() && fs::exists(fs::path(sc.dir) / "calib.json");
+    js["calib"] = has_calib ? json((fs::path(sc.dir) / "calib.json").string()) : json(nullptr);
+    if (has_calib && !quiet) fmt::print(stderr, "{}: the model rectifies with the scene's calib.json\n", names[i]);
     for (const auto& m : methods) {
       ++step;
       const int mlv = m.peer ? plv : lv;

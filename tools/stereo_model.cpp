@@ -125,7 +125,8 @@ int run(int argc, char** argv) {
       app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str(),
       app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str()};
   // the value registers (the active size comes from the images, RECT_ENABLE is --no-rect)
-  const sm::tools::RegOptions reg_opts(app, r, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
+  // ranges in --help at the default configuration (--disp, ... may change them)
+  const sm::tools::RegOptions reg_opts(app, r, hw, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
   auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
   auto* o_swt = app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated (1..32)")
                     ->delimiter(',')
