@@ -1,7 +1,8 @@
-// bench_model_speed: single-thread run time of the reference model (sm::run_pipeline,
-// per stage) against OpenCV's StereoSGBM and the census StereoBinarySGBM (contrib) on
-// the same 320x240 pair with the same number of levels, in the same run; medians over
-// --runs repetitions, interleaved so machine load hits every method alike.
+// bench_model_speed: run time of the reference model (sm::run_pipeline, per stage) on
+// one thread and on --threads threads against OpenCV's StereoSGBM and the census
+// StereoBinarySGBM (contrib), both on one thread, on the same 320x240 pair with the
+// same number of levels, in the same run; medians over --runs repetitions, interleaved
+// so machine load hits every method alike.
 // docs/performance.md, "Model speed".
 #include <fmt/format.h>
 
@@ -16,7 +17,7 @@
 #include <opencv2/stereo.hpp>
 
 #include "toolio/sm_io.hpp"
-#include "pipeline.hpp"
+#include "frame_stages.hpp"
 
 namespace {
 
@@ -46,11 +47,11 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 
 int run(int argc, char** argv) {
   std::string scene_dir = SM_BENCH_DEFAULT_SCENE, json_path;
-  int runs = 5, levels = 128, width = 320, height = 240;
+  int runs = 5, levels = 128, width = 320, height = 240, threads = 2;
   int census = 15, sw = 5, cost_shift = 2, occ = -1;
   std::vector<int> sw_table;
   bool no_opencv = false;
-  CLI::App app{"Model speed vs OpenCV StereoSGBM / StereoBinarySGBM (single thread, medians)"};
+  CLI::App app{"Model speed (1 and N threads) vs OpenCV StereoSGBM / StereoBinarySGBM (1 thread), medians"};
   app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")->capture_default_str();
   app.add_option("--runs", runs, "repetitions (median)")->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--levels", levels, "disparity levels of every method (even, 4..254)")->capture_default_str();
@@ -66,6 +67,9 @@ int run(int argc, char** argv) {
                  "rest 0; default: the register defaults)")
       ->delimiter(',');
   app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")->check(CLI::Range(0, 255));
+  app.add_option("--threads", threads, "threads of the model's second timing (the first is 1 thread)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   app.add_option("--json", json_path, "write the medians as JSON");
   app.add_flag("--no-opencv", no_opencv, "time the model only");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
@@ -118,12 +122,13 @@ int run(int argc, char** argv) {
     h_dp = fnv(res.dp.px);
     h_post = fnv(res.post.px);
     // run_pipeline streams rows through the stage kernels; the whole-frame stage
-    // functions (what the RTL block tests compare against) must give the same bits.
-    const sm::CostVolume raw = sm::hamming_cost(sm::census_transform(res.rl, hw), sm::census_transform(res.rr, hw), hw);
-    const sm::CostVolume agg = sm::sw_aggregate(raw, res.rl, regs.sw_table, hw);
-    const sm::DispImage dp = sm::trellis_dp(agg, regs.occ, hw);
-    if (!(raw == res.raw) || !(agg == res.agg) || dp != res.dp || sm::post_process(dp, regs, hw) != res.post)
-      throw sm::tools::ToolError("run_pipeline and the stage functions differ");
+    // functions (what the RTL block tests compare against), composed in the same order
+    // by sm::run_frame_stages, must give the same bits, with one thread and with N.
+    for (int n : {1, threads}) {
+      const sm::PipelineResult st = sm::run_frame_stages(li, ri, hw, regs, n);
+      if (!(st.raw == res.raw) || !(st.agg == res.agg) || st.dp != res.dp || st.post != res.post)
+        throw sm::tools::ToolError(fmt::format("run_pipeline and the stage functions ({} threads) differ", n));
+    }
   }
   cv::Mat d;
   for (int k = 0; k < runs; ++k) {
@@ -135,6 +140,11 @@ int run(int argc, char** argv) {
     if (fnv(res.dp.px) != h_dp || fnv(res.post.px) != h_post)
       throw sm::tools::ToolError("model output differs between runs");
     for (const auto& [n, ms] : res.stage_ms) t["model." + n].push_back(ms);
+    t0 = Clock::now();
+    const sm::PipelineResult rn = sm::run_pipeline(li, ri, hw, regs, false, threads);
+    t["model_mt"].push_back(ms_since(t0));
+    if (fnv(rn.dp.px) != h_dp || fnv(rn.post.px) != h_post)
+      throw sm::tools::ToolError(fmt::format("model output with {} threads differs from 1 thread", threads));
     if (no_opencv) continue;
     t0 = Clock::now();
     sgbm->compute(l, r, d);
@@ -149,23 +159,33 @@ int run(int argc, char** argv) {
   js["size"] = fmt::format("{}x{}", width, height);
   js["levels"] = levels;
   js["runs"] = runs;
-  js["threads"] = 1;
+  js["threads"] = threads;
   js["fingerprint_raw"] = fmt::format("{:016x}", h_raw);
   js["fingerprint_agg"] = fmt::format("{:016x}", h_agg);
   js["fingerprint_dp"] = fmt::format("{:016x}", h_dp);
   js["fingerprint_post"] = fmt::format("{:016x}", h_post);
-  fmt::print("model speed: {} {}x{}, {} levels, 1 thread, median of {} runs (ms / frame)\n", scene_dir, width, height,
-             levels, runs);
-  fmt::print("| method | ms / frame | frames/s | vs model |\n|---|---|---|---|\n");
+  fmt::print("model speed: {} {}x{}, {} levels, median of {} runs (ms / frame), OpenCV on 1 thread\n", scene_dir, width,
+             height, levels, runs);
+  fmt::print("| method | ms / frame | frames/s | time vs model (1 thread) |\n|---|---|---|---|\n");
   const double m = median(t["model"]);
-  for (const char* n : {"model", "sgbm", "binsgbm"}) {
+  for (const char* n : {"model", "model_mt", "sgbm", "binsgbm"}) {
     if (!t.count(n)) continue;
     const double v = median(t[n]);
-    const char* label = std::string(n) == "model"  ? "reference model (run_pipeline)"
-                        : std::string(n) == "sgbm" ? "OpenCV StereoSGBM (block 5)"
-                                                   : "OpenCV StereoBinarySGBM (census, block 9)";
+    const std::string k = n;
+    const std::string label = k == "model"      ? "reference model (run_pipeline), 1 thread"
+                              : k == "model_mt" ? fmt::format("reference model (run_pipeline), {} threads", threads)
+                              : k == "sgbm"     ? "OpenCV StereoSGBM (block 5)"
+                                                : "OpenCV StereoBinarySGBM (census, block 9)";
     fmt::print("| {} | {:.1f} | {:.2f} | {:.2f}x |\n", label, v, 1000.0 / v, v / m);
     js["ms"][n] = v;
+  }
+  const double scaling = m / median(t["model_mt"]);
+  js["scaling"] = scaling;
+  fmt::print("\nmodel {} threads vs 1 thread: {:.2f}x faster\n", threads, scaling);
+  if (t.count("sgbm")) {
+    const double vs = m / median(t["sgbm"]);
+    js["model_vs_sgbm"] = vs;
+    fmt::print("model 1 thread / StereoSGBM time: {:.2f} (below 1: the model is faster)\n", vs);
   }
   fmt::print("\nmodel stages (median ms):\n| stage | ms | share |\n|---|---|---|\n");
   for (const auto& n : stage_order) {

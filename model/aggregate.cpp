@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "kernels.hpp"
+#include "parallel.hpp"
 
 namespace sm {
 
@@ -200,7 +201,7 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
 }  // namespace detail
 
 CostVolume sw_aggregate(const CostVolume& raw, const Image8& left, const std::array<uint8_t, 32>& table,
-                        const HwConfig& hw) {
+                        const HwConfig& hw, int threads) {
   if (raw.w != left.w || raw.h != left.h)
     throw std::invalid_argument(
         fmt::format("sw_aggregate: cost volume {}x{} but left image {}x{}", raw.w, raw.h, left.w, left.h));
@@ -217,12 +218,14 @@ CostVolume sw_aggregate(const CostVolume& raw, const Image8& left, const std::ar
 
   CostVolume out(w, h, nd);
   const size_t row = static_cast<size_t>(w) * nd;
-  std::vector<const uint8_t*> rows(static_cast<size_t>(2 * a.r + 1));
-  for (int y = 0; y < h; ++y) {
-    for (int j = -a.r; j <= a.r; ++j)
-      rows[static_cast<size_t>(j + a.r)] = (y + j >= 0 && y + j < h) ? c.data() + (y + j) * row : nullptr;
-    detail::agg_row(a, rows.data(), left.px.data(), y, out.v.data() + y * row);
-  }
+  parallel_bands(h, threads, [&](int y0, int y1, int) {
+    std::vector<const uint8_t*> rows(static_cast<size_t>(2 * a.r + 1));
+    for (int y = y0; y < y1; ++y) {
+      for (int j = -a.r; j <= a.r; ++j)
+        rows[static_cast<size_t>(j + a.r)] = (y + j >= 0 && y + j < h) ? c.data() + (y + j) * row : nullptr;
+      detail::agg_row(a, rows.data(), left.px.data(), y, out.v.data() + y * row);
+    }
+  });
   return out;
 }
 

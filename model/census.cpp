@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kernels.hpp"
+#include "parallel.hpp"
 
 #if defined(SM_X86_DISPATCH)
 #include <immintrin.h>
@@ -175,16 +176,18 @@ void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb
 
 }  // namespace detail
 
-CensusImage census_transform(const Image8& in, const HwConfig& hw) {
+CensusImage census_transform(const Image8& in, const HwConfig& hw, int threads) {
   if (hw.census < 3 || hw.census > 15 || hw.census % 2 == 0)
     throw std::invalid_argument(fmt::format("census_transform: census {} must be odd, 3..15", hw.census));
   const detail::CensusPad pad(in, (hw.census - 1) / 2);
   CensusImage out(in.w, in.h, CensusVec{0, 0, 0, 0});
-  for (int y = 0; y < in.h; ++y) detail::census_row(pad, y, &out.px[static_cast<size_t>(y) * in.w]);
+  parallel_bands(in.h, threads, [&](int y0, int y1, int) {
+    for (int y = y0; y < y1; ++y) detail::census_row(pad, y, &out.px[static_cast<size_t>(y) * in.w]);
+  });
   return out;
 }
 
-CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw) {
+CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw, int threads) {
   if (cl.w != cr.w || cl.h != cr.h)
     throw std::invalid_argument(fmt::format("hamming_cost: left {}x{} and right {}x{} differ", cl.w, cl.h, cr.w, cr.h));
   if (hw.disp < 1 || hw.disp > 256)
@@ -192,10 +195,12 @@ CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwCo
   const int nd = hw.disp, w = cl.w;
   const auto cb = static_cast<uint8_t>(hw.census_bits());
   CostVolume out(w, cl.h, nd);
-  for (int y = 0; y < cl.h; ++y) {
-    const size_t row = static_cast<size_t>(y) * w;
-    detail::cost_row(&cl.px[row], &cr.px[row], w, nd, cb, 0, out.v.data() + row * nd);
-  }
+  parallel_bands(cl.h, threads, [&](int y0, int y1, int) {
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = static_cast<size_t>(y) * w;
+      detail::cost_row(&cl.px[row], &cr.px[row], w, nd, cb, 0, out.v.data() + row * nd);
+    }
+  });
   return out;
 }
 

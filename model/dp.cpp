@@ -11,6 +11,7 @@
 // with GCC also compiled for AVX2 and picked at run time (SM_HOT in kernels.hpp);
 // integer arithmetic only, same bits.
 #include "kernels.hpp"
+#include "parallel.hpp"
 
 namespace sm {
 
@@ -256,18 +257,20 @@ void edge_penalties(const uint8_t* left, int n, uint8_t occ, uint8_t occ_edge, u
 }
 
 DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
-                          const HwConfig& hw) {
+                          const HwConfig& hw, int threads) {
   if (agg.d != hw.disp || left.w != agg.w || left.h != agg.h)
     throw std::invalid_argument("trellis_dp_edge: cost volume, DISP and left image disagree");
   DispImage out(agg.w, agg.h);
-  DpScratch s;
-  DpLine line;
-  std::vector<uint8_t> pen;
-  for (int y = 0; y < agg.h; ++y) {
-    edge_penalties(&left.px[static_cast<size_t>(y) * left.w], agg.w, occ, occ_edge, edge_t, pen);
-    trellis_line_pen(agg.pix(0, y), agg.w, pen.data(), hw, s, line);
-    std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
-  }
+  parallel_bands(agg.h, threads, [&](int y0, int y1, int) {
+    DpScratch s;
+    DpLine line;
+    std::vector<uint8_t> pen;
+    for (int y = y0; y < y1; ++y) {
+      edge_penalties(&left.px[static_cast<size_t>(y) * left.w], agg.w, occ, occ_edge, edge_t, pen);
+      trellis_line_pen(agg.pix(0, y), agg.w, pen.data(), hw, s, line);
+      std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
+    }
+  });
   return out;
 }
 
@@ -292,18 +295,20 @@ void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp) {
   }
 }
 
-DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw) {
+DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw, int threads) {
   if (agg.d != hw.disp)
     throw std::invalid_argument(fmt::format("trellis_dp: cost volume has {} levels, DISP is {}", agg.d, hw.disp));
   if (agg.w > hw.max_width || agg.w < 1)
     throw std::invalid_argument(fmt::format("trellis_dp: width {} outside 1..MAX_WIDTH={}", agg.w, hw.max_width));
   DispImage out(agg.w, agg.h);
-  DpScratch s;
-  DpLine line;
-  for (int y = 0; y < agg.h; ++y) {
-    trellis_line(agg.pix(0, y), agg.w, occ, hw, s, line);
-    std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
-  }
+  parallel_bands(agg.h, threads, [&](int y0, int y1, int) {
+    DpScratch s;
+    DpLine line;
+    for (int y = y0; y < y1; ++y) {
+      trellis_line(agg.pix(0, y), agg.w, occ, hw, s, line);
+      std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
+    }
+  });
   return out;
 }
 

@@ -53,10 +53,11 @@ void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp);
 
 // The whole stage: every line of the aggregated cost volume (agg.d == hw.disp) with
 // one occlusion penalty. Throws std::invalid_argument on a size mismatch.
-DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw);
+// threads: lines computed in that many bands (same result for any count).
+DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw, int threads = 1);
 // Every line with the edge-dependent penalties of the left image's row (left: the image the
 // weights came from, agg.w x agg.h).
 DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
-                          const HwConfig& hw);
+                          const HwConfig& hw, int threads = 1);
 
 }  // namespace sm

@@ -35,6 +35,7 @@ int run(int argc, char** argv) {
   sm::Regs r = sm::Regs::defaults(hw);
   // Option defaults shown by --help are the model's own (HwConfig / Regs::defaults).
   bool no_rect = !r.rect_enable, verbose = false;
+  int threads = 1;
   // --help shows the table up to its last non-zero code
   std::vector<int> sw_table(r.sw_table.begin(), r.sw_table.end());
   while (sw_table.size() > 1 && sw_table.back() == 0) sw_table.pop_back();
@@ -70,6 +71,9 @@ int run(int argc, char** argv) {
                     ->delimiter(',')
                     ->check(CLI::Range(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
+  app.add_option("--threads", threads, "threads of the model (same output for any count)")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
 
@@ -144,7 +148,7 @@ int run(int argc, char** argv) {
 
   sm::PipelineResult res;
   try {
-    res = sm::run_pipeline(L, R, hw, r, false);
+    res = sm::run_pipeline(L, R, hw, r, false, threads);
   } catch (const std::invalid_argument& e) {
     throw ToolError(fmt::format("bad configuration: {}", e.what()));
   }
