@@ -37,7 +37,7 @@ namespace {
 struct Fwd {
   int n, ne, no, stride;
   uint32_t occ, mask;
-  const uint8_t* pen;  // nullptr: occ everywhere; else the penalty of DP clock t, level pair m at pen[t + m + 1]
+  const uint32_t* pen;  // nullptr: occ everywhere; else the penalty of DP clock t, level pair m at pen[t + m + 1]
   const uint16_t* cm;
   uint32_t* ue;
   uint32_t* uo;
@@ -133,11 +133,11 @@ SM_HOT void forward_vector(const Fwd& f) {
   const VI first = lane == 0;
   const auto mask = static_cast<int32_t>(f.mask);
   const VI occ_all = no_lane + static_cast<int32_t>(f.occ);
-  // The penalties of lanes m..m+kLanes-1 at DP clock t (see forward_scalar).
+  // The penalties of lanes m..m+kLanes-1 at DP clock t (see forward_scalar): one
+  // vector load (pen is widened to 32 bits per line, not gathered lane by lane).
   VI ov = occ_all;
   auto occ_v = [&f, &ov](int t, int m) -> const VI& {
-    if (f.pen)
-      for (int k = 0; k < kLanes; ++k) ov[k] = f.pen[t + m + 1 + k];
+    if (f.pen) std::memcpy(&ov, f.pen + t + m + 1, sizeof ov);
     return ov;
   };
   uint32_t* ue = f.ue;
@@ -168,10 +168,15 @@ void gather_costs(const uint8_t* agg, int n, int nd, int ne, int no, int stride,
     const uint8_t* a = agg + static_cast<size_t>(t) * nd;
     const int pmax = std::max(0, std::min(ne, n - t));
     const int pairs = std::min(pmax, no);  // odd DISP: the last even level has no pair
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    for (int p = 0; p < pairs; ++p)  // the pair as one 16-bit load: c[0] | c[1] << 8
+      std::memcpy(&row[p], a + static_cast<size_t>(p) * (nd + 2), 2);
+#else
     for (int p = 0; p < pairs; ++p) {
       const uint8_t* c = a + static_cast<size_t>(p) * (nd + 2);
       row[p] = static_cast<uint16_t>(c[0] | c[1] << 8);
     }
+#endif
     int p = pairs;
     if (p < pmax) row[p++] = a[static_cast<size_t>(pairs) * (nd + 2)];
     for (; p < stride; ++p) row[p] = 0;
@@ -207,7 +212,7 @@ void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pe
   s.dec.resize(static_cast<size_t>(sites + 1) * stride);
   // Per-pixel penalties padded to every lane the vector pass reads (t + m + 1 < n + stride + 8);
   // nodes with xl > n never reach the end node, so the padding value does not matter.
-  const uint8_t* penp = nullptr;
+  const uint32_t* penp = nullptr;
   if (pen) {
     s.pen.assign(static_cast<size_t>(n) + stride + 16, pen[n]);
     std::copy(pen, pen + n + 1, s.pen.begin());

@@ -28,7 +28,7 @@ struct DpScratch {
   std::vector<uint32_t> dec;     // choice of occlusion node (i, d) at i * S + d / 2,
                                  // (2N+1) * S entries
   std::vector<uint16_t> cm;      // matched costs in site order, (N+1) * S pairs (dp.cpp)
-  std::vector<uint8_t> pen;      // per-pixel penalties, padded (trellis_line_pen)
+  std::vector<uint32_t> pen;     // per-pixel penalties, padded, 32 bits (trellis_line_pen)
 };
 
 // One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=

@@ -14,7 +14,7 @@ PipelineResult run_frame_stages(const Image8& left, const Image8& right, const H
   r.raw = hamming_cost(census_transform(r.rl, hw, threads), census_transform(r.rr, hw, threads), hw, threads);
   r.agg = sw_aggregate(r.raw, r.rl, regs.sw_table, hw, threads);
   r.dp = trellis_dp_edge(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw, threads);
-  r.post = post_process(r.dp, regs, hw, &r.post_steps);
+  r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   r.objects = separate_objects(r.post, regs, hw);
   return r;
 }

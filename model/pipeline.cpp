@@ -112,11 +112,20 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     r.stage_ms.emplace_back(name, std::chrono::duration<double, std::milli>(now - t).count());
     t = now;
   };
-  r.bl = brightness(left, regs.gain_l, regs.offset_l);
-  r.br = brightness(right, regs.gain_r, regs.offset_r);
+  // The two images on two threads when there are threads (image 0 left, 1 right).
+  auto each_image = [threads](auto&& f) {
+    parallel_bands(2, threads, [&f](int i0, int i1, int) {
+      for (int i = i0; i < i1; ++i) f(i == 0);
+    });
+  };
+  each_image([&](bool l) {
+    (l ? r.bl : r.br) =
+        l ? brightness(left, regs.gain_l, regs.offset_l) : brightness(right, regs.gain_r, regs.offset_r);
+  });
   lap("brightness");
-  r.rl = rectify(r.bl, regs.grid_l, regs.rect_enable, hw);
-  r.rr = rectify(r.br, regs.grid_r, regs.rect_enable, hw);
+  each_image([&](bool l) {
+    (l ? r.rl : r.rr) = rectify(l ? r.bl : r.br, l ? regs.grid_l : regs.grid_r, regs.rect_enable, hw);
+  });
   lap("rectify");
 
   // Census, cost, aggregation and DP stream row by row through the row kernels the
@@ -150,7 +159,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   const char* names[4] = {"census", "cost", "aggregate", "dp"};
   for (int k = 0; k < 4; ++k) r.stage_ms.emplace_back(names[k], ms[k]);
   t = clock::now();
-  r.post = post_process(r.dp, regs, hw, &r.post_steps);
+  r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
   r.objects = separate_objects(r.post, regs, hw);
   lap("objects");
