@@ -117,10 +117,13 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
   // (1) Window position q = (j + r) * side + (i + r) is neighbour (x + i, y + j) of
   // centre (x, y). Bit q of b0[x] / b1[x] is bit 0 / 1 of its weight code (0 outside
   // the image); SW <= 7 gives at most 49 positions per 64-bit word.
-  std::vector<uint64_t> bits(2 * static_cast<size_t>(w), 0);
+  thread_local std::vector<uint64_t> bits;  // scratch per thread (no allocation per row)
+  bits.assign(2 * static_cast<size_t>(w), 0);
   uint64_t* b0 = bits.data();
   uint64_t* b1 = b0 + w;
-  std::vector<uint8_t> code(static_cast<size_t>(w));
+  thread_local std::vector<uint8_t> code_buf;  // every entry written per window position
+  code_buf.resize(static_cast<size_t>(w));
+  uint8_t* const code = code_buf.data();
 #if defined(SM_AGG_CODE_SHUFFLE)
   // The code only depends on |dI| >> 3 (0..31): two 16-entry tables for a byte shuffle.
   VB16 tab0, tab1;
@@ -135,8 +138,8 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
     const uint8_t* nrow = left + static_cast<size_t>(y + j) * w;
     for (int i = -r; i <= r; ++i) {
       const int x0 = std::max(0, -i), x1 = std::min(w, w - i);  // neighbour inside
-      std::fill(code.begin(), code.begin() + x0, 0);
-      std::fill(code.begin() + x1, code.end(), 0);
+      std::fill(code, code + x0, 0);
+      std::fill(code + x1, code + w, 0);
       int x = x0;
 #if defined(SM_AGG_CODE_SHUFFLE)
       for (; x + 16 <= x1; x += 16) {

@@ -12,6 +12,9 @@
 #if defined(SM_X86_DISPATCH)
 #include <immintrin.h>
 #endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace sm {
 
@@ -51,7 +54,14 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
   const int r = in.r, w = in.w, side = 2 * r + 1;
   const int nbits = side * side - 1, ngroups = (nbits + 7) / 8;
   const size_t wr = static_cast<size_t>((w + kBlock - 1) / kBlock * kBlock);
-  std::vector<uint8_t> planes(32 * wr, 0);
+  // Scratch kept per thread (no allocation per row); the planes past the last group
+  // are read as zero bits.
+  // (A local pointer: stores through uint8_t pointers would otherwise make the compiler
+  // reload the vector's data pointer.)
+  thread_local std::vector<uint8_t> planes_buf;
+  planes_buf.resize(32 * wr);
+  uint8_t* const planes = planes_buf.data();
+  std::fill(planes + ngroups * wr, planes + 32 * wr, uint8_t{0});
   const uint8_t* c = in.row(y);
   for (int g = 0; g < ngroups; ++g) {
     const uint8_t* nrow[8];
@@ -81,7 +91,37 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
     }
 #endif
   }
-  for (int x = 0; x < w; ++x) {
+  int x = 0;
+#if defined(__SSE2__)
+  // Sixteen pixels at a time: the 8 plane bytes of a word are an 8 x 16 byte transpose
+  // (interleaving bytes, then 16-bit, then 32-bit pairs), byte b of the word from plane
+  // 8i + b as below.
+  for (; x + 16 <= w; x += 16)
+    for (int i = 0; i < 4; ++i) {
+      __m128i p[8];
+      for (int b = 0; b < 8; ++b)
+        p[b] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&planes[(8 * i + b) * wr + static_cast<size_t>(x)]));
+      __m128i q[8], s[8];
+      for (int b = 0; b < 4; ++b) {  // bytes of planes 2b, 2b+1: pixels 0-7, 8-15
+        q[2 * b] = _mm_unpacklo_epi8(p[2 * b], p[2 * b + 1]);
+        q[2 * b + 1] = _mm_unpackhi_epi8(p[2 * b], p[2 * b + 1]);
+      }
+      for (int b = 0; b < 2; ++b)  // 16-bit pairs of planes 4b..4b+3: pixels 0-3, 4-7, 8-11, 12-15
+        for (int hf = 0; hf < 2; ++hf) {
+          s[4 * b + 2 * hf] = _mm_unpacklo_epi16(q[4 * b + hf], q[4 * b + 2 + hf]);
+          s[4 * b + 2 * hf + 1] = _mm_unpackhi_epi16(q[4 * b + hf], q[4 * b + 2 + hf]);
+        }
+      for (int k = 0; k < 4; ++k) {  // 32-bit halves: planes 0-3 and 4-7 of pixels 4k .. 4k+3
+        const __m128i lo = _mm_unpacklo_epi32(s[k], s[4 + k]), hi = _mm_unpackhi_epi32(s[k], s[4 + k]);
+        CensusVec* o = out + x + 4 * k;
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[0][static_cast<size_t>(i)]), lo);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[1][static_cast<size_t>(i)]), _mm_unpackhi_epi64(lo, lo));
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[2][static_cast<size_t>(i)]), hi);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[3][static_cast<size_t>(i)]), _mm_unpackhi_epi64(hi, hi));
+      }
+    }
+#endif
+  for (; x < w; ++x) {
     for (int i = 0; i < 4; ++i) {
       uint64_t v = 0;
       for (int b = 0; b < 8; ++b) v |= static_cast<uint64_t>(planes[(8 * i + b) * wr + x]) << (8 * b);
@@ -122,7 +162,9 @@ __attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, co
                                           0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
   const __m256i zero = _mm256_setzero_si256();
   // Right vectors split into low / high nibbles, 32 bytes each per pixel.
-  std::vector<uint8_t> nib(64 * static_cast<size_t>(w));
+  thread_local std::vector<uint8_t> nib_buf;  // scratch per thread, every entry read is written below
+  nib_buf.resize(64 * static_cast<size_t>(w));
+  uint8_t* const nib = nib_buf.data();
   for (int x = 0; x < w; ++x) {
     const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&rr[x]));
     uint8_t* n = &nib[64 * static_cast<size_t>(x)];
