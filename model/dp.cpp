@@ -126,12 +126,18 @@ inline void add_block(uint32_t* u, const uint16_t* c, bool odd, int32_t mask) {
   store(u, (v + cv) & mask);
 }
 
-SM_HOT void forward_vector(const Fwd& f) {
+// Wrap = false drops the "& mask" of every sum, which is exact when n <= MAX_WIDTH: a
+// node's U grows by at most 255 per site from BIG or 0 (a matched node adds one 8-bit
+// cost, an occlusion node at most one 8-bit penalty), so after 2n sites U <= BIG +
+// 2 * MAX_WIDTH * 255 < 2^ACC_W (dp_acc_bits) and no sum wraps. (The padding lanes grow
+// the same way.)
+template <bool Wrap>
+inline __attribute__((always_inline)) void forward_body(const Fwd& f) {
   VI lane;  // 0, 1, 2, ...
   for (int k = 0; k < kLanes; ++k) lane[k] = k;
   const VI no_lane = {};
   const VI first = lane == 0;
-  const auto mask = static_cast<int32_t>(f.mask);
+  const int32_t mask = Wrap ? static_cast<int32_t>(f.mask) : -1;  // -1: the ands fold away
   const VI occ_all = no_lane + static_cast<int32_t>(f.occ);
   // The penalties of lanes m..m+kLanes-1 at DP clock t (see forward_scalar): one
   // vector load (pen is widened to 32 bits per line, not gathered lane by lane).
@@ -155,6 +161,9 @@ SM_HOT void forward_vector(const Fwd& f) {
     for (int m = 0; m < f.no; m += kLanes) add_block(uo + m, c + m, true, mask);
   }
 }
+
+SM_HOT void forward_vector(const Fwd& f) { forward_body<true>(f); }
+SM_HOT void forward_vector_nowrap(const Fwd& f) { forward_body<false>(f); }
 #endif
 
 // Matched costs in site order, levels 2p and 2p+1 as one 16-bit pair: row t holds
@@ -169,6 +178,7 @@ void gather_costs(const uint8_t* agg, int n, int nd, int ne, int no, int stride,
     const int pmax = std::max(0, std::min(ne, n - t));
     const int pairs = std::min(pmax, no);  // odd DISP: the last even level has no pair
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#pragma GCC unroll 8
     for (int p = 0; p < pairs; ++p)  // the pair as one 16-bit load: c[0] | c[1] << 8
       std::memcpy(&row[p], a + static_cast<size_t>(p) * (nd + 2), 2);
 #else
@@ -222,7 +232,7 @@ void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pe
   f.ue[0] = 0;
 #if defined(__GNUC__)
   if (acc_w <= 30)
-    forward_vector(f);
+    n <= hw.max_width ? forward_vector_nowrap(f) : forward_vector(f);
   else
 #endif
     forward_scalar(f);
