@@ -51,8 +51,8 @@ typedef uint8_t VB16 __attribute__((vector_size(16)));  // 16 pixels (weight cod
 
 #if defined(SM_AGG_VECTORS)
 // 32 levels per byte vector (32 bytes). Costs are summed in bytes over groups of
-// neighbours with the same weight, then widened once per group, shifted by the weight's
-// exponent and added in 16 bits: one widening per `group` neighbours instead of a
+// neighbours with the same weight, then widened once per group and added in 16 bits (the
+// weights applied by doubling between weight classes): one widening per `group` neighbours instead of a
 // widening and a multiply per neighbour. The 16-bit sums are exact: the largest,
 // 4*SW*SW*CMAX (43904 at SW 7, CENSUS 15, COST_SHIFT 0; 49980 for any 8-bit input),
 // fits, and a byte sum is at most group * (255 >> COST_SHIFT) <= 255.
@@ -74,7 +74,15 @@ inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* m
   const VB zero = {};
   VH lo[NB], hi[NB];  // levels 0-7 and 16-23 / 8-15 and 24-31 of each block of 32
   for (int v = 0; v < NB; ++v) lo[v] = hi[v] = VH{};
-  for (int c = 0; c < 3; ++c) {
+  // Weights 4, 2, 1 in turn, the sums so far doubled between them (Horner: 2 * (2 * S4 +
+  // S2) + S1 = 4 S4 + 2 S2 + S1, exact in 16 bits as the final sum is), instead of a
+  // shift per group.
+  for (int c = 2; c >= 0; --c) {
+    if (c < 2)
+      for (int v = 0; v < NB; ++v) {
+        lo[v] += lo[v];
+        hi[v] += hi[v];
+      }
     uint64_t bits = mask[c];
     while (bits) {
       VB s[NB];
@@ -91,8 +99,8 @@ inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* m
                                              17, 32, 18, 32, 19, 32, 20, 32, 21, 32, 22, 32, 23, 32);
         const VB h = __builtin_shufflevector(s[v], zero, 8, 32, 9, 32, 10, 32, 11, 32, 12, 32, 13, 32, 14, 32, 15, 32,
                                              24, 32, 25, 32, 26, 32, 27, 32, 28, 32, 29, 32, 30, 32, 31, 32);
-        lo[v] += reinterpret_cast<const VH&>(l) << c;
-        hi[v] += reinterpret_cast<const VH&>(h) << c;
+        lo[v] += reinterpret_cast<const VH&>(l);
+        hi[v] += reinterpret_cast<const VH&>(h);
       }
     }
   }
