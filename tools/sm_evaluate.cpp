@@ -237,11 +237,11 @@ int run(int argc, char** argv) {
                  "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
                  "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
                  "the scene's, --occ wins when given");
-  app.add_option("--threads", threads, "model: threads (same output for any count; OpenCV stays on one)")
-      ->check(CLI::Range(1, 256))
+  app.add_option("--threads", threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  if (threads < 1 || threads > 256) throw ToolError(fmt::format("--threads {}: must be 1..256", threads));
   sm::tools::quiet_opencv();
   cv::setNumThreads(1);
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))

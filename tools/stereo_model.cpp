@@ -71,11 +71,11 @@ int run(int argc, char** argv) {
                     ->delimiter(',')
                     ->check(CLI::Range(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
-  app.add_option("--threads", threads, "threads of the model (same output for any count)")
-      ->check(CLI::Range(1, 256))
+  app.add_option("--threads", threads, "threads of the model, 1..256 (same output for any count)")
       ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  if (threads < 1 || threads > 256) throw ToolError(fmt::format("--threads {}: must be 1..256", threads));
 
   if (out.empty() && colour.empty() && disp_file.empty())
     throw ToolError("no output: give -o, --colour and/or --disp-file");
