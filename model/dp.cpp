@@ -105,14 +105,13 @@ inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, const
   load(b0, u);
   load(c1, lo);
   load(c2, hi);
-  // (Selections as and/or of the compare masks, which every vector unit has.)
   c1 = ((c1 + occ) & mask) | (lo_absent & INT32_MAX);
   c2 = ((c2 + occ) & mask) | (hi_absent & INT32_MAX);
-  const VI t1 = c1 < b0;  // -1 where true
-  const VI b1 = (c1 & t1) | (b0 & ~t1);
+  const VI t1 = c1 < b0;            // -1 where true
+  const VI b1 = c1 < b0 ? c1 : b0;  // (a minimum: one instruction where the unit has it)
   const VI t2 = c2 < b1;
-  store(u, (c2 & t2) | (b1 & ~t2));
-  store(dec, (t2 & 2) | (t1 & ~t2 & 1));
+  store(u, c2 < b1 ? c2 : b1);
+  store(dec, (t2 & 2) | (t1 & 1));  // 3 (both) reads as 2: choice 2 wins when it is taken
 }
 
 // u[m] = (u[m] + cost) & mask for one vector of lanes from m; cost = the low (odd =
@@ -248,7 +247,7 @@ void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pe
       out.match[(i - 1 + d) / 2] = d;
     } else {
       const uint32_t ch = s.dec[static_cast<size_t>(i) * stride + d / 2];
-      d += (ch == 1) ? -1 : (ch == 2) ? 1 : 0;
+      d += (ch & 2) ? 1 : (ch == 1) ? -1 : 0;  // 2 or 3: choice 2 (the vector pass's encoding)
     }
   }
   out.path[0] = d;

@@ -26,7 +26,7 @@ struct DpLine {
 struct DpScratch {
   std::vector<uint32_t> u0, u1;  // U of the even / odd levels at the current site
   std::vector<uint32_t> dec;     // choice of occlusion node (i, d) at i * S + d / 2,
-                                 // (2N+1) * S entries
+                                 // (2N+1) * S entries (0, 1, 2; the vector pass writes 3 for 2)
   std::vector<uint16_t> cm;      // matched costs in site order, (N+1) * S pairs (dp.cpp)
   std::vector<uint32_t> pen;     // per-pixel penalties, padded, 32 bits (trellis_line_pen)
 };
