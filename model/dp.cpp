@@ -98,15 +98,16 @@ inline void load(VI& v, const uint32_t* p) { std::memcpy(&v, p, sizeof v); }
 inline void store(uint32_t* p, const VI& v) { std::memcpy(p, &v, sizeof v); }
 
 // Occlusion nodes from m, one vector: u = the first of choice 0 (u), 1 (lo + occ) and 2 (hi +
-// occ) that reaches the minimum; lanes set in lo_absent / hi_absent lack that choice.
+// occ) that reaches the minimum; lo_absent / hi_absent are INT32_MAX in the lanes that lack
+// that choice, else 0.
 inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, const VI& occ, int32_t mask,
                       const VI& lo_absent, const VI& hi_absent, uint32_t* dec) {
   VI b0, c1, c2;
   load(b0, u);
   load(c1, lo);
   load(c2, hi);
-  c1 = ((c1 + occ) & mask) | (lo_absent & INT32_MAX);
-  c2 = ((c2 + occ) & mask) | (hi_absent & INT32_MAX);
+  c1 = ((c1 + occ) & mask) | lo_absent;
+  c2 = ((c2 + occ) & mask) | hi_absent;
   const VI t1 = c1 < b0;            // -1 where true
   const VI b1 = c1 < b0 ? c1 : b0;  // (a minimum: one instruction where the unit has it)
   const VI t2 = c2 < b1;
@@ -145,17 +146,27 @@ inline __attribute__((always_inline)) void forward_body(const Fwd& f) {
     if (f.pen) std::memcpy(&ov, f.pen + t + m + 1, sizeof ov);
     return ov;
   };
+  // The lanes without a choice, by block (the same at every t): choice 2 at site 2t+1 (d + 1
+  // = 2m+2 past the last even level), choice 1 at site 2t+2 (lane 0 of block 0), choice 2
+  // at site 2t+2 (2m+1 past the last odd level). At most 128 levels of a parity: 32 blocks.
+  VI odd_hi[32], even_lo[32], even_hi[32];
+  if (f.stride > 32 * kLanes) return forward_scalar(f);  // (more than 256 levels: not a legal DISP)
+  for (int m = 0, b = 0; m < f.stride; m += kLanes, ++b) {
+    odd_hi[b] = (lane + (m + 1) >= f.ne) & INT32_MAX;
+    even_lo[b] = (m == 0 ? first : no_lane) & INT32_MAX;
+    even_hi[b] = (lane + m >= f.no) & INT32_MAX;
+  }
   uint32_t* ue = f.ue;
   uint32_t* uo = f.uo;
   for (int t = 0; t < f.n; ++t) {
     uint32_t* dec = f.dec + static_cast<size_t>(2 * t + 1) * f.stride;
     for (int m = 0; m < f.no; m += kLanes)
-      occ_block(uo + m, ue + m, ue + m + 1, occ_v(t, m), mask, no_lane, lane + (m + 1) >= f.ne, dec + m);
+      occ_block(uo + m, ue + m, ue + m + 1, occ_v(t, m), mask, no_lane, odd_hi[m / kLanes], dec + m);
     const uint16_t* c = f.cm + static_cast<size_t>(t) * f.stride;
     for (int m = 0; m < f.ne; m += kLanes) add_block(ue + m, c + m, false, mask);
     dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
     for (int m = 0; m < f.ne; m += kLanes)
-      occ_block(ue + m, uo + m - 1, uo + m, occ_v(t, m), mask, m == 0 ? first : no_lane, lane + m >= f.no, dec + m);
+      occ_block(ue + m, uo + m - 1, uo + m, occ_v(t, m), mask, even_lo[m / kLanes], even_hi[m / kLanes], dec + m);
     c += f.stride;
     for (int m = 0; m < f.no; m += kLanes) add_block(uo + m, c + m, true, mask);
   }
