@@ -100,43 +100,46 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
   return from_fixed16(d);
 }
 
+// --threads: the model's thread count (set once before any method runs; same output for any).
+int model_threads = 1;
+
 std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs_file, const std::string& results_dir,
-                                double results_scale, int threads) {
+                                double results_scale) {
   std::vector<Method> m;
   // The model with every post-processing filter enabled (the default registers), scored
   // after each step: the DP output, F0 (band filter), F0+F1 (5x1 vertical median), F0+F1+F2
   // (3x3), F0+F1+F2+F3 (5x3) = the model's output.
-  m.push_back(
-      {"model",
-       {"model_dp", "model_f0", "model_f1", "model_f1f2", "model"},
-       [occ, occ_given, regs_file, threads](const sm::tools::Scene& s, int levels) {
-         sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
-         hw.disp = levels;
-         hw.max_width = s.left.cols;
-         hw.max_height = s.left.rows;
-         sm::Regs regs = sm::Regs::defaults(hw);
-         regs.occ = static_cast<uint8_t>(occ);
-         regs.filter_enable = 15;
-         if (!regs_file.empty()) {
-           // --regs: registers and compile-time parameters on top of the defaults;
-           // the sizes stay the scene's, --occ (when given) wins over the file.
-           sm::tools::apply_regs_json(regs_file, hw, regs);
-           hw.disp = levels;
-           hw.max_width = s.left.cols;
-           hw.max_height = s.left.rows;
-           regs.width = hw.max_width;
-           regs.height = hw.max_height;
-           if (occ_given) regs.occ = static_cast<uint8_t>(occ);
-           hw.validate();
-         }
-         const auto res =
-             sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false, threads);
-         if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
-           throw std::logic_error("model: expected four post-processing steps ending in the output");
-         return std::vector<cv::Mat>{sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
-                                     sm::tools::disp_to_float(res.post_steps[1]),
-                                     sm::tools::disp_to_float(res.post_steps[2]), sm::tools::disp_to_float(res.post)};
-       }});
+  m.push_back({"model",
+               {"model_dp", "model_f0", "model_f1", "model_f1f2", "model"},
+               [occ, occ_given, regs_file](const sm::tools::Scene& s, int levels) {
+                 sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
+                 hw.disp = levels;
+                 hw.max_width = s.left.cols;
+                 hw.max_height = s.left.rows;
+                 sm::Regs regs = sm::Regs::defaults(hw);
+                 regs.occ = static_cast<uint8_t>(occ);
+                 regs.filter_enable = 15;
+                 if (!regs_file.empty()) {
+                   // --regs: registers and compile-time parameters on top of the defaults;
+                   // the sizes stay the scene's, --occ (when given) wins over the file.
+                   sm::tools::apply_regs_json(regs_file, hw, regs);
+                   hw.disp = levels;
+                   hw.max_width = s.left.cols;
+                   hw.max_height = s.left.rows;
+                   regs.width = hw.max_width;
+                   regs.height = hw.max_height;
+                   if (occ_given) regs.occ = static_cast<uint8_t>(occ);
+                   hw.validate();
+                 }
+                 const auto res = sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw,
+                                                   regs, false, model_threads);
+                 if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
+                   throw std::logic_error("model: expected four post-processing steps ending in the output");
+                 return std::vector<cv::Mat>{
+                     sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
+                     sm::tools::disp_to_float(res.post_steps[1]), sm::tools::disp_to_float(res.post_steps[2]),
+                     sm::tools::disp_to_float(res.post)};
+               }});
   using Scene = sm::tools::Scene;
   auto peer = [&m](const std::string& name, std::function<cv::Mat(const Scene&, int)> f) {
     m.push_back({name, {name}, [f](const Scene& s, int nd) { return std::vector<cv::Mat>{f(s, nd)}; }, true});
@@ -199,7 +202,7 @@ int run(int argc, char** argv) {
   std::string synth_size = fmt::format("{}x{}", sm::HwConfig{}.max_width, sm::HwConfig{}.max_height), results_dir,
               regs_file;
   double results_scale = 16;
-  int levels = sm::HwConfig{}.disp, peer_levels = 0, synthetic = 0, occ = sm::Regs{}.occ, threads = 1;
+  int levels = sm::HwConfig{}.disp, peer_levels = 0, synthetic = 0, occ = sm::Regs{}.occ;
   std::vector<int> streak_rows{1, 5};
   bool quiet = false;
   CLI::App app{"bad-1.0, streak measure and run time of the model and OpenCV matchers on a stereo dataset"};
@@ -237,11 +240,12 @@ int run(int argc, char** argv) {
                  "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
                  "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
                  "the scene's, --occ wins when given");
-  app.add_option("--threads", threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
+  app.add_option("--threads", model_threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  if (threads < 1 || threads > 256) throw ToolError(fmt::format("--threads {}: must be 1..256", threads));
+  if (model_threads < 1 || model_threads > 256)
+    throw ToolError(fmt::format("--threads {}: must be 1..256", model_threads));
   sm::tools::quiet_opencv();
   cv::setNumThreads(1);
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
@@ -258,7 +262,7 @@ int run(int argc, char** argv) {
     const bool occ_given = app.count("--occ") > 0;
     if (!regs_file.empty() && !fs::is_regular_file(regs_file))
       throw ToolError(fmt::format("{}: no such file", regs_file));
-    const auto all = all_methods(occ, occ_given, regs_file, results_dir, results_scale, threads);
+    const auto all = all_methods(occ, occ_given, regs_file, results_dir, results_scale);
     auto names_opt = methods_opt;
     names_opt.erase(std::remove(names_opt.begin(), names_opt.end(), ""), names_opt.end());
     if (!results_dir.empty() && std::find(names_opt.begin(), names_opt.end(), "results") == names_opt.end())
@@ -339,7 +343,7 @@ int run(int argc, char** argv) {
       "estimate d is valid and bad and lies between two valid rows, at most max_rows rows apart, that differ from d "
       "by more than 1, with every row between evaluated and gt within 1 (toolio/sm_io.hpp, streaks)";
   jout["peer_levels"] = peer_levels ? json(peer_levels) : json("scene");
-  jout["threads"] = threads;  // the model's; OpenCV runs on one
+  jout["threads"] = model_threads;  // the model's; OpenCV runs on one
   jout["scenes"] = json::array();
   struct Cell {
     sm::tools::BadStats bad;
