@@ -54,6 +54,9 @@ cv::Mat from_fixed16(const cv::Mat& d16) {
 
 int round16(int levels) { return (levels + 15) / 16 * 16; }
 
+// --threads: the model's thread count (set once before any method runs; same output for any).
+int model_threads = 1;
+
 // A scene's disparity file in the --results folder: <scene>.pfm or <scene>.png.
 std::string result_file(const std::string& dir, const std::string& scene) {
   const fs::path pfm = fs::path(dir) / (scene + ".pfm"), png = fs::path(dir) / (scene + ".png");
@@ -99,9 +102,6 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
   sg->compute(s.left, s.right, d);
   return from_fixed16(d);
 }
-
-// --threads: the model's thread count (set once before any method runs; same output for any).
-int model_threads = 1;
 
 std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs_file, const std::string& results_dir,
                                 double results_scale) {
