@@ -244,8 +244,6 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  if (model_threads < 1 || model_threads > 256)
-    throw ToolError(fmt::format("--threads {}: must be 1..256", model_threads));
   sm::tools::quiet_opencv();
   cv::setNumThreads(1);
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
@@ -257,6 +255,8 @@ int run(int argc, char** argv) {
   if (!results_dir.empty() && !fs::is_directory(results_dir))
     throw ToolError(fmt::format("{}: not a directory", results_dir));
 
+  if (model_threads < 1 || model_threads > 256)
+    throw ToolError(fmt::format("--threads {}: must be 1..256", model_threads));
   std::vector<Method> methods;
   {
     const bool occ_given = app.count("--occ") > 0;
