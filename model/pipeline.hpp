@@ -33,8 +33,10 @@ struct PipelineResult {
 
 // Runs one frame. left/right must be regs.width x regs.height; throws
 // std::invalid_argument otherwise. keep_volumes=false drops raw/agg to save memory.
+// threads: census to DP run in that many bands of rows (model/parallel.hpp), with the
+// same result for any count; stage_ms then sums the bands' times.
 PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwConfig& hw, const Regs& regs,
-                            bool keep_volumes = true);
+                            bool keep_volumes = true, int threads = 1);
 
 // Checks run-time registers against the compile-time parameters; throws
 // std::invalid_argument naming the field.

@@ -37,9 +37,10 @@ DispImage post_band(const DispImage& in, const HwConfig& hw, int k);
 
 // The chain F0 (post_band with k = hw.band_k, bit 3 of regs.filter_enable), then F1..F3
 // (bits 0..2); a disabled filter passes its input unchanged. `steps` (optional) receives
-// the image after each of the four steps, F0 first.
+// the image after each of the four steps, F0 first. threads: each filter on that many
+// bands of rows (F0: of columns), same result for any count.
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,
-                       std::vector<DispImage>* steps = nullptr);
+                       std::vector<DispImage>* steps = nullptr, int threads = 1);
 
 // ---- section 8: objects ------------------------------------------------------------
 

@@ -106,6 +106,7 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
     expect_error(model(o + " --disp 16 --occ 300"), "--occ = 300 is outside 0..255");
   }
   SECTION("missing calibration") { expect_error(model(o + " --disp 16 --calib " + fx.I("none.json")), "none.json"); }
+  SECTION("bad thread count") { expect_error(model(o + " --disp 16 --threads 0"), "--threads"); }
   SECTION("unwritable output") {
     expect_error(model(" --disp 16 -o " + (out / "no" / "d.png").string()), "cannot write");
   }
@@ -145,6 +146,12 @@ TEST_CASE("stereo_model writes the model's disparity", "[unit][tools][cli]") {
                                               (out / "d2.png").string());
   REQUIRE(r2.rc == 0);
   CHECK(cv::norm(cv::imread((out / "d2.png").string(), cv::IMREAD_UNCHANGED), ref, cv::NORM_INF) == 0);
+  // --threads: the same image.
+  const Run r3 =
+      run(SM_STEREO_MODEL_EXE,
+          fx.L() + " " + fx.R() + " --disp 16 --census 7 --sw 3 --occ 20 --threads 3 -o " + (out / "d3.png").string());
+  REQUIRE(r3.rc == 0);
+  CHECK(cv::norm(cv::imread((out / "d3.png").string(), cv::IMREAD_UNCHANGED), ref, cv::NORM_INF) == 0);
 }
 
 TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {

@@ -77,6 +77,9 @@ cv::Mat from_fixed16(const cv::Mat& d16) {
 
 int round16(int levels) { return (levels + 15) / 16 * 16; }
 
+// --threads: the model's thread count (set once before any method runs; same output for any).
+int model_threads = 1;
+
 // A scene's disparity file in the --results folder: <scene>.pfm or <scene>.png.
 std::string result_file(const std::string& dir, const std::string& scene) {
   const fs::path pfm = fs::path(dir) / (scene + ".pfm"), png = fs::path(dir) / (scene + ".png");
@@ -179,8 +182,8 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
                    regs.grid_r = c->right;
                    regs.rect_enable = true;
                  }
-                 const auto res =
-                     sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false);
+                 const auto res = sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw,
+                                                   regs, false, model_threads);
                  if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
                    throw std::logic_error("model: expected four post-processing steps ending in the output");
                  MethodOut o = maps({sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
@@ -377,6 +380,8 @@ int run(int argc, char** argv) {
                  "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
                  "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
                  "the scene's, --occ wins when given");
+  app.add_option("--threads", model_threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
+      ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
@@ -390,6 +395,8 @@ int run(int argc, char** argv) {
   if (!results_dir.empty() && !fs::is_directory(results_dir))
     throw ToolError(fmt::format("{}: not a directory", results_dir));
 
+  if (model_threads < 1 || model_threads > 256)
+    throw ToolError(fmt::format("--threads {}: must be 1..256", model_threads));
   std::vector<Method> methods;
   {
     const bool occ_given = app.count("--occ") > 0;
@@ -467,7 +474,7 @@ int run(int argc, char** argv) {
       "estimate d is valid and bad and lies between two valid rows, at most max_rows rows apart, that differ from d "
       "by more than 1, with every row between evaluated and gt within 1 (toolio/sm_io.hpp, streaks)";
   jout["peer_levels"] = peer_levels ? json(peer_levels) : json("scene");
-  jout["threads"] = 1;
+  jout["threads"] = model_threads;  // the model's; OpenCV runs on one
   jout["scenes"] = json::array();
   struct Cell {
     sm::tools::BadStats bad;
@@ -606,7 +613,7 @@ int run(int argc, char** argv) {
         [i](const Cell& c) { return c.streak[i].streak_pct(); }, "{:.2f}", all_cols);
   print_accuracy_tables(table, all_cols, [&](size_t k) { return !rows.empty() && rows[0].cells[k].has_conf; });
   table(
-      "ms per frame (single thread; the model's steps come from one run)", false,
+      "ms per frame (OpenCV on one thread, the model on --threads; the model's steps come from one run)", false,
       [](const Cell& c) { return fmt::format("{:.0f}", c.ms); }, [](const Cell& c) { return c.ms; }, "{:.0f}",
       [&](size_t k) { return !rows.empty() && rows[0].cells[k].ms >= 0; });
   for (size_t k = 0; k < outputs.size(); ++k) {

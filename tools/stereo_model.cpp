@@ -86,6 +86,7 @@ int run(int argc, char** argv) {
   sm::Regs r = sm::Regs::defaults(hw);
   // Option defaults shown by --help are the model's own (HwConfig / Regs::defaults).
   bool no_rect = !r.rect_enable, verbose = false;
+  int threads = 1;
   // --help shows the table up to its last non-zero code
   std::vector<int> sw_table(r.sw_table.begin(), r.sw_table.end());
   while (sw_table.size() > 1 && sw_table.back() == 0) sw_table.pop_back();
@@ -132,10 +133,13 @@ int run(int argc, char** argv) {
                     ->delimiter(',')
                     ->check(sm::tools::int_in(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
+  app.add_option("--threads", threads, "threads of the model, 1..256 (same output for any count)")
+      ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   sm::tools::DepthOptions depth;
   depth.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  if (threads < 1 || threads > 256) throw ToolError(fmt::format("--threads {}: must be 1..256", threads));
 
   check_outputs(out, colour, disp_file, objects_json, conf_png, depth);
   if (!regs_json.empty()) sm::tools::check_input_file(regs_json);
@@ -224,7 +228,7 @@ int run(int argc, char** argv) {
 
   sm::PipelineResult res;
   try {
-    res = sm::run_pipeline(L, R, hw, r, false);
+    res = sm::run_pipeline(L, R, hw, r, false, threads);
   } catch (const std::invalid_argument& e) {
     throw ToolError(fmt::format("bad configuration: {}", e.what()));
   }
