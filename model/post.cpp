@@ -269,7 +269,10 @@ void fold_stats(Stats& s, Stats& a) {  // a is absorbed into s
 // The label table of section 8 as sm_objects keeps it: the flat equivalence table, the
 // statistics, and the bookkeeping that recycles labels within the frame.
 struct LabelTable {
-  explicit LabelTable(int slots) : parent(slots, 0), st(slots), busy(slots, 0), ucur(slots, 0), uprev(slots, 0) {}
+  explicit LabelTable(int slots) : parent(slots, 0), st(slots), busy(slots, 0), ucur(slots, 0), uprev(slots, 0) {
+    busy_list.reserve(static_cast<size_t>(slots));
+    freed.reserve(static_cast<size_t>(slots));
+  }
   std::vector<int> parent;  // root of each busy label
   std::vector<Stats> st;
   std::vector<uint8_t> busy;   // allocated and not yet freed
@@ -281,46 +284,51 @@ struct LabelTable {
   int n_busy = 0;              // busy labels (diagnostics)
   bool last_near = false;      // the previous pixel was labelled ...
   int last_lab = 0;            // ... with this label
+  // Speed only (the same sets as the flags above): the busy labels in any order, so the
+  // per-pixel scan visits the few busy labels instead of every slot, and the labels
+  // free_mask chose for the pixel.
+  std::vector<int> busy_list;
+  std::vector<int> freed;
 };
 
-// Labels freed before a pixel: busy, not written into the row buffer on this row or the
-// previous one (so no pixel still to be labelled can name them), and either absorbed by a
-// merge or the root of a component that has ended smaller than min_pixels.
-std::vector<uint8_t> free_mask(const LabelTable& t, unsigned min_pixels) {
-  const int n = static_cast<int>(t.busy.size());
-  std::vector<uint8_t> f(n, 0);
-  for (int l = 0; l < n; ++l) {
+// Labels freed before a pixel (into t.freed): busy, not written into the row buffer on
+// this row or the previous one (so no pixel still to be labelled can name them), and
+// either absorbed by a merge or the root of a component that has ended smaller than
+// min_pixels.
+void free_mask(LabelTable& t, unsigned min_pixels) {
+  t.freed.clear();
+  for (const int l : t.busy_list) {
     const bool referenced = t.ucur[l] || t.uprev[l] || (t.last_near && t.last_lab == l);
     const bool absorbed = t.parent[l] != l;
-    f[l] = t.busy[l] && !referenced && (absorbed || t.st[l].count < min_pixels);
+    if (!referenced && (absorbed || t.st[l].count < min_pixels)) t.freed.push_back(l);
   }
-  return f;
 }
 
-// After a pixel: apply the frees, move the row-buffer marks, and choose the next
-// candidate from the table as it was before the pixel (busy_before): the lowest free
-// label other than the candidate, taken when the candidate was allocated or none was free.
-void advance(LabelTable& t, const std::vector<uint8_t>& freed, const std::vector<uint8_t>& busy_before, bool sol,
-             bool alloc) {
+// After a pixel: choose the next candidate from the table as it was before the pixel
+// (the lowest free label other than the candidate, taken when the candidate was
+// allocated or none was free: the pixel's only change to busy is the candidate's
+// allocation, which the choice skips anyway), then apply the frees and move the
+// row-buffer marks.
+void advance(LabelTable& t, bool sol, bool alloc) {
   const int n = static_cast<int>(t.busy.size());
-  for (int l = 0; l < n; ++l)
-    if (freed[l]) {
-      t.busy[l] = 0;
-      --t.n_busy;
-    }
+  if (alloc || !t.cand_ok) {
+    int c = -1;
+    for (int l = 0; l < n && c < 0; ++l)
+      if (!t.busy[l] && !(t.cand_ok && l == t.cand)) c = l;
+    t.cand_ok = c >= 0;
+    t.cand = std::max(c, 0);
+  }
+  for (const int l : t.freed) {
+    t.busy[l] = 0;
+    --t.n_busy;
+    t.busy_list.erase(std::find(t.busy_list.begin(), t.busy_list.end(), l));
+  }
   if (sol) {
     t.uprev = t.ucur;
     std::fill(t.ucur.begin(), t.ucur.end(), 0);
     if (t.last_near) t.uprev[t.last_lab] = 1;
   } else if (t.last_near) {
     t.ucur[t.last_lab] = 1;
-  }
-  if (alloc || !t.cand_ok) {
-    int c = -1;
-    for (int l = 0; l < n && c < 0; ++l)
-      if (!busy_before[l] && !(t.cand_ok && l == t.cand)) c = l;
-    t.cand_ok = c >= 0;
-    t.cand = std::max(c, 0);
   }
 }
 }  // namespace
@@ -338,8 +346,7 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
     for (int x = 0; x < in.w; ++x) {
       const DispPix p = in.at(x, y);
       const unsigned d = p & dmask;
-      const std::vector<uint8_t> freed = free_mask(t, regs.obj_min_pixels);
-      const std::vector<uint8_t> busy_before = t.busy;
+      free_mask(t, regs.obj_min_pixels);
       bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
       bool alloc = false;
       int lab = 0;
@@ -366,6 +373,7 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
           alloc = true;
           t.parent[lab] = lab;
           t.busy[lab] = 1;
+          t.busy_list.push_back(lab);
           ++t.n_busy;
           ++res.labels_started;
           t.used = std::max(t.used, lab + 1);
@@ -376,7 +384,7 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
         }
       }
       res.labels_peak = std::max(res.labels_peak, t.n_busy);
-      advance(t, freed, busy_before, x == 0, alloc);
+      advance(t, x == 0, alloc);
       up_near[x] = near;
       up_d[x] = d;
       up_lab[x] = lab;

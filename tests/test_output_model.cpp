@@ -143,6 +143,96 @@ TEST_CASE("validity rules agree with a brute-force reading on random lines", "[u
   }
 }
 
+namespace {
+
+// Section 9.0 of docs/algorithm.md read literally, one pixel and one level at a time: the
+// reference the vectorised evidence_line is checked against.
+Evidence evidence_reference(const std::vector<uint8_t>& agg, int w, int nd, const DpLine& line) {
+  Evidence ev(w, 1);
+  auto A = [&](int x, int k) { return static_cast<int>(agg[static_cast<size_t>(x) * nd + k]); };
+  auto at = [&](int x, int k) { return static_cast<uint8_t>(k >= 0 && k < nd ? A(x, k) : 0); };
+  const std::vector<int>& m = line.match;
+  for (int x = 0; x < w; ++x) {
+    const int d = static_cast<int>(disp_value(line.disp[static_cast<size_t>(x)]));
+    int dw = 0, hi = 0;
+    for (int k = 0; k < nd; ++k) {
+      if (A(x, k) < A(x, dw)) dw = k;
+      hi = std::max(hi, A(x, k));
+    }
+    int c2 = A(x, dw);
+    bool any = false;
+    for (int k = 0; k < nd; ++k)
+      if (std::abs(k - dw) >= 2 && (!any || A(x, k) < c2)) c2 = A(x, k), any = true;
+    int lr = 255;
+    if (x >= d) {
+      const int xr = x - d;
+      lr = 0;
+      for (int k = 0; k < nd && xr + k < w; ++k)
+        if (A(xr + k, k) < A(xr + lr, lr)) lr = k;
+    }
+    int gap = 0, fill = d;
+    if (m[static_cast<size_t>(x)] < 0) {
+      int a = x, b = x, right_min = -1;
+      while (a >= 0 && m[static_cast<size_t>(a)] < 0) --a;
+      while (b < w && m[static_cast<size_t>(b)] < 0) ++b;
+      gap = (a < 0 || b == w) ? 255 : std::min(254, std::abs(m[static_cast<size_t>(b)] - m[static_cast<size_t>(a)]));
+      for (int r = x + 1; r < w; ++r)
+        if (m[static_cast<size_t>(r)] >= 0 && (right_min < 0 || m[static_cast<size_t>(r)] < right_min))
+          right_min = m[static_cast<size_t>(r)];
+      const int left = a < 0 ? -1 : m[static_cast<size_t>(a)];
+      fill = left < 0 ? std::max(right_min, 0) : right_min < 0 ? left : std::min(left, right_min);
+    }
+    ev.d.at(x, 0) = static_cast<uint8_t>(d);
+    ev.matched.at(x, 0) = m[static_cast<size_t>(x)] >= 0;
+    ev.gap.at(x, 0) = static_cast<uint8_t>(gap);
+    ev.fill_bg.at(x, 0) = static_cast<uint8_t>(fill);
+    ev.cm.at(x, 0) = at(x, d - 1);
+    ev.c0.at(x, 0) = at(x, d);
+    ev.cp.at(x, 0) = at(x, d + 1);
+    ev.dw.at(x, 0) = static_cast<uint8_t>(dw);
+    ev.c1.at(x, 0) = static_cast<uint8_t>(A(x, dw));
+    ev.c2.at(x, 0) = static_cast<uint8_t>(c2);
+    ev.cmax.at(x, 0) = static_cast<uint8_t>(hi);
+    ev.lr.at(x, 0) = static_cast<uint8_t>(lr);
+    for (int j = 0; j < 5; ++j) ev.band[static_cast<size_t>(j)].at(x, 0) = at(x, dw - 2 + j);
+  }
+  return ev;
+}
+
+}  // namespace
+
+TEST_CASE("evidence_line equals a per-level reading of section 9.0 on random lines", "[unit][output]") {
+  std::mt19937 rng(41);
+  for (const int nd : {2, 3, 4, 5, 65, 97, 128, 200})
+    for (const int w : {1, 3, 37, 129, 333})
+      for (const int range : {4, 64, 256}) {  // few distinct costs (ties) .. the whole byte
+        std::vector<uint8_t> agg(static_cast<size_t>(w) * nd);
+        for (auto& c : agg) c = static_cast<uint8_t>(rng() % range);
+        if (range == 256 && w > 3) agg[5] = 255, agg[static_cast<size_t>(w - 1) * nd] = 0;  // extremes
+        DpLine line;
+        line.match.resize(static_cast<size_t>(w));
+        for (auto& m : line.match) m = (rng() % 3 == 0) ? -1 : static_cast<int>(rng() % nd);
+        dp_fill(line.match, line.disp);
+        Evidence ev(w, 1);
+        evidence_line(agg.data(), w, nd, line, 0, ev);
+        const Evidence want = evidence_reference(agg, w, nd, line);
+        INFO("levels " << nd << " width " << w << " cost range " << range);
+        CHECK(ev.d.px == want.d.px);
+        CHECK(ev.matched.px == want.matched.px);
+        CHECK(ev.gap.px == want.gap.px);
+        CHECK(ev.fill_bg.px == want.fill_bg.px);
+        CHECK(ev.cm.px == want.cm.px);
+        CHECK(ev.c0.px == want.c0.px);
+        CHECK(ev.cp.px == want.cp.px);
+        CHECK(ev.dw.px == want.dw.px);
+        CHECK(ev.c1.px == want.c1.px);
+        CHECK(ev.c2.px == want.c2.px);
+        CHECK(ev.cmax.px == want.cmax.px);
+        CHECK(ev.lr.px == want.lr.px);
+        for (size_t j = 0; j < 5; ++j) CHECK(ev.band[j].px == want.band[j].px);
+      }
+}
+
 TEST_CASE("background fill never paints a span nearer than its neighbours' minimum", "[unit][output]") {
   // unmatched pixels: left of the first match (foreground 9), between 9 and 7, right of the last
   const std::vector<int> match = {-1, -1, 9, 9, -1, -1, 7, 7, 2, 2, -1};
