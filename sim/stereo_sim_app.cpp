@@ -42,11 +42,11 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
     return 0;
   }
   check_wave_options(info, opt);
-  const SimCamera cam = resolve_camera(opt, hw);  // before the plan: a scene's calib.json is its --calib
   tools::quiet_opencv();
   // every file and folder before any work: a bad one simulates nothing, writes nothing
   check_disp_file_option(opt);
   check_files(opt);
+  const SimCamera cam = resolve_camera(opt, hw);  // before the plan: a scene's calib.json is its --calib
   RegisterPlan plan = plan_registers(opt, hw);
   const SimInput in = open_inputs(opt, plan.width, plan.height);
   fit_plan_to_input(plan, in.frames.size());

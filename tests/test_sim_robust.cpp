@@ -299,8 +299,8 @@ TEST_CASE("Ctrl-C during a wave dump removes the partial wave file and ends the 
   const pid_t pid = fork();
   REQUIRE(pid >= 0);
   if (pid == 0) {
-    // A long window: every cycle of 400 frames (minutes), so that the signal lands mid-dump.
-    const std::string cmd = std::string("exec \"") + SM_STEREO_SIM_SMALL + "\" --frames 400 --vcd \"" + wave.string() +
+    // A long window: every cycle of 4000 frames (minutes), so that the signal lands mid-dump.
+    const std::string cmd = std::string("exec \"") + SM_STEREO_SIM_SMALL + "\" --frames 4000 --vcd \"" + wave.string() +
                             "\" --vcd-cycles 100000000 --out \"" + (dir / "out").string() + "\" 2> \"" + err.string() +
                             "\" > /dev/null";
     execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
@@ -309,7 +309,8 @@ TEST_CASE("Ctrl-C during a wave dump removes the partial wave file and ends the 
   bool seen = false;
   for (int i = 0; i < 600 && !seen; ++i) {
     std::error_code ec;
-    seen = fs::file_size(part, ec) > 0 && !ec && sm::test::slurp(err).find("simulated frame") != std::string::npos;
+    // the first progress line (after 3 s: "stereo_sim: frame F/N row ...") is out
+    seen = fs::file_size(part, ec) > 0 && !ec && sm::test::slurp(err).find("frame ") != std::string::npos;
     if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   CHECK(seen);
