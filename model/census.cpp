@@ -135,19 +135,23 @@ namespace {
 
 // popcount(a ^ b) of all four words: exact for any input vector. The sum is taken
 // modulo 256 (an 8-bit H) before the shift, as H >> COST_SHIFT of an 8-bit volume.
-void cost_row_portable(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {
-  for (int x = 0; x < w; ++x) {
-    uint8_t* o = out + static_cast<size_t>(x) * nd;
-    const CensusVec a = l[x];
-    const int dmax = std::min(nd - 1, x);
-    for (int d = 0; d <= dmax; ++d) {
-      const CensusVec& b = rr[x - d];
-      int s = 0;
-      for (int i = 0; i < 4; ++i) s += __builtin_popcountll(a[i] ^ b[i]);
-      o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
-    }
-    for (int d = dmax + 1; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
+// Levels d .. nd-1 of left pixel x one at a time, the levels without a right pixel (x - d
+// < 0) at the census bits cb. Always inlined, so that a kernel's tail is compiled with the
+// kernel's instruction set (popcnt).
+__attribute__((always_inline)) inline void cost_levels_scalar(const CensusVec* l, const CensusVec* rr, int x, int d,
+                                                              int nd, uint8_t cb, int shift, uint8_t* o) {
+  const int dn = std::min(nd, x + 1);  // levels with x - d >= 0
+  for (; d < dn; ++d) {
+    const CensusVec &p = l[x], &q = rr[x - d];
+    int s = 0;
+    for (size_t i = 0; i < 4; ++i) s += __builtin_popcountll(p[i] ^ q[i]);
+    o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
   }
+  for (; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
+}
+
+void cost_row_portable(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {
+  for (int x = 0; x < w; ++x) cost_levels_scalar(l, rr, x, 0, nd, cb, shift, out + static_cast<size_t>(x) * nd);
 }
 
 #if defined(SM_X86_DISPATCH)
@@ -196,13 +200,7 @@ __attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, co
       s = _mm_and_si128(_mm_srl_epi16(s, sh), keep);
       _mm_storel_epi64(reinterpret_cast<__m128i*>(o + d), s);
     }
-    for (; d < dn; ++d) {  // the last levels one at a time
-      const CensusVec &p = l[x], &q = rr[x - d];
-      int s = 0;
-      for (size_t i = 0; i < 4; ++i) s += __builtin_popcountll(p[i] ^ q[i]);
-      o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
-    }
-    for (; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
+    cost_levels_scalar(l, rr, x, d, nd, cb, shift, o);  // the last levels one at a time
   }
 }
 #endif
@@ -239,13 +237,7 @@ __attribute__((target("avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx512vnni"))) 
       s = _mm_and_si128(_mm_srl_epi16(s, sh), keep);
       _mm_storel_epi64(reinterpret_cast<__m128i*>(o + d), s);
     }
-    for (; d < dn; ++d) {  // the last levels one at a time
-      const CensusVec &p = l[x], &q = rr[x - d];
-      int s = 0;
-      for (size_t i = 0; i < 4; ++i) s += __builtin_popcountll(p[i] ^ q[i]);
-      o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
-    }
-    for (; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
+    cost_levels_scalar(l, rr, x, d, nd, cb, shift, o);  // the last levels one at a time
   }
 }
 #endif
