@@ -84,7 +84,9 @@ add_library(sm_stereo_sim_app STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_check.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_report.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_outputs.cpp
-  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_pictures.cpp)
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_pictures.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_frame_source.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_shards.cpp)
 target_include_directories(sm_stereo_sim_app PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR})
 target_link_libraries(sm_stereo_sim_app PUBLIC sm_model sm_toolio sm_verilated fmt::fmt
                       PRIVATE CLI11::CLI11 nlohmann_json::nlohmann_json ${OpenCV_LIBS})

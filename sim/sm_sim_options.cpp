@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "toolio/sm_reg_options.hpp"
+#include "sm_sim_shards.hpp"
 #include "sm_wave_names.hpp"
 
 namespace fs = std::filesystem;
@@ -37,9 +38,10 @@ SizeOptions add_input_options(CLI::App& app, const HwConfig& hw, SimOptions& o) 
   app.add_option("--video", o.video, "side-by-side stereo video (left half, right half)");
   app.add_option("--scene", o.scene_dir, "scene folder (left.png right.png [gt.png scale.txt nonocc.png])")
       ->capture_default_str();
-  app.add_option("--frames", o.frames, "frames to stream (a pair or scene is repeated)")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
+  app.add_option("--frames", o.frames,
+                 "frames to stream: at most this many of a sequence or video (default: all of them); a pair or "
+                 "scene is repeated (default 2)")
+      ->check(CLI::Range(1, 100000));
   // The active size's real limits: MIN_WIDTH..MAX_WIDTH and 16..MAX_HEIGHT (docs/registers.md).
   SizeOptions s;
   s.width = app.add_option("--width", o.width, "active width")
@@ -137,6 +139,8 @@ std::optional<int> parse_sim_options(int argc, char** argv, const ModelInfo& inf
   add_camera_options(*app, info.hw, opt);
   add_wave_options(*app, info, opt);
   add_output_options(*app, opt);
+  add_shard_options(*app, opt.shard);
+  opt.shard.argv.assign(argv, argv + argc);
   try {
     app->parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -152,6 +156,7 @@ std::optional<int> parse_sim_options(int argc, char** argv, const ModelInfo& inf
   // reg_opts reads its options' counts: the app stays alive with it
   opt.apply_reg_options = [app, reg_opts](const HwConfig& hw, Regs& r) { reg_opts->apply(hw, r); };
   if (opt.disp_file.empty()) opt.disp_file = opt.out_dir + "/disparity.pfm";
+  if (const auto rc = check_shard_options(opt)) return rc;
   if (opt.wave_depth > 0 && opt.wave_scopes.empty()) {
     fmt::print(stderr, "stereo_sim: error: --wave-depth needs --wave-scope\n");
     return 2;

@@ -1,6 +1,10 @@
 // stereo_sim's lossless disparity files (--disp-file, --disp-each-frame).
 #pragma once
 
+#include <cstddef>
+#include <string>
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "sm_sim.hpp"
@@ -8,8 +12,27 @@
 
 namespace sm::simapp {
 
-// opt.disp_file of the last frame's `disp` (float disparity) and, with
-// --disp-each-frame, <stem>_NNN<ext> of every frame of `res`.
-void write_disparity_files(const SimOptions& opt, const SimResult& res, const cv::Mat& disp);
+// opt.disp_file of the last frame's `disp` (float disparity).
+void write_disparity_files(const SimOptions& opt, const cv::Mat& disp);
+
+// <stem>_NNN<ext> beside `disp_file`: frame NNN's disparity file.
+std::string frame_disparity_path(const std::string& disp_file, size_t f);
+
+// --disp-each-frame: every frame's disparity file, written as the frame leaves the RTL;
+// removed again unless keep() is called (a failed run leaves none behind).
+class FrameFiles {
+ public:
+  explicit FrameFiles(std::string disp_file) : disp_file_(std::move(disp_file)) {}
+  FrameFiles(const FrameFiles&) = delete;
+  FrameFiles& operator=(const FrameFiles&) = delete;
+  ~FrameFiles();
+  void write(size_t f, const DispImage& disp);
+  void keep() { kept_ = true; }
+
+ private:
+  std::string disp_file_;
+  std::vector<std::string> written_;
+  bool kept_ = false;
+};
 
 }  // namespace sm::simapp

@@ -66,9 +66,9 @@ void write_disparity_pictures(const std::string& dir, const cv::Mat& disp, const
 
 void write_panel(const std::string& dir, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
                  const ModelCheck& check, const std::vector<ObjectPacket>& packets, const cv::Mat& disp, double bad1) {
-  const auto& frame = in.frames.back();
+  const auto& frame = check.last_input;
   const PipelineResult m =
-      !check.done ? run_pipeline(frame.first, frame.second, hw, plan.regs.back(), false) : check.model.back();
+      !check.last_model ? run_pipeline(frame.first, frame.second, hw, plan.regs.back(), false) : *check.last_model;
   const cv::Mat colour = tools::disp_to_colour(disp, hw.disp);
   cv::Mat objects = colour.clone();
   const std::vector<Object>& boxes = packets.empty() ? m.objects.objects : packets.back().objects;

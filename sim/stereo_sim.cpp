@@ -140,7 +140,7 @@ bool run_model(const RunRequest& req, RunResult& out) {
     fmt::print(stderr, "\rsimulated frame {}/{} ({:.1f} s)", done, total, s);
     if (done == total) fmt::print(stderr, "\n");
   };
-  out.res = sim.run(*req.frames, req.width, req.height, req.timing, vw, 0, req.host);
+  out.res = sim.run(req.feed, req.width, req.height, req.timing, vw, 0, req.host);
   out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   tb.close_trace();
   if (!part.path.empty()) {

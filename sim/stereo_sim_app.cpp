@@ -25,6 +25,7 @@
 #include "sm_sim_pictures.hpp"
 #include "sm_sim_regplan.hpp"
 #include "sm_sim_report.hpp"
+#include "sm_sim_shards.hpp"
 #include "sm_sim_simulate.hpp"
 
 namespace sm::simapp {
@@ -40,19 +41,28 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   }
   check_wave_options(info, opt);
   tools::quiet_opencv();
-  // registers before any input is read: a bad file simulates nothing
+  if (!opt.shard.merge.empty()) return merge_shard_dirs(opt.shard.merge, opt.out_dir, opt.quiet);
+  // the input's frames counted (none read): a sequence or video runs all of them unless
+  // --frames limits it; registers before any frame is read: a bad file simulates nothing
+  SimInput in = open_inputs(opt);
+  opt.frames = static_cast<int>(in.nframes);
   RegisterPlan plan = plan_registers(opt, hw);
   check_disp_file_option(opt);
-  const SimInput in = open_inputs(opt, plan.width, plan.height);
-  fit_plan_to_input(plan, in.frames.size());
+  fit_plan_to_input(plan, in.nframes);
+  if (opt.shard.jobs > 1) return run_jobs(opt, in.nframes);
+  fit_inputs(opt, plan.width, plan.height, in);
+  if (opt.shard.given) start_shard(opt, hw, plan, in);
   const SimRun run = simulate(opt, hw, in, plan, run_model);
   if (!run.ran) return 0;  // --wave-scopes
-  const ModelCheck check = check_against_model(opt.no_check, hw, in, plan, run.out.res);
-  const cv::Mat disp = tools::disp_to_float(run.out.res.frames.back());
-  const SimReport rep = make_report(opt, info, in, plan, run, check, disp);
+  if (in.source->resized() && !opt.quiet)
+    fmt::print(stderr, "note: input resized to the active size {}x{}\n", plan.width, plan.height);
+  const ModelCheck& check = run.check;
+  const cv::Mat disp = tools::disp_to_float(run.last);
+  SimReport rep = make_report(opt, info, in, plan, run, check, disp);
+  if (opt.shard.given) add_shard_info(opt, in, rep.json);
   std::filesystem::create_directories(opt.out_dir);
   write_disparity_pictures(opt.out_dir, disp, hw);
-  write_disparity_files(opt, run.out.res, disp);
+  write_disparity_files(opt, disp);
   write_panel(opt.out_dir, hw, in, plan, check, rep.packets, disp, rep.json.value("bad1_percent", 0.0));
   tools::write_text_atomic(opt.out_dir + "/report.json", rep.json.dump(2) + "\n");
   print_report(opt, hw, in, plan, run, check, rep);
