@@ -16,6 +16,7 @@ namespace sm::simapp {
 // --merge-shards DIR...
 struct ShardOptions {
   int jobs = 1;
+  int list_shards = 0;        // --list-shards N: print the N shards' ranges and exit
   bool given = false;         // --frame-range: this process simulates frames first..end-1
   std::string range;          // --frame-range as given
   size_t first = 0, end = 0;  // end 0: to the last frame

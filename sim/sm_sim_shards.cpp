@@ -30,6 +30,10 @@ void add_shard_options(CLI::App& app, ShardOptions& o) {
   app.add_option("--frame-range", o.range,
                  "A:B: simulate frames A..B-1 of the run only (a shard), from reset with the registers in force at "
                  "frame A; B empty: to the last frame");
+  app.add_option("--list-shards", o.list_shards,
+                 "print the frame ranges (A:B) of N shards of this run, one a line, after checking its inputs and "
+                 "registers, and exit (for tools/sm_farm.py)")
+      ->check(CLI::Range(1, 100000));
   app.add_option("--merge-shards", o.merge, "merge these shard folders (--frame-range runs of one input) into --out")
       ->expected(1, -1);
 }
@@ -68,8 +72,8 @@ std::optional<int> check_shard_options(SimOptions& opt) {
   if (s.given && !parse_range(s.range, s.first, s.end))
     return shard_error(fmt::format("--frame-range {}: expected A:B with 0 <= A < B (or A: to the end)", s.range));
   const bool parallel = s.jobs > 1 || s.given || !s.merge.empty();
-  if ((s.jobs > 1) + s.given + !s.merge.empty() > 1)
-    return shard_error("--jobs, --frame-range and --merge-shards exclude each other");
+  if ((s.jobs > 1) + s.given + !s.merge.empty() + (s.list_shards > 0) > 1)
+    return shard_error("--jobs, --frame-range, --list-shards and --merge-shards exclude each other");
   if (parallel && (!opt.wave_path.empty() || opt.wave_list_scopes || !opt.wave_list.empty()))
     return shard_error("--wave, --wave-scopes and --wave-list need a whole run (no --jobs, --frame-range)");
   if (s.given && fs::path(opt.disp_file).parent_path().lexically_normal() != fs::path(opt.out_dir).lexically_normal())
@@ -230,6 +234,12 @@ struct TmpDir {
 };
 
 }  // namespace
+
+std::vector<std::string> shard_ranges(size_t nframes, int shards) {
+  std::vector<std::string> r;
+  for (const Shard& s : split(nframes, shards, "")) r.push_back(fmt::format("{}:{}", s.first, s.end));
+  return r;
+}
 
 int run_jobs(const SimOptions& opt, size_t nframes) {
   const auto t0 = std::chrono::steady_clock::now();

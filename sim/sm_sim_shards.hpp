@@ -38,6 +38,9 @@ void start_shard(const SimOptions& opt, const HwConfig& hw, RegisterPlan& plan, 
 // report.json's "shard" entry: the frames it holds, the whole run's, the disparity file.
 void add_shard_info(const SimOptions& opt, const SimInput& in, nlohmann::json& rep);
 
+// The `shards` contiguous frame ranges of a run of `nframes` frames ("A:B", B exclusive).
+std::vector<std::string> shard_ranges(size_t nframes, int shards);
+
 // --jobs: the run's `nframes` frames in opt.shard.jobs shards, then merged into opt.out_dir.
 int run_jobs(const SimOptions& opt, size_t nframes);
 

@@ -49,6 +49,10 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   RegisterPlan plan = plan_registers(opt, hw);
   check_disp_file_option(opt);
   fit_plan_to_input(plan, in.nframes);
+  if (opt.shard.list_shards > 0) {
+    for (const auto& r : shard_ranges(in.nframes, opt.shard.list_shards)) fmt::print("{}\n", r);
+    return 0;
+  }
   if (opt.shard.jobs > 1) return run_jobs(opt, in.nframes);
   fit_inputs(opt, plan.width, plan.height, in);
   if (opt.shard.given) start_shard(opt, hw, plan, in);
