@@ -18,6 +18,7 @@ shows tasks done and the time left. Run it with the project's .venv python.
 import argparse
 import itertools
 import json
+import logging
 import os
 import shutil
 import subprocess
@@ -45,12 +46,29 @@ def run_task(args, log):
     return rc, last
 
 
+class TaskError(Exception):
+    """A program that ran and refused its input: the same on any worker, so not retried."""
+
+
 def run_checked(args, log, ok_codes=(0, 1)):
-    """run_task, raising on an exit code outside ok_codes (so the task fails, and is retried)."""
+    """run_task; an exit code outside ok_codes is a TaskError, a signal (the process was
+    killed, e.g. with its worker) an exception that Dask retries."""
     rc, last = run_task(args, log)
+    if rc < 0:
+        raise RuntimeError(f"{os.path.basename(args[0])} killed by signal {-rc}")
     if rc not in ok_codes:
-        raise RuntimeError(f"{os.path.basename(args[0])} exit {rc}: {last}")
+        raise TaskError(f"{os.path.basename(args[0])} exit {rc}: {last}")
     return rc
+
+
+def no_retry(fn):
+    """Runs fn on a worker; a TaskError comes back as a value (Dask retries only exceptions)."""
+    def task(*args):
+        try:
+            return fn(*args)
+        except TaskError as e:
+            return TaskError(str(e))
+    return task
 
 
 def make_client(opts):
@@ -58,7 +76,8 @@ def make_client(opts):
 
     if opts.scheduler:
         return Client(opts.scheduler), None
-    cluster = LocalCluster(n_workers=opts.workers, threads_per_worker=1, processes=True, dashboard_address=None)
+    cluster = LocalCluster(n_workers=opts.workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                           silence_logs=logging.CRITICAL)
     return Client(cluster), cluster
 
 
@@ -70,14 +89,16 @@ def run_all(opts, tasks):
     try:
         futures = {}
         for name, fn, args in tasks:
-            fut = client.submit(fn, *args, retries=opts.retries, pure=False, key=f"{TOOL}-{name}-{os.getpid()}")
+            fut = client.submit(no_retry(fn), *args, retries=opts.retries, pure=False, key=f"{TOOL}-{name}-{os.getpid()}")
             futures[fut] = name
         results, t0, done = {}, time.monotonic(), 0
         for fut in as_completed(list(futures)):
             name = futures[fut]
             try:
                 results[name] = fut.result()
-            except Exception as e:  # a task failed after its retries: no output
+                if isinstance(results[name], TaskError):
+                    raise results[name]
+            except Exception as e:  # refused, or failed after its retries: no output
                 for other in futures:
                     other.cancel()
                 raise FarmError(f"task {name} failed: {e}")
