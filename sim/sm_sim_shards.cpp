@@ -328,66 +328,87 @@ Copies output_files(const std::vector<ShardReport>& v, const std::string& out_di
   return c;
 }
 
-// The whole run's report: shard 0's, with every shard's per-frame results and checks.
-json merge_reports(const std::vector<ShardReport>& v, const std::string& disp_file, double wall) {
-  json m = v.front().rep;
-  m.erase("shard");
-  json frames = json::array(), errors = json::array(), shards = json::array();
+// The shards' checks: per-frame results in order, mismatches summed, the first one's
+// description, framing and bit-exactness over all.
+void merge_checks(const std::vector<ShardReport>& v, json& m) {
+  json frames = json::array();
   int mismatches = 0;
-  bool framing = true, sched_ok = true, checked = true, exact = true;
-  uint64_t writes = 0;
-  double cycles = 0, max_wall = 0;
+  bool framing = true, checked = true, exact = true;
+  m.erase("first_mismatch");
+  m.erase("framing_error");
   for (const auto& s : v) {
     const json& r = s.rep;
     for (const auto& fr : r["frame_results"]) frames.push_back(fr);
     mismatches += r.value("mismatches", 0);
-    if (r.contains("first_mismatch") && !m.contains("first_mismatch_set")) {
-      m["first_mismatch"] = r["first_mismatch"];
-      m["first_mismatch_set"] = true;
-    }
-    if (!r.value("framing_ok", true)) {
-      if (framing) m["framing_error"] = r.value("framing_error", "");
-      framing = false;
-    }
+    if (r.contains("first_mismatch") && !m.contains("first_mismatch")) m["first_mismatch"] = r["first_mismatch"];
+    if (!r.value("framing_ok", true) && framing) m["framing_error"] = r.value("framing_error", "");
+    framing = framing && r.value("framing_ok", true);
     checked = checked && !r["bit_exact"].is_null();
     exact = exact && r["bit_exact"].is_boolean() && r["bit_exact"].get<bool>();
-    const json& rs = r["register_schedule"];
-    writes += rs.value("axi_writes", uint64_t{0});
-    sched_ok = sched_ok && rs.value("ok", true);
-    if (rs.contains("errors"))
-      for (const auto& e : rs["errors"]) errors.push_back(e);
-    const double w = r.value("sim_wall_seconds", 0.0);
-    cycles += r.value("sim_cycles_per_second", 0.0) * w;
-    max_wall = std::max(max_wall, w);
-    shards.push_back({{"first", s.first}, {"count", s.count}, {"sim_wall_seconds", w}, {"folder", s.dir}});
   }
-  m.erase("first_mismatch_set");
-  const json& last = v.back().rep;
-  const size_t total = v.front().total, n0 = v.front().count;
-  m["frames"] = total;
   m["frame_results"] = frames;
   m["mismatches"] = mismatches;
   m["bit_exact"] = checked ? json(exact && mismatches == 0) : json(nullptr);
   m["framing_ok"] = framing;
-  m["register_schedule"]["axi_writes"] = writes;
-  m["register_schedule"]["ok"] = sched_ok;
-  m["register_schedule"].erase("errors");
-  if (!errors.empty()) m["register_schedule"]["errors"] = errors;
+}
+
+// The register schedule: the writes of the shards' schedules, their errors.
+void merge_schedule(const std::vector<ShardReport>& v, json& m) {
+  json errors = json::array();
+  uint64_t writes = 0;
+  bool ok = true;
+  for (const auto& s : v) {
+    const json& rs = s.rep["register_schedule"];
+    writes += rs.value("axi_writes", uint64_t{0});
+    ok = ok && rs.value("ok", true);
+    if (rs.contains("errors"))
+      for (const auto& e : rs["errors"]) errors.push_back(e);
+  }
+  json& ms = m["register_schedule"];
+  ms["axi_writes"] = writes;
+  ms["ok"] = ok;
+  ms.erase("errors");
+  if (!errors.empty()) ms["errors"] = errors;
+}
+
+// The shards' simulation times; `wall` > 0: the whole run's, else the longest shard's.
+void merge_speed(const std::vector<ShardReport>& v, double wall, json& m) {
+  json shards = json::array();
+  double cycles = 0, max_wall = 0;
+  for (const auto& s : v) {
+    const double w = s.rep.value("sim_wall_seconds", 0.0);
+    cycles += s.rep.value("sim_cycles_per_second", 0.0) * w;
+    max_wall = std::max(max_wall, w);
+    shards.push_back({{"first", s.first}, {"count", s.count}, {"sim_wall_seconds", w}, {"folder", s.dir}});
+  }
+  m["shards"] = shards;
+  wall = wall > 0 ? wall : max_wall;
+  m["sim_wall_seconds"] = wall;
+  m["sim_frames_per_second"] = static_cast<double>(v.front().total) / wall;
+  m["sim_cycles_per_second"] = cycles / wall;
+}
+
+// The whole run's report: shard 0's (its timing figures: frames streamed back to back),
+// every shard's per-frame results and checks, the last shard's status and accuracy.
+json merge_reports(const std::vector<ShardReport>& v, const std::string& disp_file, double wall) {
+  json m = v.front().rep;
+  m.erase("shard");
+  m["frames"] = v.front().total;
+  merge_checks(v, m);
+  merge_schedule(v, m);
+  const json& last = v.back().rep;
   m["status"] = last["status"];
   for (const char* k : {"bad1_percent", "ground_truth"}) {
     m.erase(k);
     if (last.contains(k)) m[k] = last[k];
   }
+  const size_t n0 = v.front().count;
   m["timing_frames"] = {{"first", 0},
                         {"count", n0},
                         {"note", fmt::format("the timing figures are those of frames 0..{}, streamed back to back in "
                                              "the first of {} shards; the status is read back after the last",
                                              n0 - 1, v.size())}};
-  m["shards"] = shards;
-  wall = wall > 0 ? wall : max_wall;
-  m["sim_wall_seconds"] = wall;
-  m["sim_frames_per_second"] = static_cast<double>(total) / wall;
-  m["sim_cycles_per_second"] = cycles / wall;
+  merge_speed(v, wall, m);
   m["disparity_file"] = disp_file;
   return m;
 }
