@@ -81,8 +81,9 @@ def make_client(opts):
     return Client(cluster), cluster
 
 
-def run_all(opts, tasks):
-    """tasks: list of (name, function, args). Runs them as Dask tasks; results by name."""
+def run_all(opts, tasks, noun="tasks"):
+    """tasks: list of (name, function, args). Runs them as Dask tasks; results by name.
+    Progress: one line of `noun` done and the time left."""
     from distributed import as_completed
 
     client, cluster = make_client(opts)
@@ -107,7 +108,7 @@ def run_all(opts, tasks):
                 el = time.monotonic() - t0
                 left = el / done * (len(tasks) - done)
                 end = "\n" if done == len(tasks) else ""
-                print(f"\rtasks done {done}/{len(tasks)} ({el:.1f} s, about {left:.0f} s left)", end=end,
+                print(f"\r{noun} done {done}/{len(tasks)} ({el:.1f} s, about {left:.0f} s left)", end=end,
                       file=sys.stderr, flush=True)
         return results
     finally:
@@ -159,7 +160,7 @@ def cmd_shards(opts):
             tasks.append((f"shard{i}", run_checked, (args, d + ".log")))
         if not opts.quiet:
             print(f"{TOOL}: {len(ranges)} shards ({' '.join(ranges)})", file=sys.stderr)
-        run_all(opts, tasks)
+        run_all(opts, tasks, "shards")
         merged = os.path.join(tmp, "merged")
         dirs = [os.path.join(tmp, f"shard_{i:03d}") for i in range(len(ranges))]
         m = subprocess.run([opts.stereo_sim, "--merge-shards", *dirs, "--out", merged], capture_output=True, text=True)
@@ -226,7 +227,7 @@ def cmd_accuracy(opts):
     try:
         tasks = [(s, sim_scene, (opts.stereo_sim, os.path.join(opts.dataset, s), os.path.join(tmp, f"rtl_{s}"),
                                  opts.sim_args)) for s in scenes]
-        res = run_all(opts, tasks)
+        res = run_all(opts, tasks, "scenes")
         lines = ["| scene | RTL bad-1.0 % | bit-exact vs model |", "|---|---|---|"]
         for s in scenes:
             r = res[s]
@@ -293,7 +294,7 @@ def cmd_sweep(opts):
             else:
                 tasks.append((f"p{i}", model_point, (opts.sm_evaluate, opts.dataset, regs,
                                                       os.path.join(tmp, f"model_{i:03d}.json"), opts.tool_args)))
-        res = run_all(opts, tasks)
+        res = run_all(opts, tasks, "runs")
         rows, lines = [], ["| " + " | ".join(k for k, _ in grid) + " | mean bad-1.0 % |",
                            "|" + "---|" * (len(grid) + 1)]
         for i, p in enumerate(points):
