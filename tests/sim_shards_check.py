@@ -99,6 +99,31 @@ def failing_shard(sim, seq, tmp):
     check(not left, f"a failing shard: no shard folders left ({left})")
 
 
+def farm_scenes(o, tmp):
+    """sm_farm.py accuracy on two scenes equals stereo_sim run on each; a refused register
+    value in a sweep is one error line, exit 2 and no output."""
+    ds = os.path.join(tmp, "dataset")
+    os.makedirs(ds)
+    for name in ("plain", "many"):
+        shutil.copytree(os.path.join(tmp, name), os.path.join(ds, name))
+    acc = os.path.join(tmp, "acc")
+    run([sys.executable, o.farm, "--workers", "2", "-q", "accuracy", ds, "--stereo-sim", o.stereo_sim, "--out", acc])
+    got = {s["name"]: s for s in json.load(open(os.path.join(acc, "summary.json")))["scenes"]}
+    for name in ("plain", "many"):
+        d = os.path.join(tmp, f"direct_{name}")
+        run([o.stereo_sim, "--scene", os.path.join(ds, name), "--frames", "1", "-q", "--out", d])
+        want = json.load(open(os.path.join(d, "report.json")))
+        check(got[name]["bad1_percent"] == want["bad1_percent"] and got[name]["bit_exact"] is True,
+              f"sm_farm.py accuracy, scene {name}: bad-1.0 {got[name]['bad1_percent']} as stereo_sim's")
+    bad = os.path.join(tmp, "sweep_bad")
+    p = subprocess.run([sys.executable, o.farm, "--workers", "2", "-q", "sweep", ds, "--rtl", o.stereo_sim, "--grid",
+                        "occ=8,999", "--out", bad], capture_output=True, text=True)
+    lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
+    check(p.returncode == 2 and len(lines) == 1 and "'occ' = 999" in lines[0],
+          f"sm_farm.py sweep with occ=999: exit 2, one error line ({p.returncode}, {lines})")
+    check(not os.path.exists(bad), "sm_farm.py sweep with occ=999: no output folder")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--mode", choices=["jobs", "farm"], required=True)
@@ -121,6 +146,7 @@ def main():
         run([sys.executable, o.farm, "--workers", "2", "-q", "shards", "--stereo-sim", o.stereo_sim, "--shards", "2",
              "--out", par, "--", *args])
         compare(serial, par, "sm_farm.py shards, 2 workers")
+        farm_scenes(o, o.tmp)
         left = [n for n in os.listdir(o.tmp) if ".farm" in n]
         check(not left, f"no temporary folders left ({left})")
     if FAILS:
