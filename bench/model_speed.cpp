@@ -1,13 +1,15 @@
-// bench_model_speed: single-thread run time of the reference model (sm::run_pipeline,
-// per stage) against OpenCV's StereoSGBM and the census StereoBinarySGBM (contrib) on
-// the same 320x240 pair with the same number of levels, in the same run; medians over
-// --runs repetitions, interleaved so machine load hits every method alike.
+// bench_model_speed: run time of the reference model (sm::run_pipeline, per stage) on
+// one thread and on --threads threads against OpenCV's StereoSGBM and the census
+// StereoBinarySGBM (contrib), both on one thread, on the same 320x240 pair with the
+// same number of levels, in the same run; medians over --runs repetitions, interleaved
+// so machine load hits every method alike.
 // docs/performance.md, "Model speed".
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
@@ -16,7 +18,7 @@
 #include <opencv2/stereo.hpp>
 
 #include "toolio/sm_io.hpp"
-#include "pipeline.hpp"
+#include "frame_stages.hpp"
 
 namespace {
 
@@ -42,15 +44,30 @@ uint64_t fnv(const std::vector<T>& v) {
   return h;
 }
 
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+// Wall time and the CPU time of the whole process (every thread) since construction: on a
+// loaded machine the CPU time of a one-thread method barely moves while its wall time does.
+double cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+struct Lap {
+  Clock::time_point wall = Clock::now();
+  double cpu = cpu_ms();
+  // Appends the wall ms to t[name] and the CPU ms to t["cpu." + name].
+  void to(std::map<std::string, std::vector<double>>& t, const std::string& name) const {
+    t[name].push_back(std::chrono::duration<double, std::milli>(Clock::now() - wall).count());
+    t["cpu." + name].push_back(cpu_ms() - cpu);
+  }
+};
 
 int run(int argc, char** argv) {
   std::string scene_dir = SM_BENCH_DEFAULT_SCENE, json_path;
-  int runs = 5, levels = 128, width = 320, height = 240;
+  int runs = 5, levels = 128, width = 320, height = 240, threads = 2;
   int census = 15, sw = 5, cost_shift = 2, occ = -1;
   std::vector<int> sw_table;
   bool no_opencv = false;
-  CLI::App app{"Model speed vs OpenCV StereoSGBM / StereoBinarySGBM (single thread, medians)"};
+  CLI::App app{"Model speed (1 and N threads) vs OpenCV StereoSGBM / StereoBinarySGBM (1 thread), medians"};
   app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")->capture_default_str();
   app.add_option("--runs", runs, "repetitions (median)")->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--levels", levels, "disparity levels of every method (even, 4..254)")->capture_default_str();
@@ -66,6 +83,9 @@ int run(int argc, char** argv) {
                  "rest 0; default: the register defaults)")
       ->delimiter(',');
   app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")->check(CLI::Range(0, 255));
+  app.add_option("--threads", threads, "threads of the model's second timing (the first is 1 thread)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   app.add_option("--json", json_path, "write the medians as JSON");
   app.add_flag("--no-opencv", no_opencv, "time the model only");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
@@ -118,30 +138,36 @@ int run(int argc, char** argv) {
     h_dp = fnv(res.dp.px);
     h_post = fnv(res.post.px);
     // run_pipeline streams rows through the stage kernels; the whole-frame stage
-    // functions (what the RTL block tests compare against) must give the same bits.
-    const sm::CostVolume raw = sm::hamming_cost(sm::census_transform(res.rl, hw), sm::census_transform(res.rr, hw), hw);
-    const sm::CostVolume agg = sm::sw_aggregate(raw, res.rl, regs.sw_table, hw);
-    const sm::DispImage dp = sm::trellis_dp(agg, regs.occ, hw);
-    if (!(raw == res.raw) || !(agg == res.agg) || dp != res.dp || sm::post_process(dp, regs, hw) != res.post)
-      throw sm::tools::ToolError("run_pipeline and the stage functions differ");
+    // functions (what the RTL block tests compare against), composed in the same order
+    // by sm::run_frame_stages, must give the same bits, with one thread and with N.
+    for (int n : {1, threads}) {
+      const sm::PipelineResult st = sm::run_frame_stages(li, ri, hw, regs, n);
+      if (!(st.raw == res.raw) || !(st.agg == res.agg) || st.dp != res.dp || st.post != res.post)
+        throw sm::tools::ToolError(fmt::format("run_pipeline and the stage functions ({} threads) differ", n));
+    }
   }
   cv::Mat d;
   for (int k = 0; k < runs; ++k) {
-    auto t0 = Clock::now();
+    Lap lap;
     const sm::PipelineResult res = sm::run_pipeline(li, ri, hw, regs, false);
-    t["model"].push_back(ms_since(t0));
+    lap.to(t, "model");
     if (k == 0)
       for (const auto& [n, ms] : res.stage_ms) stage_order.push_back(n);
     if (fnv(res.dp.px) != h_dp || fnv(res.post.px) != h_post)
       throw sm::tools::ToolError("model output differs between runs");
     for (const auto& [n, ms] : res.stage_ms) t["model." + n].push_back(ms);
+    lap = Lap{};
+    const sm::PipelineResult rn = sm::run_pipeline(li, ri, hw, regs, false, threads);
+    lap.to(t, "model_mt");
+    if (fnv(rn.dp.px) != h_dp || fnv(rn.post.px) != h_post)
+      throw sm::tools::ToolError(fmt::format("model output with {} threads differs from 1 thread", threads));
     if (no_opencv) continue;
-    t0 = Clock::now();
+    lap = Lap{};
     sgbm->compute(l, r, d);
-    t["sgbm"].push_back(ms_since(t0));
-    t0 = Clock::now();
+    lap.to(t, "sgbm");
+    lap = Lap{};
     bsgbm->compute(l, r, d);
-    t["binsgbm"].push_back(ms_since(t0));
+    lap.to(t, "binsgbm");
   }
 
   nlohmann::json js;
@@ -149,23 +175,43 @@ int run(int argc, char** argv) {
   js["size"] = fmt::format("{}x{}", width, height);
   js["levels"] = levels;
   js["runs"] = runs;
-  js["threads"] = 1;
+  js["threads"] = threads;
   js["fingerprint_raw"] = fmt::format("{:016x}", h_raw);
   js["fingerprint_agg"] = fmt::format("{:016x}", h_agg);
   js["fingerprint_dp"] = fmt::format("{:016x}", h_dp);
   js["fingerprint_post"] = fmt::format("{:016x}", h_post);
-  fmt::print("model speed: {} {}x{}, {} levels, 1 thread, median of {} runs (ms / frame)\n", scene_dir, width, height,
-             levels, runs);
-  fmt::print("| method | ms / frame | frames/s | vs model |\n|---|---|---|---|\n");
+  fmt::print("model speed: {} {}x{}, {} levels, median of {} runs (ms / frame), OpenCV on 1 thread\n", scene_dir, width,
+             height, levels, runs);
+  fmt::print(
+      "| method | ms / frame | frames/s | time vs model (1 thread) | CPU ms / frame (all threads) | CPU time vs model "
+      "(1 thread) |\n|---|---|---|---|---|---|\n");
+  const double mc = median(t["cpu.model"]);
   const double m = median(t["model"]);
-  for (const char* n : {"model", "sgbm", "binsgbm"}) {
+  for (const char* n : {"model", "model_mt", "sgbm", "binsgbm"}) {
     if (!t.count(n)) continue;
     const double v = median(t[n]);
-    const char* label = std::string(n) == "model"  ? "reference model (run_pipeline)"
-                        : std::string(n) == "sgbm" ? "OpenCV StereoSGBM (block 5)"
-                                                   : "OpenCV StereoBinarySGBM (census, block 9)";
-    fmt::print("| {} | {:.1f} | {:.2f} | {:.2f}x |\n", label, v, 1000.0 / v, v / m);
+    const std::string k = n;
+    const std::string label = k == "model"      ? "reference model (run_pipeline), 1 thread"
+                              : k == "model_mt" ? fmt::format("reference model (run_pipeline), {} threads", threads)
+                              : k == "sgbm"     ? "OpenCV StereoSGBM (block 5)"
+                                                : "OpenCV StereoBinarySGBM (census, block 9)";
+    const double c = median(t[std::string("cpu.") + n]);
+    fmt::print("| {} | {:.1f} | {:.2f} | {:.2f}x | {:.1f} | {:.2f}x |\n", label, v, 1000.0 / v, v / m, c, c / mc);
     js["ms"][n] = v;
+    js["cpu_ms"][n] = c;
+  }
+  const double scaling = m / median(t["model_mt"]);
+  js["scaling"] = scaling;
+  const double overhead = median(t["cpu.model_mt"]) / mc;
+  js["cpu_mt_vs_1"] = overhead;
+  fmt::print("\nmodel {} threads vs 1 thread: {:.2f}x faster (wall); CPU time of all threads {:.2f}x one thread's\n",
+             threads, scaling, overhead);
+  if (t.count("sgbm")) {
+    const double vs = m / median(t["sgbm"]);
+    js["model_vs_sgbm"] = vs;
+    const double vc = mc / median(t["cpu.sgbm"]);
+    js["model_vs_sgbm_cpu"] = vc;
+    fmt::print("model 1 thread / StereoSGBM time: {:.2f} wall, {:.2f} CPU (below 1: the model is faster)\n", vs, vc);
   }
   fmt::print("\nmodel stages (median ms):\n| stage | ms | share |\n|---|---|---|\n");
   for (const auto& n : stage_order) {

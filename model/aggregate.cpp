@@ -10,6 +10,11 @@
 
 #include "kernels.hpp"
 
+#if defined(SM_X86_DISPATCH)
+#include <immintrin.h>
+#endif
+#include "parallel.hpp"
+
 namespace sm {
 
 namespace detail {
@@ -50,8 +55,8 @@ typedef uint8_t VB16 __attribute__((vector_size(16)));  // 16 pixels (weight cod
 
 #if defined(SM_AGG_VECTORS)
 // 32 levels per byte vector (32 bytes). Costs are summed in bytes over groups of
-// neighbours with the same weight, then widened once per group, shifted by the weight's
-// exponent and added in 16 bits: one widening per `group` neighbours instead of a
+// neighbours with the same weight, then widened once per group and added in 16 bits (the
+// weights applied by doubling between weight classes): one widening per `group` neighbours instead of a
 // widening and a multiply per neighbour. The 16-bit sums are exact: the largest,
 // 4*SW*SW*CMAX (43904 at SW 7, CENSUS 15, COST_SHIFT 0; 49980 for any 8-bit input),
 // fits, and a byte sum is at most group * (255 >> COST_SHIFT) <= 255.
@@ -73,7 +78,15 @@ inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* m
   const VB zero = {};
   VH lo[NB], hi[NB];  // levels 0-7 and 16-23 / 8-15 and 24-31 of each block of 32
   for (int v = 0; v < NB; ++v) lo[v] = hi[v] = VH{};
-  for (int c = 0; c < 3; ++c) {
+  // Weights 4, 2, 1 in turn, the sums so far doubled between them (Horner: 2 * (2 * S4 +
+  // S2) + S1 = 4 S4 + 2 S2 + S1, exact in 16 bits as the final sum is), instead of a
+  // shift per group.
+  for (int c = 2; c >= 0; --c) {
+    if (c < 2)
+      for (int v = 0; v < NB; ++v) {
+        lo[v] += lo[v];
+        hi[v] += hi[v];
+      }
     uint64_t bits = mask[c];
     while (bits) {
       VB s[NB];
@@ -90,8 +103,8 @@ inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* m
                                              17, 32, 18, 32, 19, 32, 20, 32, 21, 32, 22, 32, 23, 32);
         const VB h = __builtin_shufflevector(s[v], zero, 8, 32, 9, 32, 10, 32, 11, 32, 12, 32, 13, 32, 14, 32, 15, 32,
                                              24, 32, 25, 32, 26, 32, 27, 32, 28, 32, 29, 32, 30, 32, 31, 32);
-        lo[v] += reinterpret_cast<const VH&>(l) << c;
-        hi[v] += reinterpret_cast<const VH&>(h) << c;
+        lo[v] += reinterpret_cast<const VH&>(l);
+        hi[v] += reinterpret_cast<const VH&>(h);
       }
     }
   }
@@ -105,6 +118,86 @@ inline void agg_block(const uint8_t* const* base, size_t xoff, const uint64_t* m
 }
 #endif  // SM_AGG_VECTORS
 
+// A = min((A_raw * RECIP(wsum) + 2048) >> 12, 2^CW - 1) of one pixel; the product needs 32 bits.
+inline void normalise(const uint16_t* su, int nd, uint32_t rec, uint32_t out_max, uint8_t* o) {
+  for (int d = 0; d < nd; ++d) {
+    const uint32_t v = (su[d] * rec + (1u << (kRecipShift - 1))) >> kRecipShift;
+    o[d] = static_cast<uint8_t>(std::min(v, out_max));
+  }
+}
+
+// The weight masks of centre x: window positions of weight 1, 2, 4 (codes 1, 2, 3).
+inline void weight_masks(uint64_t b0, uint64_t b1, uint64_t* m, uint32_t& rec) {
+  m[0] = b0 & ~b1;
+  m[1] = b1 & ~b0;
+  m[2] = b0 & b1;
+  rec = sw_recip(static_cast<uint32_t>(__builtin_popcountll(m[0]) + 2 * __builtin_popcountll(m[1]) +
+                                       4 * __builtin_popcountll(m[2])));
+}
+
+#if defined(SM_X86_DISPATCH)
+// Steps (2) and (3) of agg_row with AVX-512 (chosen at run time): 64 levels per vector, the
+// byte sums widened in order (vpmovzxbw of each half), the same sums as agg_block.
+#define SM_AVX512 __attribute__((target("avx512f,avx512bw")))
+template <int NB>
+SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, const uint64_t* mask, int group, int d0,
+                                   uint16_t* sum) {
+  __m512i lo[NB], hi[NB];
+  for (int v = 0; v < NB; ++v) lo[v] = hi[v] = _mm512_setzero_si512();
+  for (int c = 2; c >= 0; --c) {  // weights 4, 2, 1, doubled in between (as agg_block)
+    if (c < 2)
+      for (int v = 0; v < NB; ++v) {
+        lo[v] = _mm512_add_epi16(lo[v], lo[v]);
+        hi[v] = _mm512_add_epi16(hi[v], hi[v]);
+      }
+    uint64_t bits = mask[c];
+    while (bits) {
+      __m512i s[NB];
+      for (int v = 0; v < NB; ++v) s[v] = _mm512_setzero_si512();
+      for (int k = 0; k < group && bits; ++k) {
+        const uint8_t* q = base[__builtin_ctzll(bits)] + xoff + d0;
+        bits &= bits - 1;
+        for (int v = 0; v < NB; ++v) s[v] = _mm512_add_epi8(s[v], _mm512_loadu_si512(q + 64 * v));
+      }
+      for (int v = 0; v < NB; ++v) {
+        // (Zero-masked forms with every lane kept: the plain ones start from an undefined
+        // vector that GCC 12 warns about.)
+        lo[v] = _mm512_add_epi16(
+            lo[v], _mm512_maskz_cvtepu8_epi16(~__mmask32{0}, _mm512_maskz_extracti64x4_epi64(0xff, s[v], 0)));
+        hi[v] = _mm512_add_epi16(
+            hi[v], _mm512_maskz_cvtepu8_epi16(~__mmask32{0}, _mm512_maskz_extracti64x4_epi64(0xff, s[v], 1)));
+      }
+    }
+  }
+  for (int v = 0; v < NB; ++v) {
+    _mm512_storeu_si512(sum + 64 * v, lo[v]);
+    _mm512_storeu_si512(sum + 64 * v + 32, hi[v]);
+  }
+}
+
+SM_AVX512 void agg_pixels_avx512(const AggRow& a, const uint64_t* b0, const uint64_t* b1, const uint8_t* const* base,
+                                 uint16_t* su, uint8_t* out) {
+  const int nd = a.nd;
+  for (int x = 0; x < a.w; ++x) {
+    uint64_t m[3];
+    uint32_t rec;
+    weight_masks(b0[x], b1[x], m, rec);
+    const size_t xoff = static_cast<size_t>(x) * nd;
+    int d0 = 0;
+    for (; d0 + 128 <= nd; d0 += 128) agg_block512<2>(base, xoff, m, a.group, d0, su + d0);
+    for (; d0 < nd; d0 += 64) agg_block512<1>(base, xoff, m, a.group, d0, su + d0);
+    normalise(su, nd, rec, a.out_max, out + xoff);
+  }
+}
+#undef SM_AVX512
+
+bool agg_avx512() {
+  static const bool ok = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                         std::getenv("SM_NO_AVX512") == nullptr;  // (tests of the other kernels)
+  return ok;
+}
+#endif
+
 }  // namespace
 
 // One row in three steps: (1) the weight code of every (centre, window position) pair,
@@ -116,10 +209,13 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
   // (1) Window position q = (j + r) * side + (i + r) is neighbour (x + i, y + j) of
   // centre (x, y). Bit q of b0[x] / b1[x] is bit 0 / 1 of its weight code (0 outside
   // the image); SW <= 7 gives at most 49 positions per 64-bit word.
-  std::vector<uint64_t> bits(2 * static_cast<size_t>(w), 0);
+  thread_local std::vector<uint64_t> bits;  // scratch per thread (no allocation per row)
+  bits.assign(2 * static_cast<size_t>(w), 0);
   uint64_t* b0 = bits.data();
   uint64_t* b1 = b0 + w;
-  std::vector<uint8_t> code(static_cast<size_t>(w));
+  thread_local std::vector<uint8_t> code_buf;  // every entry written per window position
+  code_buf.resize(static_cast<size_t>(w));
+  uint8_t* const code = code_buf.data();
 #if defined(SM_AGG_CODE_SHUFFLE)
   // The code only depends on |dI| >> 3 (0..31): two 16-entry tables for a byte shuffle.
   VB16 tab0, tab1;
@@ -134,8 +230,8 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
     const uint8_t* nrow = left + static_cast<size_t>(y + j) * w;
     for (int i = -r; i <= r; ++i) {
       const int x0 = std::max(0, -i), x1 = std::min(w, w - i);  // neighbour inside
-      std::fill(code.begin(), code.begin() + x0, 0);
-      std::fill(code.begin() + x1, code.end(), 0);
+      std::fill(code, code + x0, 0);
+      std::fill(code + x1, code + w, 0);
       int x = x0;
 #if defined(SM_AGG_CODE_SHUFFLE)
       for (; x + 16 <= x1; x += 16) {
@@ -165,12 +261,14 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
 
   std::vector<uint16_t> sum(static_cast<size_t>(nd) + 128);  // A_raw, whole blocks
   uint16_t* su = sum.data();
+#if defined(SM_X86_DISPATCH)
+  if (agg_avx512()) return agg_pixels_avx512(a, b0, b1, base.data(), su, out);
+#endif
   for (int x = 0; x < w; ++x) {
     // (2) Window positions of weight 1, 2, 4 (codes 1, 2, 3) and the weight sum.
-    const uint64_t m[3] = {b0[x] & ~b1[x], b1[x] & ~b0[x], b0[x] & b1[x]};
-    const auto wsum = static_cast<uint32_t>(__builtin_popcountll(m[0]) + 2 * __builtin_popcountll(m[1]) +
-                                            4 * __builtin_popcountll(m[2]));
-    const uint32_t rec = sw_recip(wsum);
+    uint64_t m[3];
+    uint32_t rec;
+    weight_masks(b0[x], b1[x], m, rec);
     const size_t xoff = static_cast<size_t>(x) * nd;
     // (3) A_raw, widest blocks of levels first (each block is independent; the last one
     // may read past level nd - 1, into kCostPad, and those lanes are not used).
@@ -188,19 +286,14 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
       su[d] = static_cast<uint16_t>(s);
     }
 #endif
-    // A = min((A_raw * RECIP(wsum) + 2048) >> 12, 2^CW - 1); the product needs 32 bits.
-    uint8_t* o = out + xoff;
-    for (int d = 0; d < nd; ++d) {
-      const uint32_t v = (su[d] * rec + (1u << (kRecipShift - 1))) >> kRecipShift;
-      o[d] = static_cast<uint8_t>(std::min(v, a.out_max));
-    }
+    normalise(su, nd, rec, a.out_max, out + xoff);
   }
 }
 
 }  // namespace detail
 
 CostVolume sw_aggregate(const CostVolume& raw, const Image8& left, const std::array<uint8_t, 32>& table,
-                        const HwConfig& hw) {
+                        const HwConfig& hw, int threads) {
   if (raw.w != left.w || raw.h != left.h)
     throw std::invalid_argument(
         fmt::format("sw_aggregate: cost volume {}x{} but left image {}x{}", raw.w, raw.h, left.w, left.h));
@@ -217,12 +310,14 @@ CostVolume sw_aggregate(const CostVolume& raw, const Image8& left, const std::ar
 
   CostVolume out(w, h, nd);
   const size_t row = static_cast<size_t>(w) * nd;
-  std::vector<const uint8_t*> rows(static_cast<size_t>(2 * a.r + 1));
-  for (int y = 0; y < h; ++y) {
-    for (int j = -a.r; j <= a.r; ++j)
-      rows[static_cast<size_t>(j + a.r)] = (y + j >= 0 && y + j < h) ? c.data() + (y + j) * row : nullptr;
-    detail::agg_row(a, rows.data(), left.px.data(), y, out.v.data() + y * row);
-  }
+  parallel_bands(h, threads, [&](int y0, int y1, int) {
+    std::vector<const uint8_t*> rows(static_cast<size_t>(2 * a.r + 1));
+    for (int y = y0; y < y1; ++y) {
+      for (int j = -a.r; j <= a.r; ++j)
+        rows[static_cast<size_t>(j + a.r)] = (y + j >= 0 && y + j < h) ? c.data() + (y + j) * row : nullptr;
+      detail::agg_row(a, rows.data(), left.px.data(), y, out.v.data() + y * row);
+    }
+  });
   return out;
 }
 

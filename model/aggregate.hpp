@@ -26,7 +26,8 @@ constexpr uint32_t sw_weight(const std::array<uint8_t, 32>& table, int abs_diff)
 // rectified image (same size), source of the weights; table: 2-bit weight codes by
 // |dI| >> 3. Returns the CW-bit aggregated costs A(x, y, d). Throws
 // std::invalid_argument when the sizes do not match or SW is not odd, 1..7.
+// threads: rows computed in that many bands (same result for any count).
 CostVolume sw_aggregate(const CostVolume& raw, const Image8& left, const std::array<uint8_t, 32>& table,
-                        const HwConfig& hw);
+                        const HwConfig& hw, int threads = 1);
 
 }  // namespace sm

@@ -3,13 +3,18 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
 #include "kernels.hpp"
+#include "parallel.hpp"
 
 #if defined(SM_X86_DISPATCH)
 #include <immintrin.h>
+#endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
 #endif
 
 namespace sm {
@@ -50,7 +55,14 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
   const int r = in.r, w = in.w, side = 2 * r + 1;
   const int nbits = side * side - 1, ngroups = (nbits + 7) / 8;
   const size_t wr = static_cast<size_t>((w + kBlock - 1) / kBlock * kBlock);
-  std::vector<uint8_t> planes(32 * wr, 0);
+  // Scratch kept per thread (no allocation per row); the planes past the last group
+  // are read as zero bits.
+  // (A local pointer: stores through uint8_t pointers would otherwise make the compiler
+  // reload the vector's data pointer.)
+  thread_local std::vector<uint8_t> planes_buf;
+  planes_buf.resize(32 * wr);
+  uint8_t* const planes = planes_buf.data();
+  std::fill(planes + ngroups * wr, planes + 32 * wr, uint8_t{0});
   const uint8_t* c = in.row(y);
   for (int g = 0; g < ngroups; ++g) {
     const uint8_t* nrow[8];
@@ -80,7 +92,37 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
     }
 #endif
   }
-  for (int x = 0; x < w; ++x) {
+  int x = 0;
+#if defined(__SSE2__)
+  // Sixteen pixels at a time: the 8 plane bytes of a word are an 8 x 16 byte transpose
+  // (interleaving bytes, then 16-bit, then 32-bit pairs), byte b of the word from plane
+  // 8i + b as below.
+  for (; x + 16 <= w; x += 16)
+    for (int i = 0; i < 4; ++i) {
+      __m128i p[8];
+      for (int b = 0; b < 8; ++b)
+        p[b] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&planes[(8 * i + b) * wr + static_cast<size_t>(x)]));
+      __m128i q[8], s[8];
+      for (int b = 0; b < 4; ++b) {  // bytes of planes 2b, 2b+1: pixels 0-7, 8-15
+        q[2 * b] = _mm_unpacklo_epi8(p[2 * b], p[2 * b + 1]);
+        q[2 * b + 1] = _mm_unpackhi_epi8(p[2 * b], p[2 * b + 1]);
+      }
+      for (int b = 0; b < 2; ++b)  // 16-bit pairs of planes 4b..4b+3: pixels 0-3, 4-7, 8-11, 12-15
+        for (int hf = 0; hf < 2; ++hf) {
+          s[4 * b + 2 * hf] = _mm_unpacklo_epi16(q[4 * b + hf], q[4 * b + 2 + hf]);
+          s[4 * b + 2 * hf + 1] = _mm_unpackhi_epi16(q[4 * b + hf], q[4 * b + 2 + hf]);
+        }
+      for (int k = 0; k < 4; ++k) {  // 32-bit halves: planes 0-3 and 4-7 of pixels 4k .. 4k+3
+        const __m128i lo = _mm_unpacklo_epi32(s[k], s[4 + k]), hi = _mm_unpackhi_epi32(s[k], s[4 + k]);
+        CensusVec* o = out + x + 4 * k;
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[0][static_cast<size_t>(i)]), lo);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[1][static_cast<size_t>(i)]), _mm_unpackhi_epi64(lo, lo));
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[2][static_cast<size_t>(i)]), hi);
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(&o[3][static_cast<size_t>(i)]), _mm_unpackhi_epi64(hi, hi));
+      }
+    }
+#endif
+  for (; x < w; ++x) {
     for (int i = 0; i < 4; ++i) {
       uint64_t v = 0;
       for (int b = 0; b < 8; ++b) v |= static_cast<uint64_t>(planes[(8 * i + b) * wr + x]) << (8 * b);
@@ -121,7 +163,9 @@ __attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, co
                                           0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4);
   const __m256i zero = _mm256_setzero_si256();
   // Right vectors split into low / high nibbles, 32 bytes each per pixel.
-  std::vector<uint8_t> nib(64 * static_cast<size_t>(w));
+  thread_local std::vector<uint8_t> nib_buf;  // scratch per thread, every entry read is written below
+  nib_buf.resize(64 * static_cast<size_t>(w));
+  uint8_t* const nib = nib_buf.data();
   for (int x = 0; x < w; ++x) {
     const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&rr[x]));
     uint8_t* n = &nib[64 * static_cast<size_t>(x)];
@@ -163,10 +207,58 @@ __attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, co
 }
 #endif
 
+#if defined(SM_X86_DISPATCH)
+// The same with AVX-512 (VPOPCNTDQ, VNNI, BW, VL; chosen at run time where the CPU has
+// them), eight levels per step: the right vectors of levels d .. d+7 are the 256
+// contiguous bytes from rr[x - d - 7]; four 512-bit XORs with the left vector (twice),
+// VPOPCNTQ per 64-bit word (<= 64), the words truncated to bytes (vpmovqb), the four of a
+// level summed by vpdpbusd with ones, and the sums truncated to bytes (vpmovdb: modulo
+// 256 like the portable sum), levels d+7 .. d reversed into order.
+__attribute__((target("avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx512vnni"))) void cost_row_avx512(
+    const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {
+  const __m256i ones = _mm256_set1_epi8(1);
+  const __m128i rev = _mm_setr_epi8(7, 6, 5, 4, 3, 2, 1, 0, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m128i sh = _mm_cvtsi32_si128(shift);
+  const __m128i keep = _mm_set1_epi8(static_cast<char>(0xff >> shift));  // 16-bit shift: mask
+  for (int x = 0; x < w; ++x) {
+    uint8_t* o = out + static_cast<size_t>(x) * nd;
+    // (Zero-masked forms of the broadcast and truncations with all lanes kept: the plain ones
+    // start from an undefined vector that GCC 12 warns about.)
+    const __m512i a = _mm512_maskz_broadcast_i64x4(0xff, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&l[x])));
+    const int dn = std::min(nd, x + 1);  // levels with x - d >= 0
+    int d = 0;
+    for (; d + 8 <= dn; d += 8) {
+      const auto* b = reinterpret_cast<const __m512i*>(&rr[x - d - 7]);  // levels d+7, d+6 | d+5, d+4 | ...
+      __m128i m[4];
+      for (int j = 0; j < 4; ++j)
+        m[j] = _mm512_maskz_cvtepi64_epi8(0xff, _mm512_popcnt_epi64(_mm512_xor_si512(a, _mm512_loadu_si512(b + j))));
+      const __m256i bytes = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_unpacklo_epi64(m[0], m[1])),
+                                                    _mm_unpacklo_epi64(m[2], m[3]), 1);
+      const __m256i sums = _mm256_dpbusd_epi32(_mm256_setzero_si256(), bytes, ones);  // dword k: level d+7-k
+      __m128i s = _mm_shuffle_epi8(_mm256_maskz_cvtepi32_epi8(0xff, sums), rev);
+      s = _mm_and_si128(_mm_srl_epi16(s, sh), keep);
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(o + d), s);
+    }
+    for (; d < dn; ++d) {  // the last levels one at a time
+      const CensusVec &p = l[x], &q = rr[x - d];
+      int s = 0;
+      for (size_t i = 0; i < 4; ++i) s += __builtin_popcountll(p[i] ^ q[i]);
+      o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
+    }
+    for (; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
+  }
+}
+#endif
+
 }  // namespace
 
 void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {
 #if defined(SM_X86_DISPATCH)
+  static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vpopcntdq") &&
+                             __builtin_cpu_supports("avx512vnni") &&
+                             std::getenv("SM_NO_AVX512") == nullptr;  // (tests of the AVX2 kernel)
+  if (avx512) return cost_row_avx512(l, rr, w, nd, cb, shift, out);
   static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
   if (avx2) return cost_row_avx2(l, rr, w, nd, cb, shift, out);
 #endif
@@ -175,16 +267,18 @@ void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb
 
 }  // namespace detail
 
-CensusImage census_transform(const Image8& in, const HwConfig& hw) {
+CensusImage census_transform(const Image8& in, const HwConfig& hw, int threads) {
   if (hw.census < 3 || hw.census > 15 || hw.census % 2 == 0)
     throw std::invalid_argument(fmt::format("census_transform: census {} must be odd, 3..15", hw.census));
   const detail::CensusPad pad(in, (hw.census - 1) / 2);
   CensusImage out(in.w, in.h, CensusVec{0, 0, 0, 0});
-  for (int y = 0; y < in.h; ++y) detail::census_row(pad, y, &out.px[static_cast<size_t>(y) * in.w]);
+  parallel_bands(in.h, threads, [&](int y0, int y1, int) {
+    for (int y = y0; y < y1; ++y) detail::census_row(pad, y, &out.px[static_cast<size_t>(y) * in.w]);
+  });
   return out;
 }
 
-CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw) {
+CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw, int threads) {
   if (cl.w != cr.w || cl.h != cr.h)
     throw std::invalid_argument(fmt::format("hamming_cost: left {}x{} and right {}x{} differ", cl.w, cl.h, cr.w, cr.h));
   if (hw.disp < 1 || hw.disp > 256)
@@ -192,10 +286,12 @@ CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwCo
   const int nd = hw.disp, w = cl.w;
   const auto cb = static_cast<uint8_t>(hw.census_bits());
   CostVolume out(w, cl.h, nd);
-  for (int y = 0; y < cl.h; ++y) {
-    const size_t row = static_cast<size_t>(y) * w;
-    detail::cost_row(&cl.px[row], &cr.px[row], w, nd, cb, 0, out.v.data() + row * nd);
-  }
+  parallel_bands(cl.h, threads, [&](int y0, int y1, int) {
+    for (int y = y0; y < y1; ++y) {
+      const size_t row = static_cast<size_t>(y) * w;
+      detail::cost_row(&cl.px[row], &cr.px[row], w, nd, cb, 0, out.v.data() + row * nd);
+    }
+  });
   return out;
 }
 

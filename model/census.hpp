@@ -9,11 +9,12 @@ namespace sm {
 // I(neighbour k) < I(centre), neighbours in raster order with the centre skipped;
 // a neighbour outside the image is the pixel at the nearest position inside (coordinates
 // clamped to the image, row and column independently). Bits above hw.census_bits() are 0.
-CensusImage census_transform(const Image8& in, const HwConfig& hw);
+// threads: rows computed in that many bands (model/parallel.hpp; same result for any count).
+CensusImage census_transform(const Image8& in, const HwConfig& hw, int threads = 1);
 
 // H(x, y, d) = popcount(cl(x, y) ^ cr(x - d, y)) for d = 0..hw.disp-1, or
 // hw.census_bits() when x - d < 0. Throws std::invalid_argument on a size mismatch.
-CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw);
+CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw, int threads = 1);
 
 // popcount(a ^ b) over the four words.
 inline int census_distance(const CensusVec& a, const CensusVec& b) {

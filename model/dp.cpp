@@ -11,6 +11,7 @@
 // with GCC also compiled for AVX2 and picked at run time (SM_HOT in kernels.hpp);
 // integer arithmetic only, same bits.
 #include "kernels.hpp"
+#include "parallel.hpp"
 
 namespace sm {
 
@@ -36,7 +37,7 @@ namespace {
 struct Fwd {
   int n, ne, no, stride;
   uint32_t occ, mask;
-  const uint8_t* pen;  // nullptr: occ everywhere; else the penalty of DP clock t, level pair m at pen[t + m + 1]
+  const uint32_t* pen;  // nullptr: occ everywhere; else the penalty of DP clock t, level pair m at pen[t + m + 1]
   const uint16_t* cm;
   uint32_t* ue;
   uint32_t* uo;
@@ -97,21 +98,21 @@ inline void load(VI& v, const uint32_t* p) { std::memcpy(&v, p, sizeof v); }
 inline void store(uint32_t* p, const VI& v) { std::memcpy(p, &v, sizeof v); }
 
 // Occlusion nodes from m, one vector: u = the first of choice 0 (u), 1 (lo + occ) and 2 (hi +
-// occ) that reaches the minimum; lanes set in lo_absent / hi_absent lack that choice.
+// occ) that reaches the minimum; lo_absent / hi_absent are INT32_MAX in the lanes that lack
+// that choice, else 0.
 inline void occ_block(uint32_t* u, const uint32_t* lo, const uint32_t* hi, const VI& occ, int32_t mask,
                       const VI& lo_absent, const VI& hi_absent, uint32_t* dec) {
   VI b0, c1, c2;
   load(b0, u);
   load(c1, lo);
   load(c2, hi);
-  // (Selections as and/or of the compare masks, which every vector unit has.)
-  c1 = ((c1 + occ) & mask) | (lo_absent & INT32_MAX);
-  c2 = ((c2 + occ) & mask) | (hi_absent & INT32_MAX);
-  const VI t1 = c1 < b0;  // -1 where true
-  const VI b1 = (c1 & t1) | (b0 & ~t1);
+  c1 = ((c1 + occ) & mask) | lo_absent;
+  c2 = ((c2 + occ) & mask) | hi_absent;
+  const VI t1 = c1 < b0;            // -1 where true
+  const VI b1 = c1 < b0 ? c1 : b0;  // (a minimum: one instruction where the unit has it)
   const VI t2 = c2 < b1;
-  store(u, (c2 & t2) | (b1 & ~t2));
-  store(dec, (t2 & 2) | (t1 & ~t2 & 1));
+  store(u, c2 < b1 ? c2 : b1);
+  store(dec, (t2 & 2) | (t1 & 1));  // 3 (both) reads as 2: choice 2 wins when it is taken
 }
 
 // u[m] = (u[m] + cost) & mask for one vector of lanes from m; cost = the low (odd =
@@ -125,35 +126,54 @@ inline void add_block(uint32_t* u, const uint16_t* c, bool odd, int32_t mask) {
   store(u, (v + cv) & mask);
 }
 
-SM_HOT void forward_vector(const Fwd& f) {
+// Wrap = false drops the "& mask" of every sum, which is exact when n <= MAX_WIDTH: a
+// node's U grows by at most 255 per site from BIG or 0 (a matched node adds one 8-bit
+// cost, an occlusion node at most one 8-bit penalty), so after 2n sites U <= BIG +
+// 2 * MAX_WIDTH * 255 < 2^ACC_W (dp_acc_bits) and no sum wraps. (The padding lanes grow
+// the same way.)
+template <bool Wrap>
+inline __attribute__((always_inline)) void forward_body(const Fwd& f) {
   VI lane;  // 0, 1, 2, ...
   for (int k = 0; k < kLanes; ++k) lane[k] = k;
   const VI no_lane = {};
   const VI first = lane == 0;
-  const auto mask = static_cast<int32_t>(f.mask);
+  const int32_t mask = Wrap ? static_cast<int32_t>(f.mask) : -1;  // -1: the ands fold away
   const VI occ_all = no_lane + static_cast<int32_t>(f.occ);
-  // The penalties of lanes m..m+kLanes-1 at DP clock t (see forward_scalar).
+  // The penalties of lanes m..m+kLanes-1 at DP clock t (see forward_scalar): one
+  // vector load (pen is widened to 32 bits per line, not gathered lane by lane).
   VI ov = occ_all;
   auto occ_v = [&f, &ov](int t, int m) -> const VI& {
-    if (f.pen)
-      for (int k = 0; k < kLanes; ++k) ov[k] = f.pen[t + m + 1 + k];
+    if (f.pen) std::memcpy(&ov, f.pen + t + m + 1, sizeof ov);
     return ov;
   };
+  // The lanes without a choice, by block (the same at every t): choice 2 at site 2t+1 (d + 1
+  // = 2m+2 past the last even level), choice 1 at site 2t+2 (lane 0 of block 0), choice 2
+  // at site 2t+2 (2m+1 past the last odd level). At most 128 levels of a parity: 32 blocks.
+  VI odd_hi[32], even_lo[32], even_hi[32];
+  if (f.stride > 32 * kLanes) return forward_scalar(f);  // (more than 256 levels: not a legal DISP)
+  for (int m = 0, b = 0; m < f.stride; m += kLanes, ++b) {
+    odd_hi[b] = (lane + (m + 1) >= f.ne) & INT32_MAX;
+    even_lo[b] = (m == 0 ? first : no_lane) & INT32_MAX;
+    even_hi[b] = (lane + m >= f.no) & INT32_MAX;
+  }
   uint32_t* ue = f.ue;
   uint32_t* uo = f.uo;
   for (int t = 0; t < f.n; ++t) {
     uint32_t* dec = f.dec + static_cast<size_t>(2 * t + 1) * f.stride;
     for (int m = 0; m < f.no; m += kLanes)
-      occ_block(uo + m, ue + m, ue + m + 1, occ_v(t, m), mask, no_lane, lane + (m + 1) >= f.ne, dec + m);
+      occ_block(uo + m, ue + m, ue + m + 1, occ_v(t, m), mask, no_lane, odd_hi[m / kLanes], dec + m);
     const uint16_t* c = f.cm + static_cast<size_t>(t) * f.stride;
     for (int m = 0; m < f.ne; m += kLanes) add_block(ue + m, c + m, false, mask);
     dec = f.dec + static_cast<size_t>(2 * t + 2) * f.stride;
     for (int m = 0; m < f.ne; m += kLanes)
-      occ_block(ue + m, uo + m - 1, uo + m, occ_v(t, m), mask, m == 0 ? first : no_lane, lane + m >= f.no, dec + m);
+      occ_block(ue + m, uo + m - 1, uo + m, occ_v(t, m), mask, even_lo[m / kLanes], even_hi[m / kLanes], dec + m);
     c += f.stride;
     for (int m = 0; m < f.no; m += kLanes) add_block(uo + m, c + m, true, mask);
   }
 }
+
+SM_HOT void forward_vector(const Fwd& f) { forward_body<true>(f); }
+SM_HOT void forward_vector_nowrap(const Fwd& f) { forward_body<false>(f); }
 #endif
 
 // Matched costs in site order, levels 2p and 2p+1 as one 16-bit pair: row t holds
@@ -167,10 +187,16 @@ void gather_costs(const uint8_t* agg, int n, int nd, int ne, int no, int stride,
     const uint8_t* a = agg + static_cast<size_t>(t) * nd;
     const int pmax = std::max(0, std::min(ne, n - t));
     const int pairs = std::min(pmax, no);  // odd DISP: the last even level has no pair
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#pragma GCC unroll 8
+    for (int p = 0; p < pairs; ++p)  // the pair as one 16-bit load: c[0] | c[1] << 8
+      std::memcpy(&row[p], a + static_cast<size_t>(p) * (nd + 2), 2);
+#else
     for (int p = 0; p < pairs; ++p) {
       const uint8_t* c = a + static_cast<size_t>(p) * (nd + 2);
       row[p] = static_cast<uint16_t>(c[0] | c[1] << 8);
     }
+#endif
     int p = pairs;
     if (p < pmax) row[p++] = a[static_cast<size_t>(pairs) * (nd + 2)];
     for (; p < stride; ++p) row[p] = 0;
@@ -206,7 +232,7 @@ void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pe
   s.dec.resize(static_cast<size_t>(sites + 1) * stride);
   // Per-pixel penalties padded to every lane the vector pass reads (t + m + 1 < n + stride + 8);
   // nodes with xl > n never reach the end node, so the padding value does not matter.
-  const uint8_t* penp = nullptr;
+  const uint32_t* penp = nullptr;
   if (pen) {
     s.pen.assign(static_cast<size_t>(n) + stride + 16, pen[n]);
     std::copy(pen, pen + n + 1, s.pen.begin());
@@ -216,7 +242,7 @@ void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pe
   f.ue[0] = 0;
 #if defined(__GNUC__)
   if (acc_w <= 30)
-    forward_vector(f);
+    n <= hw.max_width ? forward_vector_nowrap(f) : forward_vector(f);
   else
 #endif
     forward_scalar(f);
@@ -232,7 +258,7 @@ void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pe
       out.match[(i - 1 + d) / 2] = d;
     } else {
       const uint32_t ch = s.dec[static_cast<size_t>(i) * stride + d / 2];
-      d += (ch == 1) ? -1 : (ch == 2) ? 1 : 0;
+      d += (ch & 2) ? 1 : (ch == 1) ? -1 : 0;  // 2 or 3: choice 2 (the vector pass's encoding)
     }
   }
   out.path[0] = d;
@@ -256,18 +282,20 @@ void edge_penalties(const uint8_t* left, int n, uint8_t occ, uint8_t occ_edge, u
 }
 
 DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
-                          const HwConfig& hw) {
+                          const HwConfig& hw, int threads) {
   if (agg.d != hw.disp || left.w != agg.w || left.h != agg.h)
     throw std::invalid_argument("trellis_dp_edge: cost volume, DISP and left image disagree");
   DispImage out(agg.w, agg.h);
-  DpScratch s;
-  DpLine line;
-  std::vector<uint8_t> pen;
-  for (int y = 0; y < agg.h; ++y) {
-    edge_penalties(&left.px[static_cast<size_t>(y) * left.w], agg.w, occ, occ_edge, edge_t, pen);
-    trellis_line_pen(agg.pix(0, y), agg.w, pen.data(), hw, s, line);
-    std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
-  }
+  parallel_bands(agg.h, threads, [&](int y0, int y1, int) {
+    DpScratch s;
+    DpLine line;
+    std::vector<uint8_t> pen;
+    for (int y = y0; y < y1; ++y) {
+      edge_penalties(&left.px[static_cast<size_t>(y) * left.w], agg.w, occ, occ_edge, edge_t, pen);
+      trellis_line_pen(agg.pix(0, y), agg.w, pen.data(), hw, s, line);
+      std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
+    }
+  });
   return out;
 }
 
@@ -292,18 +320,20 @@ void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp) {
   }
 }
 
-DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw) {
+DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw, int threads) {
   if (agg.d != hw.disp)
     throw std::invalid_argument(fmt::format("trellis_dp: cost volume has {} levels, DISP is {}", agg.d, hw.disp));
   if (agg.w > hw.max_width || agg.w < 1)
     throw std::invalid_argument(fmt::format("trellis_dp: width {} outside 1..MAX_WIDTH={}", agg.w, hw.max_width));
   DispImage out(agg.w, agg.h);
-  DpScratch s;
-  DpLine line;
-  for (int y = 0; y < agg.h; ++y) {
-    trellis_line(agg.pix(0, y), agg.w, occ, hw, s, line);
-    std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
-  }
+  parallel_bands(agg.h, threads, [&](int y0, int y1, int) {
+    DpScratch s;
+    DpLine line;
+    for (int y = y0; y < y1; ++y) {
+      trellis_line(agg.pix(0, y), agg.w, occ, hw, s, line);
+      std::copy(line.disp.begin(), line.disp.end(), &out.at(0, y));
+    }
+  });
   return out;
 }
 

@@ -26,9 +26,9 @@ struct DpLine {
 struct DpScratch {
   std::vector<uint32_t> u0, u1;  // U of the even / odd levels at the current site
   std::vector<uint32_t> dec;     // choice of occlusion node (i, d) at i * S + d / 2,
-                                 // (2N+1) * S entries
+                                 // (2N+1) * S entries (0, 1, 2; the vector pass writes 3 for 2)
   std::vector<uint16_t> cm;      // matched costs in site order, (N+1) * S pairs (dp.cpp)
-  std::vector<uint8_t> pen;      // per-pixel penalties, padded (trellis_line_pen)
+  std::vector<uint32_t> pen;     // per-pixel penalties, padded, 32 bits (trellis_line_pen)
 };
 
 // One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=
@@ -53,10 +53,11 @@ void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp);
 
 // The whole stage: every line of the aggregated cost volume (agg.d == hw.disp) with
 // one occlusion penalty. Throws std::invalid_argument on a size mismatch.
-DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw);
+// threads: lines computed in that many bands (same result for any count).
+DispImage trellis_dp(const CostVolume& agg, uint8_t occ, const HwConfig& hw, int threads = 1);
 // Every line with the edge-dependent penalties of the left image's row (left: the image the
 // weights came from, agg.w x agg.h).
 DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
-                          const HwConfig& hw);
+                          const HwConfig& hw, int threads = 1);
 
 }  // namespace sm

@@ -35,8 +35,9 @@
 namespace sm::detail {
 
 // Bytes kept readable after every cost row handed to agg_row: the level loop reads whole
-// 32-byte blocks (the lanes beyond the last level are computed and dropped).
-constexpr size_t kCostPad = 32;
+// 32-byte blocks, 64-byte ones in the AVX-512 variant (the lanes beyond the last level are
+// computed and dropped).
+constexpr size_t kCostPad = 64;
 
 // An image with a border of r pixels on every side that repeats the nearest edge pixel
 // (and room for whole vectors of pixels on the right): a neighbour outside the image

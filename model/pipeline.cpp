@@ -1,6 +1,7 @@
 #include "pipeline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <stdexcept>
 #include <vector>
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "kernels.hpp"
+#include "parallel.hpp"
 
 namespace sm {
 
@@ -27,8 +29,77 @@ void validate_regs(const Regs& r, const HwConfig& hw) {
                       RectGrid::points_w(r.width), RectGrid::points_h(r.height)));
 }
 
+namespace {
+
+// What every band of run_pipeline's row stream reads.
+struct Rows {
+  const Image8 &rl, &rr;
+  const HwConfig& hw;
+  const Regs& regs;
+  detail::CensusPad pl, pr;
+  detail::AggRow ag;
+};
+
+// Output rows y0..y1-1 of census, cost (r.raw), aggregation (r.agg) and DP (r.dp);
+// ms[0..3] += the time of each of the four stages.
+void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResult& r, double* ms) {
+  using clock = std::chrono::steady_clock;
+  const HwConfig& hw = s.hw;
+  const Regs& regs = s.regs;
+  const int w = regs.width, h = regs.height, nd = hw.disp, ra = (hw.sw - 1) / 2, sw = hw.sw;
+  const size_t row = static_cast<size_t>(w) * nd;
+  const auto cb = static_cast<uint8_t>(hw.census_bits());
+  std::vector<CensusVec> cl(static_cast<size_t>(w)), cr(static_cast<size_t>(w));
+  std::vector<uint8_t> ring(static_cast<size_t>(sw) * row + detail::kCostPad);
+  std::vector<uint8_t> agg_line(keep_volumes ? 0 : row);
+  std::vector<const uint8_t*> win(static_cast<size_t>(sw));
+  DpScratch scratch;
+  DpLine line;
+  std::vector<uint8_t> pen;  // the row's occlusion penalties (edge_penalties)
+  auto since = [](clock::time_point a, clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  for (int y = std::max(0, y0 - ra); y < y1 + ra; ++y) {
+    if (y < h) {
+      const auto t0 = clock::now();
+      detail::census_row(s.pl, y, cl.data());
+      detail::census_row(s.pr, y, cr.data());
+      const auto t1 = clock::now();
+      uint8_t* c = &ring[static_cast<size_t>(y % sw) * row];
+      if (keep_volumes && y >= y0 && y < y1) {
+        uint8_t* hr = r.raw.pix(0, y);
+        detail::cost_row(cl.data(), cr.data(), w, nd, cb, 0, hr);
+        for (size_t i = 0; i < row; ++i) c[i] = static_cast<uint8_t>(hr[i] >> hw.cost_shift);
+      } else {
+        detail::cost_row(cl.data(), cr.data(), w, nd, cb, hw.cost_shift, c);
+      }
+      const auto t2 = clock::now();
+      ms[0] += since(t0, t1);
+      ms[1] += since(t1, t2);
+    }
+    const int ya = y - ra;  // the row whose window is complete
+    if (ya < y0) continue;
+    const auto t0 = clock::now();
+    for (int j = -ra; j <= ra; ++j)
+      win[static_cast<size_t>(j + ra)] =
+          (ya + j >= 0 && ya + j < h) ? &ring[static_cast<size_t>((ya + j) % sw) * row] : nullptr;
+    uint8_t* a = keep_volumes ? r.agg.pix(0, ya) : agg_line.data();
+    detail::agg_row(s.ag, win.data(), s.rl.px.data(), ya, a);
+    const auto t1 = clock::now();
+    edge_penalties(&s.rl.px[static_cast<size_t>(ya) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
+    trellis_line_pen(a, w, pen.data(), hw, scratch, line);
+    std::copy(line.disp.begin(), line.disp.end(), &r.dp.at(0, ya));
+    evidence_line(a, w, nd, line, ya, r.evidence);  // writes row ya only: safe across bands
+    const auto t2 = clock::now();
+    ms[2] += since(t0, t1);
+    ms[3] += since(t1, t2);
+  }
+}
+
+}  // namespace
+
 PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwConfig& hw, const Regs& regs,
-                            bool keep_volumes) {
+                            bool keep_volumes, int threads) {
   hw.validate();
   validate_regs(regs, hw);
   if (left.w != regs.width || left.h != regs.height || right.w != regs.width || right.h != regs.height)
@@ -42,79 +113,58 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     r.stage_ms.emplace_back(name, std::chrono::duration<double, std::milli>(now - t).count());
     t = now;
   };
-  r.bl = brightness(left, regs.gain_l, regs.offset_l);
-  r.br = brightness(right, regs.gain_r, regs.offset_r);
+  // The two images on two threads when there are threads (image 0 left, 1 right).
+  auto each_image = [threads](auto&& f) {
+    parallel_bands(2, threads, [&f](int i0, int i1, int) {
+      for (int i = i0; i < i1; ++i) f(i == 0);
+    });
+  };
+  each_image([&](bool l) {
+    (l ? r.bl : r.br) =
+        l ? brightness(left, regs.gain_l, regs.offset_l) : brightness(right, regs.gain_r, regs.offset_r);
+  });
   lap("brightness");
-  r.rl = rectify(r.bl, regs.grid_l, regs.rect_enable, hw);
-  r.rr = rectify(r.br, regs.grid_r, regs.rect_enable, hw);
+  each_image([&](bool l) {
+    (l ? r.rl : r.rr) = rectify(l ? r.bl : r.br, l ? regs.grid_l : regs.grid_r, regs.rect_enable, hw);
+  });
   lap("rectify");
 
   // Census, cost, aggregation and DP stream row by row through the row kernels the
   // stage functions use (model/kernels.hpp), so the results are the stage functions'
   // bits: row y's costs enter a ring of SW rows of C = H >> COST_SHIFT, and once the
   // ring holds rows y-2R .. y, row y-R is aggregated and goes through the DP. Only the
-  // volumes that are kept are ever allocated whole. Each stage's time is summed over
-  // its rows (stage_ms keeps the stage order).
-  const int w = regs.width, h = regs.height, nd = hw.disp, ra = (hw.sw - 1) / 2, sw = hw.sw;
-  const size_t row = static_cast<size_t>(w) * nd;
-  const detail::CensusPad pl(r.rl, (hw.census - 1) / 2), pr(r.rr, (hw.census - 1) / 2);
-  const detail::AggRow ag(w, h, nd, hw.sw, regs.sw_table, hw);
-  const auto cb = static_cast<uint8_t>(hw.census_bits());
+  // volumes that are kept are ever allocated whole. With threads > 1 each band of rows
+  // streams on its own thread with its own ring (the 2R cost rows around a band edge
+  // are computed by both bands; each output row is written by its band only). Each
+  // stage's time is summed over its rows and bands (stage_ms keeps the stage order).
+  const int w = regs.width, h = regs.height, nd = hw.disp;
+  const Rows rows{r.rl,
+                  r.rr,
+                  hw,
+                  regs,
+                  {r.rl, (hw.census - 1) / 2},
+                  {r.rr, (hw.census - 1) / 2},
+                  detail::AggRow(w, h, nd, hw.sw, regs.sw_table, hw)};
   if (keep_volumes) {
     r.raw = CostVolume(w, h, nd);
     r.agg = CostVolume(w, h, nd);
   }
-  std::vector<CensusVec> cl(static_cast<size_t>(w)), cr(static_cast<size_t>(w));
-  std::vector<uint8_t> ring(static_cast<size_t>(sw) * row + detail::kCostPad);
-  std::vector<uint8_t> agg_line(keep_volumes ? 0 : row);
-  std::vector<const uint8_t*> win(static_cast<size_t>(sw));
   r.dp = DispImage(w, h);
-  DpScratch scratch;
-  DpLine line;
-  std::vector<uint8_t> pen;     // the row's occlusion penalties (edge_penalties)
+  std::vector<std::array<double, 4>> band_ms(static_cast<size_t>(band_count(h, threads)));
+  r.evidence = Evidence(w, h);
+  parallel_bands(h, threads, [&](int y0, int y1, int b) {
+    stream_rows(rows, y0, y1, keep_volumes, r, band_ms[static_cast<size_t>(b)].data());
+  });
   double ms[4] = {0, 0, 0, 0};  // census, cost, aggregate, dp
-  auto since = [](clock::time_point a, clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-  };
-  for (int y = 0; y < h + ra; ++y) {
-    if (y < h) {
-      const auto t0 = clock::now();
-      detail::census_row(pl, y, cl.data());
-      detail::census_row(pr, y, cr.data());
-      const auto t1 = clock::now();
-      uint8_t* c = &ring[static_cast<size_t>(y % sw) * row];
-      if (keep_volumes) {
-        uint8_t* hr = r.raw.pix(0, y);
-        detail::cost_row(cl.data(), cr.data(), w, nd, cb, 0, hr);
-        for (size_t i = 0; i < row; ++i) c[i] = static_cast<uint8_t>(hr[i] >> hw.cost_shift);
-      } else {
-        detail::cost_row(cl.data(), cr.data(), w, nd, cb, hw.cost_shift, c);
-      }
-      const auto t2 = clock::now();
-      ms[0] += since(t0, t1);
-      ms[1] += since(t1, t2);
-    }
-    const int ya = y - ra;  // the row whose window is complete
-    if (ya < 0) continue;
-    const auto t0 = clock::now();
-    for (int j = -ra; j <= ra; ++j)
-      win[static_cast<size_t>(j + ra)] =
-          (ya + j >= 0 && ya + j < h) ? &ring[static_cast<size_t>((ya + j) % sw) * row] : nullptr;
-    uint8_t* a = keep_volumes ? r.agg.pix(0, ya) : agg_line.data();
-    detail::agg_row(ag, win.data(), r.rl.px.data(), ya, a);
-    const auto t1 = clock::now();
-    edge_penalties(&r.rl.px[static_cast<size_t>(ya) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
-    trellis_line_pen(a, w, pen.data(), hw, scratch, line);
-    std::copy(line.disp.begin(), line.disp.end(), &r.dp.at(0, ya));
-    const auto t2 = clock::now();
-    ms[2] += since(t0, t1);
-    ms[3] += since(t1, t2);
-  }
+  for (const auto& m : band_ms)
+    for (int k = 0; k < 4; ++k) ms[k] += m[static_cast<size_t>(k)];
   const char* names[4] = {"census", "cost", "aggregate", "dp"};
   for (int k = 0; k < 4; ++k) r.stage_ms.emplace_back(names[k], ms[k]);
   t = clock::now();
-  r.post = post_process(r.dp, regs, hw, &r.post_steps);
+  r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
+  r.out = make_output(r.evidence, r.post, nd, regs.out);
+  lap("output");
   r.objects = separate_objects(r.post, regs, hw);
   lap("objects");
   return r;

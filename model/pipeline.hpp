@@ -9,6 +9,8 @@
 #include "aggregate.hpp"
 #include "census.hpp"
 #include "dp.hpp"
+#include "evidence.hpp"
+#include "outword.hpp"
 #include "post.hpp"
 #include "pre.hpp"
 #include "sm_types.hpp"
@@ -24,13 +26,17 @@ struct PipelineResult {
   DispImage post;                     // after the enabled post-processing filters
   std::vector<DispImage> post_steps;  // after each filter step F0..F3 (enabled or not)
   ObjectList objects;
+  Evidence evidence;  // per-pixel evidence of the output stage (model/evidence.hpp)
+  OutImage out;       // planned output word per pixel at regs.out (model/outword.hpp)
   std::vector<std::pair<std::string, double>> stage_ms;  // wall time per stage
 };
 
 // Runs one frame. left/right must be regs.width x regs.height; throws
 // std::invalid_argument otherwise. keep_volumes=false drops raw/agg to save memory.
+// threads: census to DP run in that many bands of rows (model/parallel.hpp), with the
+// same result for any count; stage_ms then sums the bands' times.
 PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwConfig& hw, const Regs& regs,
-                            bool keep_volumes = true);
+                            bool keep_volumes = true, int threads = 1);
 
 // Checks run-time registers against the compile-time parameters; throws
 // std::invalid_argument naming the field.

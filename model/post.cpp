@@ -10,6 +10,7 @@
 // with GCC its loop is also compiled for AVX2 and picked at run time (SM_HOT in
 // kernels.hpp); integer min/max only, so both clones give the same bits.
 #include "kernels.hpp"
+#include "parallel.hpp"
 
 namespace sm {
 
@@ -39,6 +40,42 @@ std::vector<std::pair<int, int>> sort_network(int n) {
   return net;
 }
 
+// The comparators of `net` (n2 inputs) that the element of rank `rank` depends on when
+// inputs n..n2-1 are the largest possible key (the padding): a comparator with a padding
+// input is a no-op or an exchange (done by renaming, not by moving data), and one whose
+// outputs are not needed later is dropped. Same result as the whole network on every
+// input; `out` is where the element of rank `rank` ends up.
+std::vector<std::pair<int, int>> prune_network(const std::vector<std::pair<int, int>>& net, int n, int n2, int rank,
+                                               int& out) {
+  std::vector<int> at(static_cast<size_t>(n2));  // logical position -> slot
+  std::vector<char> pad(static_cast<size_t>(n2));
+  for (int k = 0; k < n2; ++k) {
+    at[static_cast<size_t>(k)] = k;
+    pad[static_cast<size_t>(k)] = k >= n;
+  }
+  std::vector<std::pair<int, int>> kept;
+  for (const auto& [i, j] : net) {
+    auto &si = at[static_cast<size_t>(i)], &sj = at[static_cast<size_t>(j)];
+    if (pad[static_cast<size_t>(sj)]) continue;  // min(a, MAX) = a: stays in place
+    if (pad[static_cast<size_t>(si)]) {          // the key moves up, the padding down
+      std::swap(si, sj);
+      continue;
+    }
+    kept.emplace_back(si, sj);
+  }
+  out = at[static_cast<size_t>(rank)];
+  std::vector<char> live(static_cast<size_t>(n2), 0);
+  live[static_cast<size_t>(out)] = 1;
+  std::vector<std::pair<int, int>> need;
+  for (auto c = kept.rbegin(); c != kept.rend(); ++c)
+    if (live[static_cast<size_t>(c->first)] || live[static_cast<size_t>(c->second)]) {
+      live[static_cast<size_t>(c->first)] = live[static_cast<size_t>(c->second)] = 1;
+      need.push_back(*c);
+    }
+  std::reverse(need.begin(), need.end());
+  return need;
+}
+
 #if defined(__GNUC__)
 typedef uint16_t VK __attribute__((vector_size(32)));  // keys of 16 neighbouring centres
 constexpr int kKeyLanes = 16;
@@ -49,9 +86,10 @@ constexpr int kMaxNet = 64;  // windows up to 8 x 8 take the vector path
 // centres at a time through a sorting network on vectors of keys (min/max only; the
 // element of rank `rank` of the sorted window is the answer whatever the order of
 // equal keys). The network has n2 = the next power of two inputs; the extra ones are
-// 0xffff and sort behind every key (keys are at most 2^15). Window rows outside the
-// frame take the centre's key: the centre vector itself.
-SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, int rx, int rank, int n2,
+// 0xffff and sort behind every key (keys are at most 2^15), which prune_network uses;
+// the answer is in v[slot]. Window rows outside the frame take the centre's key: the
+// centre vector itself.
+SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, int rx, int slot, int n2,
                     const std::pair<int, int>* net, size_t net_size, DispPix* out) {
   VK v[kMaxNet];
   int x = x0;
@@ -74,7 +112,7 @@ SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, i
       v[net[c].first] = a < b ? a : b;
       v[net[c].second] = a < b ? b : a;
     }
-    const VK m = v[rank];
+    const VK m = v[slot];
     const VK o = m == 0 ? VK{} : ((m - 1) | kDispValid);
     std::memcpy(out + x, &o, sizeof o);
   }
@@ -84,7 +122,8 @@ SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, i
 
 }  // namespace
 
-DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int rank) {
+namespace {
+DispImage post_rank_rows(const DispImage& in, const HwConfig& hw, int ry, int rx, int rank, int threads) {
   const unsigned dmask = (1u << clog2(hw.disp)) - 1;
   auto key = [&](DispPix p) -> unsigned { return disp_valid(p) ? (p & dmask) + 1 : 0; };
   const int n = (2 * ry + 1) * (2 * rx + 1);
@@ -94,9 +133,7 @@ DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int
 
   // One centre, straight from the definition (image edges, leftover columns, windows
   // too large for the network).
-  std::vector<unsigned> win;
-  win.reserve(static_cast<size_t>(n));
-  auto one = [&](int x, int y) {
+  auto one = [&](std::vector<unsigned>& win, int x, int y) {
     const unsigned c = key(in.at(x, y));
     win.clear();
     for (int j = -ry; j <= ry; ++j)
@@ -117,61 +154,85 @@ DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int
   if (vec) {
     std::vector<uint16_t> keys(in.px.size());
     for (size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<uint16_t>(key(in.px[i]));
-    const auto net = sort_network(n2);
-    for (int y = 0; y < h; ++y) {
-      int x = 0;
-      for (; x < std::min(rx, w); ++x) one(x, y);
-      x = rank_row(keys.data(), w, h, y, x, ry, rx, rank, n2, net.data(), net.size(),
-                   &out.px[static_cast<size_t>(y) * w]);
-      for (; x < w; ++x) one(x, y);
-    }
+    int slot = 0;
+    const auto net = prune_network(sort_network(n2), n, n2, rank, slot);
+    parallel_bands(h, threads, [&](int y0, int y1, int) {
+      std::vector<unsigned> win;
+      for (int y = y0; y < y1; ++y) {
+        int x = 0;
+        for (; x < std::min(rx, w); ++x) one(win, x, y);
+        DispPix* o = &out.px[static_cast<size_t>(y) * w];
+        x = rank_row(keys.data(), w, h, y, x, ry, rx, slot, n2, net.data(), net.size(), o);
+        // The columns left over: one more block ending at the last centre whose window
+        // is inside (recomputing some centres, with the same result).
+        if (x < w - rx && w - rx - kKeyLanes >= rx)
+          x = rank_row(keys.data(), w, h, y, w - rx - kKeyLanes, ry, rx, slot, n2, net.data(), net.size(), o);
+        for (; x < w; ++x) one(win, x, y);
+      }
+    });
     return out;
   }
 #endif
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) one(x, y);
+  parallel_bands(h, threads, [&](int y0, int y1, int) {
+    std::vector<unsigned> win;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) one(win, x, y);
+  });
   return out;
+}
+}  // namespace
+
+DispImage post_rank(const DispImage& in, const HwConfig& hw, int ry, int rx, int rank) {
+  return post_rank_rows(in, hw, ry, rx, rank, 1);
 }
 
 DispImage post_vmedian(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 2, 0); }
 DispImage post_median3(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 1, 1); }
 DispImage post_median53(const DispImage& in, const HwConfig& hw) { return post_median(in, hw, 2, 1); }
 
-DispImage post_band(const DispImage& in, const HwConfig& hw, int k) {
+namespace {
+// post_band on bands of columns (each column is a recursion of its own, top to bottom).
+DispImage post_band_cols(const DispImage& in, const HwConfig& hw, int k, int threads) {
   if (k < 0) throw std::invalid_argument("post_band: negative look-ahead");
   const int dmask = (1 << clog2(hw.disp)) - 1;
   auto d = [dmask](DispPix p) { return static_cast<int>(p) & dmask; };
   // Output words as the medians': valid -> 0x8000 | d, invalid -> 0x0000.
   auto norm = [&](DispPix p) { return disp_valid(p) ? make_disp(static_cast<unsigned>(d(p)), true) : DispPix{0}; };
   DispImage out(in.w, in.h);
-  for (int x = 0; x < in.w && in.h > 0; ++x) out.at(x, 0) = norm(in.at(x, 0));
-  for (int y = 1; y < in.h; ++y)
-    for (int x = 0; x < in.w; ++x) {
-      const DispPix a = out.at(x, y - 1), c = in.at(x, y);
-      out.at(x, y) = norm(c);
-      if (!disp_valid(a) || !disp_valid(c) || std::abs(d(c) - d(a)) <= 1) continue;
-      for (int j = 1; j <= k && y + j < in.h; ++j) {
-        const DispPix b = in.at(x, y + j);
-        if (disp_valid(b) && std::abs(d(b) - d(a)) <= 1) {
-          out.at(x, y) = a;
-          break;
+  parallel_bands(in.w, threads, [&](int x0, int x1, int) {
+    for (int x = x0; x < x1 && in.h > 0; ++x) out.at(x, 0) = norm(in.at(x, 0));
+    for (int y = 1; y < in.h; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const DispPix a = out.at(x, y - 1), c = in.at(x, y);
+        out.at(x, y) = norm(c);
+        if (!disp_valid(a) || !disp_valid(c) || std::abs(d(c) - d(a)) <= 1) continue;
+        for (int j = 1; j <= k && y + j < in.h; ++j) {
+          const DispPix b = in.at(x, y + j);
+          if (disp_valid(b) && std::abs(d(b) - d(a)) <= 1) {
+            out.at(x, y) = a;
+            break;
+          }
         }
       }
-    }
+  });
   return out;
 }
+}  // namespace
 
-DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps) {
+DispImage post_band(const DispImage& in, const HwConfig& hw, int k) { return post_band_cols(in, hw, k, 1); }
+
+DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps,
+                       int threads) {
   DispImage cur = in;
   if (steps) steps->clear();
   // F0, the band filter (bit 3), runs first; then F1..F3 (bits 0..2).
-  if (regs.filter_enable & 8u) cur = post_band(cur, hw, hw.band_k);
+  if (regs.filter_enable & 8u) cur = post_band_cols(cur, hw, hw.band_k, threads);
   if (steps) steps->push_back(cur);
   for (int n = 0; n < 3; ++n) {
     if (regs.filter_enable & (1u << n)) {
-      if (n == 0) cur = post_vmedian(cur, hw);
-      if (n == 1) cur = post_median3(cur, hw);
-      if (n == 2) cur = post_median53(cur, hw);
+      // F1 5 x 1, F2 3 x 3, F3 5 x 3 (post_vmedian, post_median3, post_median53)
+      const int ry = n == 1 ? 1 : 2, rx = n == 0 ? 0 : 1;
+      cur = post_rank_rows(cur, hw, ry, rx, (2 * ry + 1) * (2 * rx + 1) / 2, threads);
     }
     if (steps) steps->push_back(cur);
   }
@@ -194,79 +255,145 @@ void add_pixel(Stats& s, int x, int y, unsigned d) {
   s.sum += d;
   s.maxd = std::max(s.maxd, d);
 }
+void fold_stats(Stats& s, Stats& a) {  // a is absorbed into s
+  s.x0 = std::min(s.x0, a.x0);
+  s.y0 = std::min(s.y0, a.y0);
+  s.x1 = std::max(s.x1, a.x1);
+  s.y1 = std::max(s.y1, a.y1);
+  s.count += a.count;
+  s.sum += a.sum;
+  s.maxd = std::max(s.maxd, a.maxd);
+  a.alive = false;
+}
+
+// The label table of section 8 as sm_objects keeps it: the flat equivalence table, the
+// statistics, and the bookkeeping that recycles labels within the frame.
+struct LabelTable {
+  explicit LabelTable(int slots) : parent(slots, 0), st(slots), busy(slots, 0), ucur(slots, 0), uprev(slots, 0) {
+    busy_list.reserve(static_cast<size_t>(slots));
+    freed.reserve(static_cast<size_t>(slots));
+  }
+  std::vector<int> parent;  // root of each busy label
+  std::vector<Stats> st;
+  std::vector<uint8_t> busy;   // allocated and not yet freed
+  std::vector<uint8_t> ucur;   // written into the row buffer on this row, before the last pixel
+  std::vector<uint8_t> uprev;  // ... on the previous row
+  int cand = 0;                // the label a new component gets
+  bool cand_ok = true;         // ... exists (false: every label busy)
+  int used = 0;                // labels 0..used-1 were allocated in this frame (the scan's range)
+  int n_busy = 0;              // busy labels (diagnostics)
+  bool last_near = false;      // the previous pixel was labelled ...
+  int last_lab = 0;            // ... with this label
+  // Speed only (the same sets as the flags above): the busy labels in any order, so the
+  // per-pixel scan visits the few busy labels instead of every slot, and the labels
+  // free_mask chose for the pixel.
+  std::vector<int> busy_list;
+  std::vector<int> freed;
+};
+
+// Labels freed before a pixel (into t.freed): busy, not written into the row buffer on
+// this row or the previous one (so no pixel still to be labelled can name them), and
+// either absorbed by a merge or the root of a component that has ended smaller than
+// min_pixels.
+void free_mask(LabelTable& t, unsigned min_pixels) {
+  t.freed.clear();
+  for (const int l : t.busy_list) {
+    const bool referenced = t.ucur[l] || t.uprev[l] || (t.last_near && t.last_lab == l);
+    const bool absorbed = t.parent[l] != l;
+    if (!referenced && (absorbed || t.st[l].count < min_pixels)) t.freed.push_back(l);
+  }
+}
+
+// After a pixel: choose the next candidate from the table as it was before the pixel
+// (the lowest free label other than the candidate, taken when the candidate was
+// allocated or none was free: the pixel's only change to busy is the candidate's
+// allocation, which the choice skips anyway), then apply the frees and move the
+// row-buffer marks.
+void advance(LabelTable& t, bool sol, bool alloc) {
+  const int n = static_cast<int>(t.busy.size());
+  if (alloc || !t.cand_ok) {
+    int c = -1;
+    for (int l = 0; l < n && c < 0; ++l)
+      if (!t.busy[l] && !(t.cand_ok && l == t.cand)) c = l;
+    t.cand_ok = c >= 0;
+    t.cand = std::max(c, 0);
+  }
+  for (const int l : t.freed) {
+    t.busy[l] = 0;
+    --t.n_busy;
+    t.busy_list.erase(std::find(t.busy_list.begin(), t.busy_list.end(), l));
+  }
+  if (sol) {
+    t.uprev = t.ucur;
+    std::fill(t.ucur.begin(), t.ucur.end(), 0);
+    if (t.last_near) t.uprev[t.last_lab] = 1;
+  } else if (t.last_near) {
+    t.ucur[t.last_lab] = 1;
+  }
+}
 }  // namespace
 
 ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw) {
   const unsigned dmask = (1u << clog2(hw.disp)) - 1;
-  const int slots = hw.label_slots;
   ObjectList res;
-  std::vector<int> parent(slots);
-  for (int i = 0; i < slots; ++i) parent[i] = i;
-  std::vector<Stats> st(slots);
-  int next = 0;
+  LabelTable t(hw.label_slots);
   // The row buffer (previous row) and the left neighbour, as the hardware keeps them.
   std::vector<uint8_t> up_near(in.w, 0);
   std::vector<unsigned> up_d(in.w, 0);
   std::vector<int> up_lab(in.w, 0);
-  bool l_near = false;
   unsigned l_d = 0;
-  int l_lab = 0;
   for (int y = 0; y < in.h; ++y)
     for (int x = 0; x < in.w; ++x) {
       const DispPix p = in.at(x, y);
       const unsigned d = p & dmask;
-      bool near = disp_valid(p) && d >= regs.obj_near;
+      free_mask(t, regs.obj_min_pixels);
+      bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
+      bool alloc = false;
       int lab = 0;
       if (near) {
-        const bool uok =
-            y > 0 && up_near[x] &&
-            static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(up_d[x]))) <= regs.obj_tol;
-        const bool lok = x > 0 && l_near &&
-                         static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(l_d))) <= regs.obj_tol;
-        const int ur = parent[up_lab[x]];
-        const int lr = l_lab;
+        auto close = [&](unsigned e) {
+          return static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(e))) <= regs.obj_tol;
+        };
+        const bool uok = y > 0 && up_near[x] && close(up_d[x]);
+        const bool lok = x > 0 && t.last_near && close(l_d);
+        const int ur = t.parent[up_lab[x]];
+        const int lr = t.last_lab;
         if (uok && lok && ur != lr) {
           const int s = std::min(ur, lr), a = std::max(ur, lr);
-          for (int i = 0; i < slots; ++i)
-            if (parent[i] == a) parent[i] = s;
-          Stats& S = st[s];
-          const Stats& A = st[a];
-          S.x0 = std::min(S.x0, A.x0);
-          S.y0 = std::min(S.y0, A.y0);
-          S.x1 = std::max(S.x1, A.x1);
-          S.y1 = std::max(S.y1, A.y1);
-          S.count += A.count;
-          S.sum += A.sum;
-          S.maxd = std::max(S.maxd, A.maxd);
-          st[a].alive = false;
-          add_pixel(S, x, y, d);
+          for (int& q : t.parent)
+            if (q == a) q = s;
+          fold_stats(t.st[s], t.st[a]);
+          add_pixel(t.st[s], x, y, d);
           lab = s;
         } else if (uok || lok) {
           lab = uok ? ur : lr;
-          add_pixel(st[lab], x, y, d);
-        } else if (next < slots) {
-          lab = next++;
-          Stats& S = st[lab];
-          S.x0 = S.x1 = x;
-          S.y0 = S.y1 = y;
-          S.count = 1;
-          S.sum = d;
-          S.maxd = d;
-          S.alive = true;
+          add_pixel(t.st[lab], x, y, d);
+        } else if (t.cand_ok) {
+          lab = t.cand;
+          alloc = true;
+          t.parent[lab] = lab;
+          t.busy[lab] = 1;
+          t.busy_list.push_back(lab);
+          ++t.n_busy;
+          ++res.labels_started;
+          t.used = std::max(t.used, lab + 1);
+          t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
         } else {
           res.table_full = true;  // no free label: the pixel is dropped (background)
           near = false;
         }
       }
+      res.labels_peak = std::max(res.labels_peak, t.n_busy);
+      advance(t, x == 0, alloc);
       up_near[x] = near;
       up_d[x] = d;
       up_lab[x] = lab;
-      l_near = near;
+      t.last_near = near;
+      t.last_lab = lab;
       l_d = d;
-      l_lab = lab;
     }
-  for (int i = 0; i < next; ++i) {
-    const Stats& s = st[i];
+  for (int i = 0; i < t.used; ++i) {
+    const Stats& s = t.st[i];
     if (!s.alive || s.count < regs.obj_min_pixels) continue;
     if (static_cast<int>(res.objects.size()) >= hw.max_objects) {
       res.too_many_objects = true;

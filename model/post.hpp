@@ -37,9 +37,10 @@ DispImage post_band(const DispImage& in, const HwConfig& hw, int k);
 
 // The chain F0 (post_band with k = hw.band_k, bit 3 of regs.filter_enable), then F1..F3
 // (bits 0..2); a disabled filter passes its input unchanged. `steps` (optional) receives
-// the image after each of the four steps, F0 first.
+// the image after each of the four steps, F0 first. threads: each filter on that many
+// bands of rows (F0: of columns), same result for any count.
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,
-                       std::vector<DispImage>* steps = nullptr);
+                       std::vector<DispImage>* steps = nullptr, int threads = 1);
 
 // ---- section 8: objects ------------------------------------------------------------
 
@@ -56,13 +57,19 @@ struct Object {
 };
 
 struct ObjectList {
-  std::vector<Object> objects;    // at most hw.max_objects, raster order of first pixel
+  std::vector<Object> objects;    // at most hw.max_objects, in label order
   bool too_many_objects = false;  // more components of >= obj_min_pixels than listed
-  bool table_full = false;        // a new component found no free label: its pixels dropped
+  bool table_full = false;        // a pixel found no free label: it was dropped (background)
+  // Diagnostics of the label table (not in the packet): labels allocated in the frame (what
+  // a table without recycling would need) and the most busy at once (what LABEL_SLOTS must hold).
+  int labels_started = 0;
+  int labels_peak = 0;
 };
 
-// One-pass labelling of the near pixels (valid, d >= regs.obj_near), 4-connected,
-// neighbours merging when |d1 - d2| <= regs.obj_tol, with hw.label_slots labels per frame.
+// One-pass labelling of the near pixels (valid, d >= regs.obj_near; an invalid pixel never
+// is), 4-connected, neighbours merging when |d1 - d2| <= regs.obj_tol, with hw.label_slots
+// labels that are recycled within the frame (absorbed labels, and components that ended
+// below regs.obj_min_pixels, once no pixel still to come can name them).
 ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw);
 
 // The AXI4-Stream packet of one object list (section 8): a header word, then five words

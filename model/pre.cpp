@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -13,11 +14,12 @@ Image8 brightness(const Image8& in, uint16_t gain, int16_t offset) {
   const int g = gain & 0x3ff;
   // 9-bit two's complement, as the register holds it
   const int off = ((offset & 0x1ff) ^ 0x100) - 0x100;
+  // The formula for each of the 256 inputs once, then a table lookup per pixel.
+  std::array<uint8_t, 256> lut;
+  for (int p = 0; p < 256; ++p)
+    lut[static_cast<size_t>(p)] = static_cast<uint8_t>(std::clamp(((p * g + 128) >> 8) + off, 0, 255));
   Image8 out(in.w, in.h);
-  for (size_t i = 0; i < in.px.size(); ++i) {
-    const int v = ((in.px[i] * g + 128) >> 8) + off;
-    out.px[i] = static_cast<uint8_t>(std::clamp(v, 0, 255));
-  }
+  for (size_t i = 0; i < in.px.size(); ++i) out.px[i] = lut[in.px[i]];
   return out;
 }
 
@@ -57,11 +59,30 @@ Image8 rectify(const Image8& in, const RectGrid& grid, bool enable, const HwConf
   check_grid(g, w, h);
   const int rr = hw.rect_radius;
   Image8 out(w, h);
-  for (int y = 0; y < h; ++y)
+  // interp_q4 with its column step (V0 / V1, Q.9) done once per grid point and row
+  // instead of once per pixel: the same integer arithmetic, hoisted.
+  std::vector<int32_t> vx(static_cast<size_t>(g.gw)), vy(static_cast<size_t>(g.gw));
+  for (int y = 0; y < h; ++y) {
+    const int gy = y >> kGridShift, fy = y & (kGridStep - 1);
+    for (int gx = 0; gx < g.gw; ++gx) {
+      const size_t p0 = static_cast<size_t>(gy) * g.gw + gx, p1 = p0 + g.gw;
+      vx[static_cast<size_t>(gx)] = int32_t{g.sx[p0]} * (kGridStep - fy) + int32_t{g.sx[p1]} * fy;
+      vy[static_cast<size_t>(gx)] = int32_t{g.sy[p0]} * (kGridStep - fy) + int32_t{g.sy[p1]} * fy;
+    }
     for (int x = 0; x < w; ++x) {
-      int sx, sy;
-      rect_source_q4(g, x, y, sx, sy);
+      const size_t gx = static_cast<size_t>(x >> kGridShift);
+      const int fx = x & (kGridStep - 1);
+      const int sx = (vx[gx] * (kGridStep - fx) + vx[gx + 1] * fx + 256) >> 9;  // Q.13 -> Q.4
+      const int sy = (vy[gx] * (kGridStep - fx) + vy[gx + 1] * fx + 256) >> 9;
       const int ix = sx >> 4, ax = sx & 15, iy = sy >> 4, ay = sy & 15;
+      if (ix >= 0 && ix + 1 < w && iy >= 0 && iy + 1 < h && iy >= y - rr && iy + 1 <= y + rr) {
+        // Every tap inside the image and the row window: no test per tap.
+        const uint8_t* p = &in.px[static_cast<size_t>(iy) * w + ix];
+        const int acc =
+            p[0] * (16 - ax) * (16 - ay) + p[1] * ax * (16 - ay) + p[w] * (16 - ax) * ay + p[w + 1] * ax * ay + 128;
+        out.at(x, y) = static_cast<uint8_t>(acc >> 8);
+        continue;
+      }
       auto tap = [&](int c, int r) -> int {
         if (c < 0 || c >= w || r < 0 || r >= h || r < y - rr || r > y + rr) return 0;
         return in.at(c, r);
@@ -70,6 +91,7 @@ Image8 rectify(const Image8& in, const RectGrid& grid, bool enable, const HwConf
                       tap(ix, iy + 1) * (16 - ax) * ay + tap(ix + 1, iy + 1) * ax * ay + 128;
       out.at(x, y) = static_cast<uint8_t>(acc >> 8);
     }
+  }
   return out;
 }
 

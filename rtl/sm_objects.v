@@ -135,16 +135,26 @@ module sm_objects #(
   // ---- stage 2: label -------------------------------------------------------------
   wire          real_q = side_q[`SM_SIDE_REAL];
   wire          fresh = side_q[`SM_SIDE_REAL] & side_q[`SM_SIDE_SOF];  // first pixel: tables start empty
+  wire          sol_q = side_q[`SM_SIDE_SOL];
   reg           bank_q;
-  reg  [NW-1:0] next_q;                         // labels allocated in this frame
+  reg  [NW-1:0] next_q;                         // labels 0..next_q-1 were allocated in this frame
   reg           tf_q;                           // table full seen in this frame
   reg           l_near_q;
   reg  [LW-1:0] l_lab_q;
   // Toggle coverage counts the logic, not the words a memory holds (the usual default of
   // simulators' toggle coverage for arrays); its address and data signals are counted.
   /* verilator coverage_off */
-  reg  [LW-1:0] parent [0:LABEL_SLOTS-1];       // flat: every entry names its root
+  reg  [LW-1:0] parent [0:LABEL_SLOTS-1];       // flat: every busy entry names its root
   /* verilator coverage_on */
+  // Label recycling: a label is busy from its allocation until it is freed. Labels written
+  // into the row buffer on this row (before the pixel now in stage 2, which is l_lab_q)
+  // or on the row above may still be read by a pixel to come; any other busy label that
+  // a merge absorbed, or that is the root of a component that has ended (no pixel on this
+  // row or the row above) below min_pixels, is freed. big_q lags the statistics by two
+  // clocks, and the last update of a label that is not referenced is over a row old.
+  reg  [LABEL_SLOTS-1:0] busy_q, ucur_q, uprev_q, big_q;
+  reg  [LW-1:0] cand_q;   // the label a new component gets: not busy
+  reg           cok_q;    // ... exists
 
   wire          bank = fresh ? ~bank_q : bank_q;
   wire [NW-1:0] next_eff = fresh ? {NW{1'b0}} : next_q;
@@ -163,15 +173,47 @@ module sm_objects #(
   wire          merge = up_ok && left_ok && (ur != lr);
   wire [LW-1:0] m_s = (ur < lr) ? ur : lr;  // survivor: the older label
   wire [LW-1:0] m_a = (ur < lr) ? lr : ur;  // absorbed
-  /* verilator lint_off WIDTH */
-  wire          room = next_eff < LABEL_SLOTS;
-  /* verilator lint_on WIDTH */
+  wire [LW-1:0] cand = fresh ? {LW{1'b0}} : cand_q;
+  wire          room = fresh | cok_q;
   wire          alloc = near && !up_ok && !left_ok && room;
   wire          drop = near && !up_ok && !left_ok && !room;
   wire          near_eff = near && !drop;
-  wire [LW-1:0] lab = merge ? m_s : up_ok ? ur : left_ok ? lr : next_eff[LW-1:0];
-  wire [NW-1:0] next_new = next_eff + {{(NW-1){1'b0}}, alloc};
+  wire [LW-1:0] lab = merge ? m_s : up_ok ? ur : left_ok ? lr : cand;
+  // the allocated label is never above the count (the lowest free one is taken)
+  wire [NW-1:0] next_new = next_eff + {{(NW-1){1'b0}}, alloc && ({{(NW-LW){1'b0}}, cand} == next_eff)};
   wire          tf_new = (fresh ? 1'b0 : tf_q) | drop;
+
+  // Frees and the next candidate, from registers only (the state before this pixel).
+  reg  [LABEL_SLOTS-1:0] free_v, last_v, cand_v, avail_v;
+  integer j;
+  always @* begin
+    for (j = 0; j < LABEL_SLOTS; j = j + 1) begin
+      /* verilator lint_off WIDTH */
+      last_v[j]  = l_near_q && (l_lab_q == j);
+      cand_v[j]  = cok_q && (cand_q == j);
+      free_v[j]  = busy_q[j] && !ucur_q[j] && !uprev_q[j] && !last_v[j] && ((parent[j] != j) || !big_q[j]);
+      /* verilator lint_on WIDTH */
+      avail_v[j] = !busy_q[j] && !cand_v[j];
+    end
+  end
+  wire [LW-1:0] low_i;
+  wire          low_any;
+  sm_lowest_set #(.N(LABEL_SLOTS), .IW(LW)) u_low (.v(avail_v), .any(low_any), .idx(low_i));
+  wire          take = alloc || !cok_q;  // the candidate is used up or there was none
+  reg  [LABEL_SLOTS-1:0] busy_n, ucur_n, uprev_n;
+  reg                    alloc_j;
+  always @* begin
+    for (j = 0; j < LABEL_SLOTS; j = j + 1) begin
+      /* verilator lint_off WIDTH */
+      alloc_j    = alloc && (cand == j);
+      /* verilator lint_on WIDTH */
+      busy_n[j]  = fresh ? alloc_j : (busy_q[j] && !free_v[j]) || alloc_j;
+      ucur_n[j]  = !(fresh || sol_q) && (ucur_q[j] || last_v[j]);
+      uprev_n[j] = !fresh && (sol_q ? (ucur_q[j] || last_v[j]) : uprev_q[j]);
+    end
+  end
+  wire [LW-1:0] cand_n = fresh ? {{(LW-1){1'b0}}, alloc} : take ? low_i : cand_q;
+  wire          cok_n = fresh ? (!alloc || LABEL_SLOTS > 1) : take ? low_any : 1'b1;
 
   // statistics, banked by frame parity: address {bank, label}; combinational reads
   // (distributed RAM) so a label's update is visible to the very next pixel
@@ -203,27 +245,35 @@ module sm_objects #(
   reg  [DW-1:0]  s3_d;
   reg  [XW-1:0]  s3_x;
   reg  [YW-1:0]  s3_y;
+  reg  [LW-1:0]  s3_l;       // the label, without the bank
+  // stage 4: the label's size against min_pixels, for the recycling (big_q)
+  reg            s4_v;
+  reg  [LW-1:0]  s4_l;
+  reg  [CNTW-1:0] s4_cnt;
 
   // The pixel joins the survivor's statistics, merged with the absorbed one's. Bounds:
   // the compares (absorbed vs survivor, pixel vs each) run in parallel and one select
   // follows, instead of a compare on the result of a compare. Raster order makes some of
   // them constant, so they are left out: every label pixel so far lies on this row or
-  // above (y1 is this row's y), a label's y0 is the row it was allocated on and the
-  // survivor is the older label (so its y0 stands), and each label the pixel joins holds
-  // its left (x - 1) or upper (x) neighbour, so no x0 is right of the pixel and an absorbed
-  // x1 beyond the survivor's (>= x - 1) is at least x.
+  // above (y1 is this row's y), a label's y0 is at most the pixel's y (only the survivor's
+  // and the absorbed label's are compared: with recycled labels the survivor need not be
+  // the older), and each label the pixel joins holds its left (x - 1) or upper (x)
+  // neighbour, so no x0 is right of the pixel and an absorbed x1 beyond the survivor's
+  // (>= x - 1) is at least x.
   wire [XW-1:0]   r_x0a = st_x0[s3_abs];
   wire [XW-1:0]   r_x0  = st_x0[s3_lab];
+  wire [YW-1:0]   r_y0a = st_y0[s3_abs];
   wire [YW-1:0]   r_y0  = st_y0[s3_lab];
   wire [XW-1:0]   r_x1a = st_x1[s3_abs];
   wire [XW-1:0]   r_x1  = st_x1[s3_lab];
   wire [DW-1:0]   r_mxa = st_max[s3_abs];
   wire [DW-1:0]   r_mx  = st_max[s3_lab];
   wire            m_x0 = s3_merge && r_x0a < r_x0;
+  wire            m_y0 = s3_merge && r_y0a < r_y0;  // recycled labels: the survivor may be younger
   wire            m_x1 = s3_merge && r_x1a > r_x1;
   wire            m_mx = s3_merge && r_mxa > r_mx;
   wire [XW-1:0]   n_x0 = s3_alloc ? s3_x : m_x0 ? r_x0a : r_x0;
-  wire [YW-1:0]   n_y0 = s3_alloc ? s3_y : r_y0;
+  wire [YW-1:0]   n_y0 = s3_alloc ? s3_y : m_y0 ? r_y0a : r_y0;
   wire [XW-1:0]   n_x1 = s3_alloc ? s3_x : m_x1 ? r_x1a : (s3_x > r_x1 ? s3_x : r_x1);
   wire [YW-1:0]   n_y1 = s3_y;
   wire [DW-1:0]   n_max = s3_alloc ? s3_d : m_mx ? (s3_d > r_mxa ? s3_d : r_mxa)
@@ -234,7 +284,7 @@ module sm_objects #(
   wire [SUMW-1:0] n_sum = (s3_alloc ? {SUMW{1'b0}} : b_sum) + {{(SUMW-DW){1'b0}}, s3_d};
   // only {valid, d} of the stream word and the real/sof/sol bits of the sideband matter
   /* verilator coverage_off */  // lint sinks: no logic
-  wire            unused_in = &{s_disp[14:DW], side_q[`SM_SIDE_TAG], side_q[`SM_SIDE_SOL], s_lo[8:DW], p_lo[8:DW]};
+  wire            unused_in = &{s_disp[14:DW], side_q[`SM_SIDE_TAG], s_lo[8:DW], p_lo[8:DW]};
   /* verilator coverage_on */
 
   integer i;
@@ -261,11 +311,14 @@ module sm_objects #(
       l_lab_q  <= lab;
       if (real_q) begin
         for (i = 0; i < LABEL_SLOTS; i = i + 1) begin
-          if (fresh) parent[i] <= i[LW-1:0];
+          /* verilator lint_off WIDTH */
+          if (alloc && cand == i) parent[i] <= i[LW-1:0];
+          /* verilator lint_on WIDTH */
           else if (merge && parent[i] == m_a) parent[i] <= m_s;
         end
       end
       s3_lab   <= a_lab;
+      s3_l     <= lab;
       s3_abs   <= a_abs;
       s3_merge <= merge;
       s3_alloc <= alloc;
@@ -274,6 +327,8 @@ module sm_objects #(
       s3_y     <= y_q;
     end
     // stage 3
+    s4_l   <= s3_l;
+    s4_cnt <= n_cnt;
     if (s3_v) begin
       st_x0[s3_lab]  <= n_x0;
       st_y0[s3_lab]  <= n_y0;
@@ -283,6 +338,11 @@ module sm_objects #(
       st_sum[s3_lab] <= n_sum;
       st_max[s3_lab] <= n_max;
     end
+  end
+
+  // stage 4: big_q, the size against the frame's min_pixels
+  always @(posedge clk) begin
+    if (s4_v) big_q[s4_l] <= ({{(32-CNTW){1'b0}}, s4_cnt} >= {16'd0, minpix_q});
   end
 
   // alive: set when a label is allocated, cleared when it is absorbed (two writes)
@@ -304,6 +364,12 @@ module sm_objects #(
       side_q  <= {`SM_SIDE_W{1'b0}};
       eof_q   <= 1'b0;
       s3_v    <= 1'b0;
+      s4_v    <= 1'b0;
+      busy_q  <= {LABEL_SLOTS{1'b0}};
+      ucur_q  <= {LABEL_SLOTS{1'b0}};
+      uprev_q <= {LABEL_SLOTS{1'b0}};
+      cand_q  <= {LW{1'b0}};
+      cok_q   <= 1'b1;
       bank_q  <= 1'b0;
       next_q  <= {NW{1'b0}};
       tf_q    <= 1'b0;
@@ -319,6 +385,7 @@ module sm_objects #(
     end else begin
       scan_go <= 1'b0;
       s3_v    <= upd;
+      s4_v    <= s3_v;
       if (ce) begin
         side_q <= c_side;
         eof_q  <= c_eof;
@@ -329,9 +396,14 @@ module sm_objects #(
           hm1_q    <= height - 1'b1;
         end
         if (real_q) begin
-          bank_q <= bank;
-          next_q <= next_new;
-          tf_q   <= tf_new;
+          bank_q  <= bank;
+          next_q  <= next_new;
+          tf_q    <= tf_new;
+          busy_q  <= busy_n;
+          ucur_q  <= ucur_n;
+          uprev_q <= uprev_n;
+          cand_q  <= cand_n;
+          cok_q   <= cok_n;
         end
         if (real_q && eof_q) begin
           scan_go <= 1'b1;

@@ -110,11 +110,39 @@ module sm_top #(
   reg  [31:0]   obj_rd_data_q;
 
   wire [IN_LW-1:0] in_level;
+
+  // The pipeline restarts on aresetn and on the CONTROL soft-reset pulse; registers keep
+  // their values over a soft reset. The pipeline's reset is registered (fan-out), so it
+  // is in reset at the edges one clock after those that sample aresetn low. The host
+  // side -- the register file, the output formatter, the object packet sender and the
+  // list's VALID bit -- takes the pipeline's outputs (frame start, error pulses, FIFO
+  // level, list publish), so it is held in reset over the same edges and the one before:
+  // host_rst_n is low at every edge that samples aresetn low and at the edge after it.
+  // Both sides then leave reset at the same edge, whatever the pulse width (one clock
+  // or more), and the first pipeline output the host side takes comes from a reset
+  // pipeline (docs/streams.md, "Reset and soft reset"). aresetn itself is in host_rst_n,
+  // so TVALID of both outputs is low from the first edge that samples aresetn low; the
+  // edge after the reset is still a reset edge, so TVALID is low in the clock after the
+  // reset too. An AXI master may start a transfer in the clock after the edge that first
+  // samples aresetn high (AXI: valid rises only after an edge with ARESETn high), whose
+  // handshake is at the first edge the register file is out of reset.
+  // A soft reset does not reset the host side: the sink is not reset with it, so the
+  // beat on the wire stays until taken and the frame in progress is completed by
+  // sm_outfmt.
+  reg rst_n_q;    // pipeline reset: aresetn or the soft-reset pulse at the previous edge
+  reg aresetn_q;  // aresetn at the previous edge
+  always @(posedge aclk) begin
+    rst_n_q   <= aresetn && !soft_reset;
+    aresetn_q <= aresetn;
+  end
+  wire rst_n      = rst_n_q;
+  wire host_rst_n = aresetn && aresetn_q;
+
   sm_axil_regs #(
       .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS), .PU(PUE),
       .LEVEL_W(IN_LW)
   ) u_regs (
-      .aclk(aclk), .aresetn(aresetn),
+      .aclk(aclk), .aresetn(host_rst_n),
       .s_axil_awaddr(s_axil_awaddr), .s_axil_awvalid(s_axil_awvalid), .s_axil_awready(s_axil_awready),
       .s_axil_wdata(s_axil_wdata), .s_axil_wstrb(s_axil_wstrb), .s_axil_wvalid(s_axil_wvalid),
       .s_axil_wready(s_axil_wready), .s_axil_bresp(s_axil_bresp), .s_axil_bvalid(s_axil_bvalid),
@@ -132,17 +160,6 @@ module sm_top #(
       .obj_rd_idx(obj_rd_idx), .obj_rd_data(obj_rd_data_q),
       .grid_we(grid_we), .grid_waddr(grid_waddr), .grid_wdata(grid_wdata)
   );
-
-  // The pipeline restarts on aresetn and on the CONTROL soft-reset pulse; registers keep
-  // their values over a soft reset. The pipeline's reset is registered (fan-out); the
-  // output streams' own state is reset by aresetn itself, so TVALID is low from the
-  // first edge that samples aresetn low and in the clock after the last one
-  // (docs/streams.md, "Reset"). A soft reset does not reset the output side: the sink is
-  // not reset with it, so the beat on the wire stays until taken and the frame in
-  // progress is completed by sm_outfmt.
-  reg rst_n_q;
-  always @(posedge aclk) rst_n_q <= aresetn && !soft_reset;
-  wire rst_n = rst_n_q;
 
   // ---------------------------------------------------------------- input sequencer
   wire       beat_valid;
@@ -354,7 +371,7 @@ module sm_top #(
       .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS),
       .LABEL_SLOTS(LABEL_SLOTS)
   ) u_objects (
-      .clk(aclk), .rst_n(rst_n), .out_rst_n(aresetn), .ce(ce), .width(width), .height(frame_height),
+      .clk(aclk), .rst_n(rst_n), .out_rst_n(host_rst_n), .ce(ce), .width(width), .height(frame_height),
       .near_thr(par_obj[7:0]), .tol(par_obj[15:8]), .min_pixels(par_obj[31:16]),
       .s_side(f3_side), .s_disp(f3_disp),
       .list_ready(list_ready), .obj_count(obj_count), .too_many(too_many), .table_full(table_full),
@@ -366,7 +383,7 @@ module sm_top #(
   );
   wire unused_obj = ^{rd_sum, pkt_lost, obj_word_idx};
   always @(posedge aclk) begin
-    if (!aresetn) list_valid_q <= 1'b0;
+    if (!host_rst_n) list_valid_q <= 1'b0;
     else if (list_ready) list_valid_q <= 1'b1;
     if (obj_rd_idx == {OIW{1'b0}})
       obj_rd_data_q <= {21'd0, table_full, too_many, list_valid_q, obj_count};
@@ -381,7 +398,7 @@ module sm_top #(
 
   // ---------------------------------------------------------------- output
   sm_outfmt #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT)) u_out (
-      .clk(aclk), .rst_n(aresetn), .restart(!rst_n), .ce(ce), .width(width), .height(frame_height),
+      .clk(aclk), .rst_n(host_rst_n), .restart(!rst_n), .ce(ce), .width(width), .height(frame_height),
       .in_side(f3_side), .in_disp(f3_disp), .room(out_room), .err_overflow(out_overflow),
       .m_axis_tdata(m_axis_tdata), .m_axis_tuser(m_axis_tuser), .m_axis_tlast(m_axis_tlast),
       .m_axis_tvalid(m_axis_tvalid), .m_axis_tready(m_axis_tready)
@@ -389,12 +406,13 @@ module sm_top #(
 
 `ifndef SYNTHESIS
   // AXI4-Stream rules on both outputs (simulation only, live in every Verilated test):
-  // TVALID low in the clock after an edge that sampled aresetn low (the whole reset and
-  // the clock it ends in); once TVALID is high it stays high with the same payload until
+  // TVALID low in the clock after an edge that sampled aresetn low and after the edge
+  // that first samples it high again (the whole reset and the clock after it); once TVALID is high it stays high with the same payload until
   // TREADY, unless aresetn intervenes (a soft reset does not release a beat); TLAST and
   // TUSER only with TVALID.
   reg        chk_live_q;  // a reset has been seen (power-up state is arbitrary)
   reg        chk_rst_q;
+  reg        chk_host_rst_q;
   reg        chk_wait_q, chk_owait_q;
   reg [17:0] chk_beat_q;
   reg [32:0] chk_obeat_q;
@@ -412,9 +430,24 @@ module sm_top #(
       if (!m_axis_tvalid && (m_axis_tuser || m_axis_tlast)) $error("sm_top: m_axis tuser/tlast without tvalid");
       if (!m_axis_obj_tvalid && m_axis_obj_tlast) $error("sm_top: m_axis_obj tlast without tvalid");
     end
+    // Reset release: after aresetn the host side and the pipeline leave reset at the same
+    // edge, and at that edge the host side takes no pipeline event (frame start, error
+    // pulse, input FIFO level, list publish): it would be one from before the reset.
+    if (chk_live_q && chk_host_rst_q && host_rst_n) begin
+      if (!rst_n) $error("sm_top: the register file and the outputs left reset before the pipeline");
+      if (frame_start || seq_err != 6'd0 || out_overflow || list_ready || in_level != {IN_LW{1'b0}})
+        $error("sm_top: a pipeline event from before the reset reached the register file or the outputs");
+    end
+    chk_host_rst_q <= !host_rst_n;
+    // AXI: a master raises VALID only after an edge that samples ARESETn high. At the
+    // first such edge the register file is still in reset (host_rst_n), so a transfer
+    // handshaked there would be lost.
+    if (chk_live_q && aresetn && !aresetn_q && (s_axil_awvalid || s_axil_wvalid || s_axil_arvalid))
+      $error("sm_top: AXI4-Lite VALID at the edge that first samples aresetn high");
     if (!aresetn) chk_live_q <= 1'b1;
-    // aresetn low at this edge resets the sink too: the beat is released
-    chk_rst_q   <= !aresetn;
+    // aresetn low at this edge resets the sink too: the beat is released; the edge after
+    // it is a reset edge of the outputs too
+    chk_rst_q   <= !host_rst_n;
     chk_wait_q  <= aresetn && m_axis_tvalid && !m_axis_tready;
     chk_owait_q <= aresetn && m_axis_obj_tvalid && !m_axis_obj_tready;
     chk_beat_q  <= chk_beat;

@@ -86,7 +86,11 @@ add_library(sm_stereo_sim_app STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_outputs.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_pictures.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_frame_source.cpp
-  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_shards.cpp)
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_shards.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_preflight.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_interrupt.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_depth.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_progress.cpp)
 target_include_directories(sm_stereo_sim_app PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR})
 target_link_libraries(sm_stereo_sim_app PUBLIC sm_model sm_toolio sm_verilated fmt::fmt
                       PRIVATE CLI11::CLI11 nlohmann_json::nlohmann_json ${OpenCV_LIBS})
@@ -96,8 +100,13 @@ target_compile_definitions(sm_stereo_sim_app PRIVATE VM_TRACE=0 VM_COVERAGE=0)
 target_compile_options(sm_stereo_sim_app PRIVATE ${SM_WARNINGS} -O1)
 add_dependencies(sm_stereo_sim_app sm_regmap_gen_files)
 
-# sm_add_sim(<target> <vtop library>)
+# sm_add_sim(<target> <vtop library> [<default scene folder>]): the default scene is one of
+# the configuration's own size and disparity range (tools/scene.cmake), build/scene unless given.
 function(sm_add_sim target lib)
+  set(scene ${SM_SCENE_DIR})
+  if(ARGC GREATER 2)
+    set(scene ${ARGV2})
+  endif()
   add_executable(${target} ${CMAKE_CURRENT_SOURCE_DIR}/stereo_sim.cpp)
   # tests/common: sm_coverage.hpp, so the tests that run stereo_sim count in the coverage
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR}
@@ -105,7 +114,7 @@ function(sm_add_sim target lib)
   target_link_libraries(${target} PRIVATE ${lib} sm_stereo_sim_app sm_model fmt::fmt)
   target_compile_options(${target} PRIVATE ${SM_WARNINGS})
   target_compile_definitions(${target} PRIVATE
-    SM_DEFAULT_SCENE="${CMAKE_BINARY_DIR}/scene"
+    SM_DEFAULT_SCENE="${scene}"
     SM_SYNTH_JSON="${CMAKE_BINARY_DIR}/synth/sm_top_${target}.json"
     SM_SYNTH_JSON_DOCS="${CMAKE_SOURCE_DIR}/docs/synth/sm_top_${target}.json")
   # the default input: building stereo_sim alone must leave it runnable
@@ -113,9 +122,9 @@ function(sm_add_sim target lib)
 endfunction()
 sm_add_sim(stereo_sim vtop_paper)
 sm_add_sim(stereo_sim_zynq vtop_zynq)
-sm_add_sim(stereo_sim_vga vtop_vga)
-sm_add_sim(stereo_sim_small vtop_small)
-sm_add_sim(stereo_sim_small_fold vtop_small_fold)
+sm_add_sim(stereo_sim_vga vtop_vga ${SM_SCENE_VGA_DIR})
+sm_add_sim(stereo_sim_small vtop_small ${SM_SCENE_SMALL_DIR})
+sm_add_sim(stereo_sim_small_fold vtop_small_fold ${SM_SCENE_SMALL_DIR})
 
 # Wave builds (issue 22): sm_top traced at full depth, so that one block's internals can
 # be dumped at run time (stereo_sim --wave FILE.vcd|FILE.fst --wave-scope ... --wave-depth
@@ -154,14 +163,14 @@ function(sm_vtop_wave lib)
   target_compile_definitions(${lib} PUBLIC ${defs})
 endfunction()
 
-# sm_add_sim_wave(<target> <params...>): stereo_sim on a wave library.
-function(sm_add_sim_wave target)
+# sm_add_sim_wave(<target> <default scene folder> <params...>): stereo_sim on a wave library.
+function(sm_add_sim_wave target scene)
   sm_vtop_wave(${target}_lib ${ARGN})
-  sm_add_sim(${target} ${target}_lib)
+  sm_add_sim(${target} ${target}_lib ${scene})
   target_compile_definitions(${target} PRIVATE SM_WAVE_BUILD=1)
 endfunction()
-sm_add_sim_wave(stereo_sim_small_wave ${SM_SMALL_PARAMS})
-sm_add_sim_wave(stereo_sim_wave ${SM_PAPER_PARAMS})
+sm_add_sim_wave(stereo_sim_small_wave ${SM_SCENE_SMALL_DIR} ${SM_SMALL_PARAMS})
+sm_add_sim_wave(stereo_sim_wave ${SM_SCENE_DIR} ${SM_PAPER_PARAMS})
 if(NOT SM_WAVE_PAPER)
   set_target_properties(stereo_sim_wave stereo_sim_wave_lib PROPERTIES EXCLUDE_FROM_ALL ON)
 endif()

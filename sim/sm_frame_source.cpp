@@ -1,10 +1,14 @@
 // stereo_sim's frame sources (sm_frame_source.hpp).
 #include "sm_frame_source.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 #include <utility>
@@ -97,16 +101,51 @@ class SequenceSource : public FrameSource {
   size_t i_ = 0;
 };
 
+// FFmpeg prints its own complaints ("[png @ 0x...] ...") on stderr, past OpenCV's log
+// level; the one error line is ours, so stderr is parked on /dev/null while it decodes.
+class QuietStderr {
+ public:
+  QuietStderr() {
+    std::fflush(stderr);
+    saved_ = dup(2);
+    const int nul = open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && nul >= 0) dup2(nul, 2);
+    if (nul >= 0) close(nul);
+  }
+  ~QuietStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      dup2(saved_, 2);
+      close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 // A side-by-side stereo video (left half, right half). Its frames are counted by one
-// pass over the file when it is opened (container frame counts are not reliable).
+// pass over the file when it is opened (container frame counts are not reliable); a
+// video that ends before the frames its header declares (truncated, damaged) is an
+// error, not a shorter run.
 class VideoSource : public FrameSource {
  public:
   VideoSource(const SimOptions& opt) : path_(opt.video) {
+    // FFmpeg would play a single picture as a one-frame video
+    if (cv::haveImageReader(path_))
+      fail(fmt::format("--video {}: a picture, not a video (a pair is --left/--right)", path_));
+    QuietStderr quiet;
     cv::VideoCapture cap(path_);
-    if (!cap.isOpened()) fail(fmt::format("{}: cannot open video", path_));
+    if (!cap.isOpened()) fail(fmt::format("{}: not a video OpenCV can read", path_));
+    const double declared = cap.get(cv::CAP_PROP_FRAME_COUNT);
     const size_t want = opt.frames > 0 ? static_cast<size_t>(opt.frames) : ~size_t{0};
     while (available_ <= want && cap.grab()) ++available_;  // one past the limit: "of N" is then a lower bound
     if (available_ == 0) fail(fmt::format("{}: no frames could be read", path_));
+    if (declared > 0 && available_ < std::min(want, static_cast<size_t>(declared)))
+      fail(fmt::format("{}: only {} of the {} frames it declares could be read (truncated or damaged)", path_,
+                       available_, static_cast<size_t>(declared)));
     count_ = limit(opt, available_, "the video", note_);
     if (count_ < available_) note_ = fmt::format("{} frames of the video (--frames {})", count_, opt.frames);
     name_ = path_;
@@ -114,6 +153,7 @@ class VideoSource : public FrameSource {
   }
   StereoFrame next() override {
     cv::Mat f, g;
+    QuietStderr quiet;
     if (!cap_.read(f)) fail(fmt::format("{}: frame {} could not be read", path_, i_));
     if (f.cols < 2) fail(fmt::format("{}: frame too narrow", path_));
     if (f.channels() == 3)
@@ -133,6 +173,25 @@ class VideoSource : public FrameSource {
 
 }  // namespace
 
+tools::Scene load_sim_scene(const std::string& dir) {
+  const fs::path d(dir);
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) fail(fmt::format("--scene {}: no such folder", dir));
+  if (fs::exists(d / "gt.png", ec)) {
+    if (!fs::exists(d / "scale.txt", ec))
+      fail(fmt::format("{}: no such file (gt.png's disparities need its scale)", (d / "scale.txt").string()));
+    return tools::load_scene(dir);
+  }
+  tools::Scene sc;
+  sc.dir = dir;
+  sc.left = tools::load_grey_mat((d / "left.png").string());
+  sc.right = tools::load_grey_mat((d / "right.png").string());
+  if (sc.left.size() != sc.right.size())
+    fail(fmt::format("{}: left {}x{} and right {}x{} differ in size", dir, sc.left.cols, sc.left.rows, sc.right.cols,
+                     sc.right.rows));
+  return sc;
+}
+
 std::unique_ptr<FrameSource> open_frame_source(const SimOptions& opt) {
   if (!opt.left.empty() || !opt.right.empty()) {
     if (opt.left.empty() || opt.right.empty()) fail("--left and --right go together");
@@ -143,7 +202,7 @@ std::unique_ptr<FrameSource> open_frame_source(const SimOptions& opt) {
   }
   if (!opt.seq_dir.empty()) return std::make_unique<SequenceSource>(opt);
   if (!opt.video.empty()) return std::make_unique<VideoSource>(opt);
-  const tools::Scene sc = tools::load_scene(opt.scene_dir);
+  const tools::Scene sc = load_sim_scene(opt.scene_dir);
   return std::make_unique<RepeatSource>(sc.left, sc.right, opt, opt.scene_dir);
 }
 

@@ -14,6 +14,7 @@
 
 #include "sm_sim.hpp"
 #include "sm_types.hpp"
+#include "toolio/sm_io.hpp"
 
 namespace sm::simapp {
 
@@ -46,6 +47,10 @@ class FrameSource {
   int width_ = 0, height_ = 0;
   bool resized_ = false;
 };
+
+// A scene's left.png and right.png, and its ground truth when it has gt.png (which needs
+// scale.txt, the factor of its disparities). Without gt.png the run is not scored.
+tools::Scene load_sim_scene(const std::string& dir);
 
 // Opens the input the options name (--left/--right, --sequence, --video, else --scene)
 // and decides how many frames run: a sequence or video all of its frames unless

@@ -100,6 +100,7 @@ struct ObjectPacket {
   bool valid = false;  // the header's tag is 0xA5 and the length matches its count
   bool too_many = false, table_full = false, lost = false;
   std::vector<Object> objects;
+  std::vector<std::string> notes;  // what each flag dropped and what to change (filled by the report)
 };
 
 inline ObjectPacket decode_object_packet(const std::vector<uint32_t>& w) {

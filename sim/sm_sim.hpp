@@ -123,6 +123,9 @@ class SimEngine {
 
   // Progress callback: called with (frames done, frames total) after each output frame.
   std::function<void(size_t, size_t)> on_frame;
+  // Progress within a frame: called with (output frame, row) after each complete output
+  // row (once per row: the per-clock loop stays cheap).
+  std::function<void(size_t, int)> on_row;
 
   // `host`: a register schedule (plan_register_schedule) the host runs over AXI4-Lite
   // while the camera streams.
@@ -263,7 +266,11 @@ class SimEngine {
     if (!vcd.path.empty() && !s.vcd_on && s.vcd_end == 0 && s.f == static_cast<size_t>(vcd.frame) && s.y == vcd.line &&
         s.x == 0) {
       if (!tb_.open_trace(vcd.path, 99, vcd.scope))
+#if VM_TRACE
+        throw std::runtime_error(fmt::format("{}: cannot open the wave file for writing", vcd.path));
+#else
         throw std::runtime_error("this simulator was built without tracing (--trace)");
+#endif
       s.vcd_on = true;
       s.vcd_end = tb_.cycles() + (vcd.cycles ? vcd.cycles : vcd.lines * s.line_period);
     }
@@ -380,6 +387,7 @@ class SimEngine {
     s.cur.at(s.ox, s.oy) = static_cast<DispPix>(od);
     if (++s.ox < s.width) return;
     s.ox = 0;
+    if (on_row) on_row(s.oframe, s.oy);
     if (++s.oy < s.height) return;
     s.oy = 0;
     res.stats[s.oframe].last_out_cycle = now;

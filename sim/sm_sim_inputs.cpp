@@ -45,7 +45,7 @@ SimInput open_inputs(const SimOptions& opt) {
 
 void fit_inputs(const SimOptions& opt, int width, int height, SimInput& in) {
   in.source->set_size(width, height);
-  if (is_scene_input(opt)) fit_ground_truth(tools::load_scene(opt.scene_dir), width, height, in);
+  if (is_scene_input(opt)) fit_ground_truth(load_sim_scene(opt.scene_dir), width, height, in);
 }
 
 }  // namespace sm::simapp

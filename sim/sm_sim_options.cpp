@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <type_traits>
 #include <filesystem>
 #include <memory>
 
@@ -26,30 +28,54 @@ std::string full_scope(const std::string& s) {
   return "TOP.sm_top." + s;
 }
 
+// A number in lo..hi. CLI11's Range says "not in range" for a word and lets NaN through.
+template <class T>
+CLI::Validator in_range(T lo, T hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& s) -> std::string {
+        T v{};
+        if (!CLI::detail::lexical_cast(s, v))
+          return fmt::format("'{}' is not {}", s, std::is_integral<T>::value ? "an integer" : "a number");
+        if constexpr (std::is_floating_point<T>::value)
+          if (!std::isfinite(v)) return fmt::format("'{}' is not a finite number", s);
+        if (v < lo || v > hi) return fmt::format("{} is outside {}..{}", s, lo, hi);
+        return {};
+      },
+      // as CLI::Range describes itself in --help
+      fmt::format("{} in [{} - {}]", std::is_integral<T>::value ? "INT" : "FLOAT", lo, hi));
+}
+
 struct SizeOptions {
   CLI::Option* width = nullptr;
   CLI::Option* height = nullptr;
 };
 
 SizeOptions add_input_options(CLI::App& app, const HwConfig& hw, SimOptions& o) {
-  app.add_option("--left", o.left, "left image (with --right)");
-  app.add_option("--right", o.right, "right image");
-  app.add_option("--sequence", o.seq_dir, "folder of left*/right* image pairs, sorted by name");
-  app.add_option("--video", o.video, "side-by-side stereo video (left half, right half)");
-  app.add_option("--scene", o.scene_dir, "scene folder (left.png right.png [gt.png scale.txt nonocc.png])")
-      ->capture_default_str();
+  auto* left = app.add_option("--left", o.left, "left image (with --right)");
+  auto* right = app.add_option("--right", o.right, "right image (with --left)");
+  auto* seq = app.add_option("--sequence", o.seq_dir, "folder of left*/right* image pairs, sorted by name");
+  auto* video = app.add_option("--video", o.video, "side-by-side stereo video (left half, right half)");
+  auto* scene = app.add_option("--scene", o.scene_dir,
+                               "scene folder: left.png right.png, optionally gt.png with scale.txt (ground truth "
+                               "= gt.png / scale) and nonocc.png; without gt.png the run is not scored")
+                    ->capture_default_str();
+  // One input: a pair, a sequence, a video or a scene.
+  left->needs(right);
+  right->needs(left);
+  for (auto* a : {left, right}) a->excludes(seq)->excludes(video)->excludes(scene);
+  seq->excludes(video)->excludes(scene);
+  video->excludes(scene);
   app.add_option("--frames", o.frames,
                  "frames to stream: at most this many of a sequence or video (default: all of them); a pair or "
                  "scene is repeated (default 2)")
-      ->check(CLI::Range(1, 100000));
+      ->check(in_range(1, 100000));
   // The active size's real limits: MIN_WIDTH..MAX_WIDTH and 16..MAX_HEIGHT (docs/registers.md).
   SizeOptions s;
   s.width = app.add_option("--width", o.width, "active width")
-                ->check(CLI::Range(hw.min_width(), hw.max_width))
+                ->check(in_range(hw.min_width(), hw.max_width))
                 ->capture_default_str();
-  s.height = app.add_option("--height", o.height, "active height")
-                 ->check(CLI::Range(16, hw.max_height))
-                 ->capture_default_str();
+  s.height =
+      app.add_option("--height", o.height, "active height")->check(in_range(16, hw.max_height))->capture_default_str();
   return s;
 }
 
@@ -63,29 +89,34 @@ std::shared_ptr<const tools::RegOptions> add_register_options(CLI::App& app, con
                  "written over AXI4-Lite while frame FRAME-1 streams (repeatable)");
   app.add_option("--calib", o.calib, "calibration JSON from sm_calibrate (written over AXI4-Lite)");
   // every other value register (--occ, --occ-edge, --gain-l, ...), written before the first frame
-  return std::make_shared<const tools::RegOptions>(app, Regs::defaults(hw), std::set<std::string>{"WIDTH", "HEIGHT"},
+  return std::make_shared<const tools::RegOptions>(app, Regs::defaults(hw), hw,
+                                                   std::set<std::string>{"WIDTH", "HEIGHT"},
                                                    std::map<std::string, std::string>{{"FILTER_ENABLE", "--filters"}});
 }
 
 void add_camera_options(CLI::App& app, const HwConfig& hw, SimOptions& o) {
-  app.add_flag("--continuous", o.continuous, "no blanking: one pixel every clock");
+  auto* continuous = app.add_flag("--continuous", o.continuous, "no blanking: one pixel every clock");
+  // The blanking does not apply to a continuous stream: refused with --continuous.
   app.add_option("--hblank", o.hblank, "camera horizontal blanking (cycles)")
-      ->check(CLI::Range(0, 65535))
-      ->capture_default_str();
+      ->check(in_range(0, 65535))
+      ->capture_default_str()
+      ->excludes(continuous);
   app.add_option("--vblank", o.vblank, "camera vertical blanking (lines)")
-      ->check(CLI::Range(0, 4095))
-      ->capture_default_str();
+      ->check(in_range(0, 4095))
+      ->capture_default_str()
+      ->excludes(continuous);
   app.add_option("--pixel-clock", o.pixel_clock, "camera pixel clock in Hz (default: 30 frames/s)")
-      ->check(CLI::Range(1.0e3, 1.0e10));
+      ->check(in_range(1.0e3, 1.0e10));
   app.add_option("--clock-mhz", o.clock_mhz, "clock for the frames/s figure")
-      ->check(CLI::Range(1.0e-3, 1.0e5))
+      ->check(in_range(1.0e-3, 1.0e5))
       ->capture_default_str();
   app.add_option("--core-mhz", o.core_mhz,
                  fmt::format("core clock (aclk) in MHz; camera pixels arrive on it at the camera's cadence "
                              "(default: the slowest the camera allows, {} x its pixel clock; at 1 clock per "
-                             "pixel aclk is the pixel clock itself)",
+                             "pixel aclk is the pixel clock itself); given, it asks for the 30 frames/s "
+                             "check: exit 3 when the verdict is NO",
                              hw.clocks_per_beat()))
-      ->check(CLI::Range(1.0e-3, 1.0e5));
+      ->check(in_range(1.0e-3, 1.0e5));
 }
 
 void add_wave_options(CLI::App& app, const ModelInfo& info, SimOptions& o) {
@@ -97,20 +128,25 @@ void add_wave_options(CLI::App& app, const ModelInfo& info, SimOptions& o) {
       ->needs(o_wave);
   app.add_option("--wave-depth", o.wave_depth,
                  "levels below each --wave-scope: 1 = its own signals, 2 = and its children's, 0 = all")
-      ->check(CLI::Range(0, 1000))
+      ->check(in_range(0, 1000))
       ->capture_default_str();
   app.add_flag("--wave-scopes", o.wave_list_scopes, "list the scopes this simulator traces and exit");
   app.add_option("--wave-list", o.wave_list, "list the signals of a .vcd/.fst file (GTKWave's names) and exit");
   app.add_option("--vcd-frame", o.vcd_frame, "VCD window: input frame")
-      ->check(CLI::Range(0, 100000))
+      ->needs(o_wave)
+      ->check(in_range(0, 100000))
       ->capture_default_str();
   app.add_option("--vcd-line", o.vcd_line, "VCD window: input line")
-      ->check(CLI::Range(0, info.hw.max_height - 1))
+      ->needs(o_wave)
+      ->check(in_range(0, info.hw.max_height - 1))
       ->capture_default_str();
   app.add_option("--vcd-lines", o.vcd_lines, "VCD window: line periods to dump")
-      ->check(CLI::Range(1, 1000000))
+      ->needs(o_wave)
+      ->check(in_range(1, 1000000))
       ->capture_default_str();
-  app.add_option("--vcd-cycles", o.vcd_cycles, "VCD window: cycles to dump (overrides lines)");
+  app.add_option("--vcd-cycles", o.vcd_cycles, "VCD window: cycles to dump (overrides lines)")
+      ->needs(o_wave)
+      ->check(in_range<uint64_t>(0, 1000000000000ULL));
 }
 
 void add_output_options(CLI::App& app, SimOptions& o) {
@@ -119,6 +155,7 @@ void add_output_options(CLI::App& app, SimOptions& o) {
                  "lossless disparity of the last frame: .pfm = float PFM (+inf = invalid, Middlebury), .png = "
                  "16-bit PNG of disparity x 16 (0 = invalid, KITTI style) (default: <out>/disparity.pfm)");
   app.add_flag("--disp-each-frame", o.disp_each, "also write every frame's disparity as <disp-file stem>_NNN<ext>");
+  o.depth.add(app);  // the last frame's; the camera is --calib's, else the --scene folder's calib.json
   app.add_option("--synth-json", o.synth_json,
                  "synthesis report JSON (default: build/synth, else docs/synth, for this configuration)");
   app.add_flag("--no-check", o.no_check, "skip the reference-model comparison");
@@ -141,6 +178,10 @@ std::optional<int> parse_sim_options(int argc, char** argv, const ModelInfo& inf
   add_output_options(*app, opt);
   add_shard_options(*app, opt.shard);
   opt.shard.argv.assign(argv, argv + argc);
+  app->footer(
+      "Exit codes: 0 the run is bit-exact, well framed and every register write on time (and, with --core-mhz, "
+      "30 frames/s is met); 1 it is not; 2 bad input or an output that cannot be written (one line 'stereo_sim: "
+      "error: ...', nothing written); 3 --core-mhz given and the 30 frames/s verdict is NO (docs/robustness.md).");
   try {
     app->parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -153,6 +194,7 @@ std::optional<int> parse_sim_options(int argc, char** argv, const ModelInfo& inf
   }
   opt.width_given = size.width->count() > 0;
   opt.height_given = size.height->count() > 0;
+  opt.core_mhz_given = app->count("--core-mhz") > 0;
   // reg_opts reads its options' counts: the app stays alive with it
   opt.apply_reg_options = [app, reg_opts](const HwConfig& hw, Regs& r) { reg_opts->apply(hw, r); };
   if (opt.disp_file.empty()) opt.disp_file = opt.out_dir + "/disparity.pfm";

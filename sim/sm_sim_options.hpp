@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sm_types.hpp"
+#include "toolio/sm_depth_options.hpp"
 #include "stereo_sim_app.hpp"
 
 namespace sm::simapp {
@@ -42,6 +43,7 @@ struct SimOptions {
   bool continuous = false;
   int hblank = 80, vblank = 22;
   double pixel_clock = 0, clock_mhz = 100.0, core_mhz = 0;
+  bool core_mhz_given = false;  // asks for the 30 frames/s check: a NO is exit code 3
   // waves
   std::string wave_path;                 // --wave (empty: none)
   std::string wave_fmt;                  // "vcd" or "fst" (check_wave_options)
@@ -55,6 +57,7 @@ struct SimOptions {
   std::string out_dir = "out";
   std::string disp_file;  // default <out>/disparity.pfm
   bool disp_each = false;
+  tools::DepthOptions depth;  // --depth-file, --cloud, --cloud-max-depth, --cloud-view (sm_sim_depth)
   std::string synth_json;
   bool no_check = false, quiet = false;
   ShardOptions shard;

@@ -16,8 +16,9 @@ std::string frame_disparity_path(const std::string& disp_file, size_t f) {
   return (p.parent_path() / fmt::format("{}_{:03d}{}", p.stem().string(), f, p.extension().string())).string();
 }
 
-void write_disparity_files(const SimOptions& opt, const cv::Mat& disp) {
-  tools::write_disparity_file(opt.disp_file, disp);
+void write_disparity_files(tools::OutputSet& outs, const SimOptions& opt, const cv::Mat& disp) {
+  outs.write(
+      opt.disp_file, [&](const std::string& temp) { tools::write_disparity_file(temp, disp); }, true);
 }
 
 FrameFiles::~FrameFiles() {
@@ -32,8 +33,9 @@ void FrameFiles::write(size_t f, const DispImage& disp) {
     const fs::path dir = fs::path(path).parent_path();
     if (!dir.empty()) fs::create_directories(dir);
   }
+  on_signal_.emplace_back(path);
+  written_.push_back(path);  // before writing: a failed write's part is removed too
   tools::write_disparity_file(path, tools::disp_to_float(disp));
-  written_.push_back(path);
 }
 
 }  // namespace sm::simapp

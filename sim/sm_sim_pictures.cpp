@@ -5,83 +5,150 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "toolio/sm_depth.hpp"
 #include "toolio/sm_io.hpp"
 
 namespace sm::simapp {
 
 namespace {
 
-// A tile of the panel with its label in the top-left corner.
-cv::Mat labelled(const cv::Mat& img, const std::string& label) {
-  cv::Mat t = img.clone();
-  const double scale = std::max(0.3, t.cols / 800.0);
-  int base = 0;
-  const cv::Size ts = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &base);
-  cv::rectangle(t, cv::Rect(0, 0, std::min(t.cols, ts.width + 4), std::min(t.rows, ts.height + base + 4)),
-                cv::Scalar(0, 0, 0), cv::FILLED);
-  cv::putText(t, label, cv::Point(2, ts.height + 2), cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), 1,
-              cv::LINE_AA);
-  return t;
+using tools::labelled;
+
+// Tiles are drawn at least this many rows tall (a small configuration's 48 rows are
+// magnified by whole pixels), so that labels, ticks and legends stay readable.
+constexpr int kMinTileRows = 240;
+
+// `m` magnified k times, pixels kept whole (nearest neighbour).
+cv::Mat zoom(const cv::Mat& m, int k) {
+  if (k == 1 || m.empty()) return m;
+  cv::Mat z;
+  cv::resize(m, z, cv::Size(), k, k, cv::INTER_NEAREST);
+  return z;
 }
 
-// Error map against ground truth: green = within 1 px, red = off by more, magenta = no
-// estimate, dark grey = not evaluated (unknown ground truth or occluded).
-cv::Mat error_map(const cv::Mat& est, const cv::Mat& gt, const cv::Mat& mask) {
-  cv::Mat m(gt.size(), CV_8UC3, cv::Scalar(40, 40, 40));
-  for (int y = 0; y < gt.rows; ++y)
-    for (int x = 0; x < gt.cols; ++x) {
-      const float g = gt.at<float>(y, x);
-      if (!(g > 0) || (!mask.empty() && mask.at<uint8_t>(y, x) == 0)) continue;
-      const float e = est.at<float>(y, x);
-      m.at<cv::Vec3b>(y, x) =
-          e < 0 ? cv::Vec3b(255, 0, 255) : (std::fabs(e - g) > 1.0f ? cv::Vec3b(0, 0, 255) : cv::Vec3b(0, 160, 0));
-    }
-  return m;
+void stage_image(tools::OutputSet& outs, const std::string& path, const cv::Mat& img,
+                 const std::vector<int>& params = {}) {
+  outs.write(
+      path, [&](const std::string& temp) { tools::write_image_atomic(temp, img, params); }, true);
 }
 
-cv::Mat bgr(const Image8& im) {
+cv::Mat bgr(const Image8& im, int k) {
   cv::Mat c;
   cv::cvtColor(tools::to_mat(im), c, cv::COLOR_GRAY2BGR);
-  return c;
+  return zoom(c, k);
 }
 
-// The panel's last row: error map and ground truth.
-cv::Mat ground_truth_row(const HwConfig& hw, const SimInput& in, const cv::Mat& disp, double bad1) {
-  cv::Mat gt_f = in.gt.clone();
-  gt_f.setTo(-1.0f, in.gt <= 0);
-  cv::Mat row;
-  cv::hconcat(labelled(error_map(disp, in.gt, in.mask), fmt::format("error map (bad-1.0 {:.1f} %)", bad1)),
-              labelled(tools::disp_to_colour(gt_f, hw.disp), "ground truth"), row);
-  return row;
+// The boxes of `objects` at magnification k.
+std::vector<Object> zoom_objects(std::vector<Object> objects, int k) {
+  for (auto& o : objects) {
+    o.x0 = static_cast<uint16_t>(o.x0 * k);
+    o.y0 = static_cast<uint16_t>(o.y0 * k);
+    o.x1 = static_cast<uint16_t>(o.x1 * k + k - 1);
+    o.y1 = static_cast<uint16_t>(o.y1 * k + k - 1);
+  }
+  return objects;
+}
+
+// The ground truth as a disparity picture's input: unknown (0) is invalid.
+cv::Mat gt_disparity(const cv::Mat& gt) {
+  cv::Mat g = gt.clone();
+  g.setTo(-1.0f, gt <= 0);
+  return g;
+}
+
+// The rows one under the other, each padded on the right with black to the widest.
+cv::Mat stack_rows(const std::vector<cv::Mat>& rows) {
+  int w = 0;
+  for (const auto& r : rows) w = std::max(w, r.cols);
+  std::vector<cv::Mat> padded;
+  for (const auto& r : rows) {
+    cv::Mat p;
+    cv::copyMakeBorder(r, p, 0, 0, 0, w - r.cols, cv::BORDER_CONSTANT, cv::Scalar::all(0));
+    padded.push_back(p);
+  }
+  cv::Mat out;
+  cv::vconcat(padded, out);
+  return out;
+}
+
+// The objects tile: the RTL's last packet (else the model's list) on the colour disparity
+// `disp_z` (magnified k times).
+cv::Mat objects_tile(const PanelData& p, const PipelineResult& m, const cv::Mat& disp_z, int k) {
+  const bool rtl = p.packets && !p.packets->empty();
+  const std::vector<Object>& boxes = rtl ? p.packets->back().objects : m.objects.objects;
+  const bool too_many = rtl ? p.packets->back().too_many : m.objects.too_many_objects;
+  const bool full = rtl ? p.packets->back().table_full : m.objects.table_full;
+  return labelled(tools::draw_objects(tools::colourise(disp_z, p.range), zoom_objects(boxes, k), too_many, full),
+                  fmt::format("objects ({})", boxes.size()));
+}
+
+// The bird's-eye view of the last frame's point cloud (grey values of the rectified left),
+// `size` pixels.
+cv::Mat cloud_tile(const PanelData& p, const Image8& rect_left, cv::Size size) {
+  const cv::Mat z = tools::disparity_to_depth(*p.disp, *p.cam);
+  const double cut = p.cloud_max_depth > 0 ? p.cloud_max_depth : INFINITY;
+  const auto pts = tools::depth_to_cloud(z, tools::to_mat(rect_left), *p.cam, cut);
+  return labelled(tools::cloud_view(pts, size, p.cloud_max_depth),
+                  fmt::format("point cloud, bird's-eye ({} points)", pts.size()));
+}
+
+// The error map and the ground truth, magnified k times.
+cv::Mat ground_truth_row(const PanelData& p, const cv::Mat& disp_z, int k) {
+  const cv::Mat gt = zoom(p.in->gt, k), mask = zoom(p.in->mask, k);
+  return tools::side_by_side(
+      {labelled(tools::error_map_picture(disp_z, gt, mask), fmt::format("error map (bad-1.0 {:.1f} %)", p.bad1)),
+       labelled(tools::disparity_picture(gt_disparity(gt), p.range, p.cam), "ground truth")});
 }
 
 }  // namespace
 
-void write_disparity_pictures(const std::string& dir, const cv::Mat& disp, const HwConfig& hw) {
-  tools::write_image_atomic(dir + "/disparity.png", tools::disp_to_grey(disp, hw.disp));
-  tools::write_image_atomic(dir + "/disparity_color.png", tools::disp_to_colour(disp, hw.disp));
+tools::ColourRange picture_range(const SimInput& in, const cv::Mat& disp) {
+  return tools::data_range(in.gt.empty() ? disp : gt_disparity(in.gt));
 }
 
-void write_panel(const std::string& dir, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
-                 const ModelCheck& check, const std::vector<ObjectPacket>& packets, const cv::Mat& disp, double bad1) {
+cv::Mat disparity_preview(const cv::Mat& disp_f, int levels) {
+  CV_Assert(disp_f.type() == CV_32F);
+  cv::Mat g(disp_f.size(), CV_8UC1);
+  const double k = levels > 1 ? 254.0 / (levels - 1) : 0.0;
+  for (int y = 0; y < disp_f.rows; ++y)
+    for (int x = 0; x < disp_f.cols; ++x) {
+      const float d = disp_f.at<float>(y, x);
+      g.at<uint8_t>(y, x) = !(d >= 0) ? 0 : cv::saturate_cast<uint8_t>(1 + std::lround(d * k));
+    }
+  return g;
+}
+
+void write_disparity_pictures(tools::OutputSet& outs, const std::string& dir, const cv::Mat& disp, const HwConfig& hw,
+                              tools::ColourRange r, const RectCamera* cam) {
+  stage_image(outs, dir + "/disparity.png", disparity_preview(disp, hw.disp));
+  stage_image(outs, dir + "/disparity_color.png", tools::disparity_picture(disp, r, cam));
+}
+
+PipelineResult last_frame_model(const HwConfig& hw, const RegisterPlan& plan, const ModelCheck& check) {
   const auto& frame = check.last_input;
-  const PipelineResult m =
-      !check.last_model ? run_pipeline(frame.first, frame.second, hw, plan.regs.back(), false) : *check.last_model;
-  const cv::Mat colour = tools::disp_to_colour(disp, hw.disp);
-  cv::Mat objects = colour.clone();
-  const std::vector<Object>& boxes = packets.empty() ? m.objects.objects : packets.back().objects;
-  for (const auto& o : boxes)
-    cv::rectangle(objects, cv::Point(o.x0, o.y0), cv::Point(o.x1, o.y1), cv::Scalar(255, 255, 255), 1);
-  std::vector<cv::Mat> rows(3);
-  cv::hconcat(labelled(bgr(frame.first), "left"), labelled(bgr(frame.second), "right"), rows[0]);
-  cv::hconcat(labelled(bgr(m.rl), "rectified left"), labelled(bgr(m.rr), "rectified right"), rows[1]);
-  cv::hconcat(labelled(colour, "disparity"), labelled(objects, fmt::format("objects ({})", boxes.size())), rows[2]);
-  if (!in.gt.empty()) rows.push_back(ground_truth_row(hw, in, disp, bad1));
-  cv::Mat panel;
-  cv::vconcat(rows, panel);
-  tools::write_image_atomic(dir + "/panel.png", panel);
+  return !check.last_model ? run_pipeline(frame.first, frame.second, hw, plan.regs.back(), false) : *check.last_model;
+}
+
+void write_panel(tools::OutputSet& outs, const std::string& dir, const PanelData& p) {
+  const SimInput& in = *p.in;
+  const StereoFrame& frame = *p.frame;
+  const PipelineResult& m = *p.model;
+  const int k = std::max(1, (kMinTileRows + p.disp->rows - 1) / p.disp->rows);
+  const cv::Mat disp_z = zoom(*p.disp, k);
+  std::vector<cv::Mat> rows;
+  rows.push_back(tools::side_by_side({labelled(bgr(frame.first, k), "left"), labelled(bgr(frame.second, k), "right")}));
+  rows.push_back(
+      tools::side_by_side({labelled(bgr(m.rl, k), "rectified left"), labelled(bgr(m.rr, k), "rectified right")}));
+  rows.push_back(tools::side_by_side(
+      {labelled(tools::disparity_picture(disp_z, p.range, p.cam), "disparity"), objects_tile(p, m, disp_z, k)}));
+  if (!in.gt.empty()) rows.push_back(ground_truth_row(p, disp_z, k));
+  if (p.cam) rows.push_back(cloud_tile(p, m.rl, {2 * disp_z.cols, disp_z.rows}));
+  // the strongest PNG compression: magnified tiles are runs of equal pixels (the small
+  // configuration's panel: 69 KB instead of 298 KB at OpenCV's default level)
+  stage_image(outs, dir + "/panel.png", stack_rows(rows), {cv::IMWRITE_PNG_COMPRESSION, 9});
 }
 
 }  // namespace sm::simapp

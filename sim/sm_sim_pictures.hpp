@@ -1,5 +1,6 @@
-// stereo_sim's pictures: the last frame's disparity in grey and colour, and the panel
-// (inputs, rectified views, disparity, objects, error map and ground truth).
+// stereo_sim's pictures: the last frame's disparity as an 8-bit preview and in colour
+// with its colour bar, and the panel (inputs, rectified views, disparity, objects, error
+// map and ground truth, point cloud), drawn with toolio/sm_pictures.hpp.
 #pragma once
 
 #include <string>
@@ -7,19 +8,50 @@
 
 #include <opencv2/core.hpp>
 
+#include "calib_file.hpp"
 #include "sm_sim_check.hpp"
 #include "sm_sim_inputs.hpp"
 #include "sm_sim_regplan.hpp"
+#include "toolio/sm_outputs.hpp"
+#include "toolio/sm_pictures.hpp"
 
 namespace sm::simapp {
 
-// <dir>/disparity.png (grey) and <dir>/disparity_color.png of `disp` (float disparity).
-void write_disparity_pictures(const std::string& dir, const cv::Mat& disp, const HwConfig& hw);
+// The colour range of every disparity picture of the run: the ground truth's range when
+// the input has one (the scene's known disparities), else the data's.
+tools::ColourRange picture_range(const SimInput& in, const cv::Mat& disp);
 
-// <dir>/panel.png of the last frame: left, right / rectified left, rectified right /
-// disparity, objects (the RTL's packet, else the model's) / error map, ground truth when
-// there is one. `bad1`: the error map's figure (with ground truth).
-void write_panel(const std::string& dir, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
-                 const ModelCheck& check, const std::vector<ObjectPacket>& packets, const cv::Mat& disp, double bad1);
+// The 8-bit preview: 0 = invalid (no estimate), a valid disparity d = 1 + round(d * 254 /
+// (levels - 1)), so disparity 0 (grey 1) and invalid (grey 0) differ.
+cv::Mat disparity_preview(const cv::Mat& disp_f, int levels);
+
+// The pictures are staged in `outs` (written when it is committed).
+// <dir>/disparity.png (disparity_preview) and <dir>/disparity_color.png (colour over `r`
+// with the colour bar; depth ticks when `cam`) of `disp` (float disparity).
+void write_disparity_pictures(tools::OutputSet& outs, const std::string& dir, const cv::Mat& disp, const HwConfig& hw,
+                              tools::ColourRange r, const RectCamera* cam);
+
+// What the panel shows of the last frame.
+struct PanelData {
+  const SimInput* in = nullptr;
+  const StereoFrame* frame = nullptr;                  // the last frame's input (ModelCheck::last_input)
+  const PipelineResult* model = nullptr;               // the last frame's (last_frame_model)
+  const cv::Mat* disp = nullptr;                       // float disparity
+  tools::ColourRange range;                            // picture_range()
+  const std::vector<ObjectPacket>* packets = nullptr;  // the RTL's (empty: the model's objects)
+  const RectCamera* cam = nullptr;                     // depth ticks and a point-cloud tile
+  double cloud_max_depth = 0;                          // metres, 0: none
+  double bad1 = 0;                                     // the error map's figure (with ground truth)
+};
+
+// <dir>/panel.png of the last frame, its tiles magnified by whole pixels to at least 240
+// rows (a small configuration's frame): left, right / rectified left, rectified right /
+// disparity with its colour bar, objects labelled #0, #1, ... with the frame's flags /
+// error map with its legend, ground truth (with one) / the point cloud's bird's-eye view
+// (with a camera).
+void write_panel(tools::OutputSet& outs, const std::string& dir, const PanelData& p);
+
+// The reference model's result of the last frame: the check's, else run now (--no-check).
+PipelineResult last_frame_model(const HwConfig& hw, const RegisterPlan& plan, const ModelCheck& check);
 
 }  // namespace sm::simapp

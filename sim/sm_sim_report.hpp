@@ -51,7 +51,8 @@ SimReport make_report(const SimOptions& opt, const ModelInfo& info, const SimInp
 void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
                   const SimRun& run, const ModelCheck& check, const SimReport& rep);
 
-// 0 when bit-exact, well framed and every register write on time; else 1.
-int report_exit_code(const SimRun& run, const ModelCheck& check);
+// 0 when bit-exact, well framed and every register write on time, else 1; 3 when these
+// hold but --core-mhz asked for the 30 frames/s check and the verdict is NO.
+int report_exit_code(const SimOptions& opt, const SimRun& run, const ModelCheck& check, const SimReport& rep);
 
 }  // namespace sm::simapp

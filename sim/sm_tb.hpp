@@ -1,8 +1,12 @@
 // Small test-bench wrapper around a Verilated top: tick() evaluates both clock edges,
 // dumps the trace when one is open, and advances time. Traces are opt-in; the trace
 // format (VCD or FST) is the one the model was Verilated with (--trace / --trace-fst).
+// Trace time is in picoseconds (timescale 1 ps): one clock is set_clock_period_ps() long,
+// 2 ps unless set (a bench with no real clock), the core clock's real period in stereo_sim.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -90,6 +94,9 @@ class Testbench {
   Top* operator->() { return top_.get(); }
   Top& top() { return *top_; }
   uint64_t cycles() const { return cycles_; }
+  // The clock period in the trace (ps, even: the falling half is half of it; at least 2).
+  void set_clock_period_ps(uint64_t ps) { period_ps_ = std::max<uint64_t>(2, ps & ~uint64_t{1}); }
+  uint64_t clock_period_ps() const { return period_ps_; }
 
 #if VM_TRACE
   using TraceFile = std::conditional_t<detail::traces_vcd<Top>::value, VerilatedVcdC, VerilatedFstC>;
@@ -105,6 +112,9 @@ class Testbench {
     ctx_->traceEverOn(true);
     trace_ = std::make_unique<TraceFile>();
     for (const auto& s : sel.scopes) trace_->dumpvars(s.depth > 0 ? s.depth : 1 << 20, s.name);
+    // the time stamps dump() gets are picoseconds, whatever the RTL's `timescale says
+    trace_->set_time_unit("1ps");
+    trace_->set_time_resolution("1ps");
     top_->trace(trace_.get(), depth);
     trace_->open(path.c_str());
     return trace_->isOpen();
@@ -122,7 +132,7 @@ class Testbench {
   bool probe_trace(const std::string& path, const TraceScope& sel) {
     if (!open_trace(path, 99, sel)) return false;
     // one value dump: a file that Verilator 5.04x's FST writer closes without any is unreadable
-    dump(2 * cycles_);
+    dump(cycles_ * period_ps_);
     close_trace();
     return true;
   }
@@ -153,11 +163,11 @@ class Testbench {
     auto& clk = detail::clock_of(*top_, 0);
     clk = 0;
     top_->eval();
-    dump(2 * cycles_);
+    dump(cycles_ * period_ps_);
     between_edges();
     clk = 1;
     top_->eval();
-    dump(2 * cycles_ + 1);
+    dump(cycles_ * period_ps_ + period_ps_ / 2);
     ++cycles_;
   }
 
@@ -175,6 +185,7 @@ class Testbench {
   std::unique_ptr<TraceFile> trace_;
 #endif
   uint64_t cycles_ = 0;
+  uint64_t period_ps_ = 2;
 };
 
 }  // namespace sm

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -16,9 +17,12 @@
 #include "sm_regmap.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
+#include "sm_sim_interrupt.hpp"
+#include "sm_sim_progress.hpp"
 #include "sm_vconfig.hpp"
 #include "sm_wave_names.hpp"
 #include "stereo_sim_app.hpp"
+#include "toolio/sm_signal_cleanup.hpp"
 #if SM_WAVE_BUILD
 #ifdef SM_WAVE_VCD
 #include SM_WAVE_VCD_H
@@ -67,6 +71,7 @@ bool probe_scopes(sm::Testbench<Top>& tb, const RunRequest& req) {
   const std::string probe =
       ((dir.empty() ? fs::path(".") : dir) / fmt::format(".stereo_sim_probe_{}.{}", ::getpid(), req.wave_fmt)).string();
   sm::simapp::PartFile probe_guard{probe, "", false};
+  const sm::tools::RemoveOnSignal probe_on_signal(probe);
   // The top level's own signals (its ports) are always in the probe.
   auto names_of = [&](sm::TraceScope sel) {
     if (!sel.scopes.empty()) sel.scopes.push_back({"TOP", 1});
@@ -120,6 +125,7 @@ void read_status(sm::SimEngine<Top>& sim, RunResult& out) {
 
 template <class Top>
 bool run_model(const RunRequest& req, RunResult& out) {
+  if (!req.quiet) sm::simapp::end_progress_line_on_signal();  // before any RemoveOnSignal
   sm::Testbench<Top> tb;
   sm::CoverageOnExit cov{tb->contextp()};  // the coverage build's data (SM_COVERAGE_FILE)
   const std::string& wave_path = req.window.path;
@@ -129,17 +135,18 @@ bool run_model(const RunRequest& req, RunResult& out) {
   sm::write_registers(sim.axil(), *req.regs0, sm::verilated_config());
   sm::VcdWindow vw = req.window;
   sm::simapp::PartFile part;
+  sm::tools::RemoveOnSignal part_on_signal;  // Ctrl-C leaves no half-written window
   if (!wave_path.empty()) {
     start_wave_part(wave_path, part);
+    part_on_signal = sm::tools::RemoveOnSignal(part.path);
     vw.path = part.path;
   }
+  // the wave's time stamps in the core clock's real period (ps)
+  tb.set_clock_period_ps(static_cast<uint64_t>(std::llround(1e12 / req.timing.aclk_hz(req.width, req.height))));
   const auto t0 = std::chrono::steady_clock::now();
-  sim.on_frame = [&](size_t done, size_t total) {
-    if (req.quiet) return;
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    fmt::print(stderr, "\rsimulated frame {}/{} ({:.1f} s)", done, total, s);
-    if (done == total) fmt::print(stderr, "\n");
-  };
+  sm::simapp::SimProgress progress(req.feed.count, req.height, req.quiet);
+  sim.on_row = [&](size_t frame, int row) { progress.row(frame, row); };
+  sim.on_frame = [&](size_t done, size_t total) { progress.frame(done, total); };
   out.res = sim.run(req.feed, req.width, req.height, req.timing, vw, 0, req.host);
   out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   tb.close_trace();

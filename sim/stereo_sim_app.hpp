@@ -3,7 +3,8 @@
 // once for every stereo_sim_* executable instead of once per configuration:
 // - stereo_sim_app.cpp (library sm_stereo_sim_app): the program, run_stereo_sim(), which
 //   runs its stages in order (sm_sim_options, sm_sim_regplan, sm_sim_inputs,
-//   sm_sim_simulate, sm_sim_check, sm_sim_report, sm_sim_outputs, sm_sim_pictures);
+//   sm_sim_simulate (progress: sm_sim_progress), sm_sim_check, sm_sim_report, sm_sim_outputs,
+//   sm_sim_depth, sm_sim_pictures);
 // - stereo_sim.cpp (one object per configuration): the Verilated model's side, run() on
 //   the Testbench / SimEngine of that model, and main().
 #pragma once

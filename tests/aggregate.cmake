@@ -1,5 +1,9 @@
 # Support-weight aggregation (docs/algorithm.md section 5): model unit tests and block tests.
 sm_unit_test(test_aggregate_model LIBS sm_model ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS} DISCOVER)
+# Again with the AVX-512 kernels switched off (the AVX2 or portable aggregation is then
+# tested on a machine that has AVX-512 too).
+add_test(NAME test_aggregate_model_no_avx512 COMMAND test_aggregate_model)
+set_tests_properties(test_aggregate_model_no_avx512 PROPERTIES LABELS unit ENVIRONMENT SM_NO_AVX512=1)
 
 # Block tests: odd width 37, three frames back to back, 30 % idle cycles, then a frame of
 # raw costs all at the port's maximum (--max-cost-frame).

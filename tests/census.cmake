@@ -50,6 +50,10 @@ endforeach()
 
 # Model unit tests.
 sm_unit_test(test_census_model LIBS sm_model ${OpenCV_LIBS} TIMEOUT 120)
+# Again with the AVX-512 Hamming kernel switched off, so that the AVX2 (or portable)
+# kernel is tested on a machine that has AVX-512 too.
+add_test(NAME test_census_model_no_avx512 COMMAND test_census_model)
+set_tests_properties(test_census_model_no_avx512 PROPERTIES LABELS unit TIMEOUT 120 ENVIRONMENT SM_NO_AVX512=1)
 
 # The bit-plane to lane-order transpose on its own: padded planes and lanes, two plane
 # blocks, the paper configuration's 8 x 128, the degenerate 1 x 1, and 128 x 8 (lanes to

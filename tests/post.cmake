@@ -26,6 +26,22 @@ sm_rtl_test(NAME tb_objects_slots12 TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_
             PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=12
             ARGS --width 41 --height 19)
 
+# The labeller's lowest-free search (sm_lowest_set): one, two and three tiers of 8.
+foreach(_n 8 64 12 1 200 512)
+  if(_n LESS_EQUAL 1)
+    set(_iw 1)
+  else()
+    math(EXPR _m "${_n} - 1")
+    set(_iw 0)
+    while(_m GREATER 0)
+      math(EXPR _m "${_m} >> 1")
+      math(EXPR _iw "${_iw} + 1")
+    endwhile()
+  endif()
+  sm_rtl_test(NAME tb_lowest_set_${_n} TOP sm_lowest_set SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_lowest_set.cpp
+              PARAMS N=${_n} IW=${_iw})
+endforeach()
+
 # Band filter F0 (sm_post_band) against the model's post_band: odd and tiny widths one
 # after the other without a reset, frames of at most K rows among them.
 sm_rtl_test(NAME tb_post_band TOP sm_post_band SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_post_band.cpp

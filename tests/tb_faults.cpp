@@ -14,8 +14,9 @@
 //    sequencer's rules (sm::Sequencer, model/seq.hpp) counted; register reads return
 //    the documented clamp.
 //
-// Usage: tb_faults --scene <dir> [--steps N] [--seed S] [--no-soft-reset]
+// Usage: tb_faults --scene <dir> [--steps N] [--seed S] [--no-soft-reset] [--reset-phases]
 //   --no-soft-reset: no CONTROL.SOFT_RESET steps (aresetn steps instead)
+//   --reset-phases: aresetn of 1..3 clocks at every phase against a long one (ResetPhases)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -141,6 +142,26 @@ class FaultTb {
   void set_gap_percent(int p) { gap_percent_ = p; }
 
   void queue(const std::vector<Pixel>& px) { cam_.insert(cam_.end(), px.begin(), px.end()); }
+  // The camera is reset with the core: its queue is dropped.
+  void clear_camera() { cam_.clear(); }
+  Top& top() { return tb_.top(); }
+  // Same generator state from here on (a reset-phase trial replays a run exactly).
+  void reseed(uint32_t s) {
+    rng_.seed(s);
+    burst_left_ = 0;
+    burst_ready_ = true;
+  }
+  // Records what the core shows from now on (nullptr stops): a line per change of the
+  // three TVALID / TREADY outputs and per handshake on either output, each with its
+  // clock counted from here.
+  void set_trace(std::vector<std::string>* t) {
+    trace_ = t;
+    trace_start_ = tb_.cycles();
+    trace_sig_ = ~0u;
+  }
+  void note(const std::string& s) {
+    if (trace_) trace_->push_back(fmt::format("c{} {}", tb_.cycles() - trace_start_, s));
+  }
 
   // One clock: camera, output sinks, checks.
   void cycle() {
@@ -210,6 +231,15 @@ class FaultTb {
     if (t.m_axis_obj_tvalid && pkt_.empty() && !hdr_seen_ && !lost_now) {
       hdr_seen_ = true;
       hdr_cycle_ = tb_.cycles();
+    }
+    if (trace_) {
+      const unsigned sig = (t.m_axis_tvalid ? 1u : 0u) | (t.m_axis_obj_tvalid ? 2u : 0u) | (t.s_axis_tready ? 4u : 0u);
+      if (sig != trace_sig_)
+        note(
+            fmt::format("m_axis_tvalid {} m_axis_obj_tvalid {} s_axis_tready {}", sig & 1u, (sig >> 1) & 1u, sig >> 2));
+      trace_sig_ = sig;
+      if (out_hs) note(fmt::format("m_axis 0x{:04x} tuser {} tlast {}", od, ou, ol));
+      if (obj_hs) note(fmt::format("m_axis_obj 0x{:08x} tlast {}", objd, objl));
     }
     if (obj_hs && !lost_now) {
       pkt_.push_back(objd);
@@ -559,6 +589,9 @@ class FaultTb {
   std::vector<uint32_t> pkt_;
   int beats_ = 0, frames_out_ = 0, clean_out_ = 0, faulty_out_ = 0, recovered_ = 0, soft_frames_ = 0;
   bool prev_faulty_ = false;
+  std::vector<std::string>* trace_ = nullptr;
+  uint64_t trace_start_ = 0;
+  unsigned trace_sig_ = 0;
 
  public:
   bool verbose_ = getenv("SM_VERBOSE") != nullptr;
@@ -588,6 +621,251 @@ void write_scalars(Bench& t, sm::AxilMaster<Top>& axil, const sm::Regs& r) {
 
 uint32_t clamp_u(uint32_t v, uint32_t lo, uint32_t hi) { return std::min(std::max(v, lo), hi); }
 
+// The documented reset value of a register (rtl/regmap.json): every field at its reset
+// value, signed fields sign-extended (read-only counters and flags reset to 0).
+uint32_t reset_word(const sm::regmap::Reg& r, const sm::HwConfig& hw) {
+  uint32_t v = 0;
+  for (int i = 0; i < r.num_fields; ++i) {
+    const auto& f = sm::regmap::fields()[static_cast<size_t>(r.first_field + i)];
+    const auto x = static_cast<uint32_t>(f.reset.eval(hw));
+    v |= f.is_signed ? x : (x << f.lsb) & f.mask();
+  }
+  return v;
+}
+
+// aresetn pulses of 1, 2 and 3 clocks at every phase of a frame, an object packet, a
+// register access and a full input FIFO (issue 40): the core must come out of each exactly
+// as out of a long (16-clock) reset at the same point. Every trial starts from the same
+// state (long reset, registers, generator seed), runs to its phase, pulls aresetn, then
+// records everything the core shows afterwards: both TVALIDs and s_axis_tready clock by
+// clock, every register read back, a frame and its object packet, and the status, error
+// and object-list registers after it. The records of the short pulses must equal the long
+// reset's line by line; on top, each is checked against the documented reset state and
+// the model (the frame and packet bit-exact, ERR_* equal to the model's count).
+class ResetPhases {
+ public:
+  ResetPhases(Bench& t, FaultTb& tb, const sm::HwConfig& hw, const sm::Image8& l, const sm::Image8& r)
+      : t_(t), tb_(tb), hw_(hw), l_(l), r_(r) {}
+
+  void run() {
+    // The events the phases are measured from, found on a run without reset.
+    const Events ev = scan();
+    const Events full = scan_full();
+    fmt::print(
+        "reset phases: first pixel at clock {}, mid-frame pixel {}, last input pixel {}, last output beat {}, object "
+        "packet offered {}, input FIFO full {}\n",
+        ev.first_in, ev.mid_in, ev.last_in, ev.last_out, ev.obj_valid, full.fifo_full);
+    std::vector<Case> cases;
+    auto add = [&](const std::string& name, Scn scn, int64_t at) { cases.push_back({name, scn, at}); };
+    // The first pixel: with tuser it starts a frame (STATUS.FRAME_COUNT), without it
+    // is a missing start of frame (ERR_FLAGS.MISSING_SOF, ERR_CNT_SOF).
+    // The sequencer takes the pixel from the input FIFO a few clocks after the handshake.
+    for (int d = -1; d <= 3; ++d) add(fmt::format("frame start (tuser pixel) {:+d}", d), Scn::kFrame, ev.first_in + d);
+    for (int d = -1; d <= 3; ++d) add(fmt::format("pixel without tuser {:+d}", d), Scn::kNoSof, ev.first_in + d);
+    for (int d = -1; d <= 0; ++d) add(fmt::format("mid-frame input {:+d}", d), Scn::kFrame, ev.mid_in + d);
+    for (int d = -1; d <= 1; ++d) add(fmt::format("last input pixel {:+d}", d), Scn::kFrame, ev.last_in + d);
+    add("frame tail (flush rows)", Scn::kFrame, (ev.last_in + ev.last_out) / 2);
+    for (int d = -2; d <= 0; ++d) add(fmt::format("last output beat {:+d}", d), Scn::kFrame, ev.last_out + d);
+    // The list is published at the edge that raises m_axis_obj_tvalid: aresetn low at
+    // that edge is "publish 0", one and two clocks earlier "-1", "-2".
+    for (int d = -2; d <= 0; ++d) add(fmt::format("object list publish {:+d}", d), Scn::kFrame, ev.obj_valid + d);
+    for (int d = 1; d <= 4; ++d) add(fmt::format("object packet mid-send +{}", d), Scn::kFrame, ev.obj_valid + d);
+    for (int d = 0; d <= 1; ++d) add(fmt::format("input FIFO full +{}", d), Scn::kFull, full.fifo_full + d);
+    for (int d = 0; d <= 4; ++d) add(fmt::format("AXI4-Lite write in flight +{}", d), Scn::kWrite, d);
+    for (int d = 0; d <= 4; ++d) add(fmt::format("AXI4-Lite soft-reset write in flight +{}", d), Scn::kSoftWrite, d);
+    for (int d = 0; d <= 5; ++d) add(fmt::format("AXI4-Lite read in flight +{}", d), Scn::kRead, d);
+    int differ = 0;
+    for (const Case& c : cases) {
+      const std::vector<std::string> ref = trial(c, kLong);
+      for (int len = 1; len <= 3; ++len) {
+        const std::vector<std::string> got = trial(c, len);
+        differ += !t_.check(same(ref, got, c.name, len),
+                            fmt::format("{}: state after a {}-clock aresetn equals the state after a {}-clock one",
+                                        c.name, len, kLong));
+      }
+    }
+    fmt::print("reset phases: {} phases x aresetn of 1, 2, 3 clocks against {} clocks, {} differ\n", cases.size(),
+               kLong, differ);
+  }
+
+ private:
+  static constexpr int kLong = 16;
+  enum class Scn { kFrame, kNoSof, kFull, kWrite, kSoftWrite, kRead };
+  struct Case {
+    std::string name;
+    Scn scn;
+    int64_t at;  // clocks from the trial's start to the first edge with aresetn low
+  };
+  struct Events {
+    int64_t first_in = -1, mid_in = -1, last_in = -1, last_out = -1, obj_valid = -1, fifo_full = -1;
+  };
+
+  sm::Regs regs() const {
+    sm::Regs r = sm::Regs::defaults(hw_);
+    r.width = 24;
+    r.height = 16;
+    r.obj_min_pixels = 4;  // a few objects in the packet
+    r.grid_l = r.grid_r = sm::RectGrid{};
+    return r;
+  }
+  std::vector<Pixel> frame(int ox, int oy) const { return frame_pixels(l_, r_, 24, 16, ox, oy); }
+  void program() {
+    tb_.pause(true);
+    sm::write_registers(tb_.axil(), regs(), hw_);
+    tb_.model().host = regs();
+    tb_.model().enable = true;
+    tb_.pause(false);
+  }
+  // The same state for every trial: a long reset, the registers, the generator.
+  void start() {
+    tb_.clear_camera();
+    tb_.hold_low(false);
+    tb_.set_ready(Ready::kAlways);
+    tb_.set_gap_percent(0);
+    tb_.areset(kLong);
+    program();
+    tb_.reseed(40);
+  }
+  void begin(Scn scn) {
+    if (scn == Scn::kFrame || scn == Scn::kNoSof) {
+      std::vector<Pixel> px = frame(5, 3);
+      px[0].gap = 20;  // the core idle before the frame
+      px[0].user = scn == Scn::kFrame;
+      tb_.queue(px);
+    }
+    if (scn == Scn::kFull) {
+      tb_.hold_low(true);  // the output stalls: the pipeline, then the input FIFO fill up
+      for (int i = 0; i < 4; ++i) tb_.queue(frame(i, 2 * i));
+    }
+  }
+
+  Events scan() {
+    Events e;
+    start();
+    begin(Scn::kFrame);
+    const size_t n = tb_.queued();
+    const int before = tb_.frames_out();
+    for (int64_t c = 1; c < 400000 && e.obj_valid < 0; ++c) {
+      const size_t q = tb_.queued();
+      tb_.cycle();
+      if (q > tb_.queued() && q == n) e.first_in = c;
+      if (q > tb_.queued() && q == n / 2) e.mid_in = c;
+      if (q > tb_.queued() && q == 1) e.last_in = c;
+      if (tb_.frames_out() > before && e.last_out < 0) e.last_out = c;
+      if (tb_.top().m_axis_obj_tvalid) e.obj_valid = c;
+    }
+    tb_.drain();
+    if (e.first_in < 0 || e.mid_in < 0 || e.last_in < 0 || e.last_out < 0 || e.obj_valid < 0)
+      throw std::runtime_error("reset phases: the frame's events were not all seen");
+    return e;
+  }
+  Events scan_full() {
+    Events e;
+    start();
+    begin(Scn::kFull);
+    for (int64_t c = 1; c < 400000 && e.fifo_full < 0; ++c) {
+      tb_.cycle();
+      if (!tb_.top().s_axis_tready && tb_.queued() > 0) e.fifo_full = c;
+    }
+    if (e.fifo_full < 0) throw std::runtime_error("reset phases: the input FIFO never filled");
+    return e;
+  }
+
+  // A register access left in flight (the master is reset with the core): started at the
+  // trial's start, aresetn pulled `at` clocks later.
+  void access(Scn scn, int64_t at) {
+    sm::AxilAgent<Top> ag(tb_.top());
+    if (scn == Scn::kWrite) ag.write(sm::regmap::kOCC, 77);
+    if (scn == Scn::kSoftWrite)
+      ag.write(sm::regmap::kCONTROL,
+               (1u << sm::regmap::kCONTROL_ENABLE_LSB) | (1u << sm::regmap::kCONTROL_SOFT_RESET_LSB));
+    if (scn == Scn::kRead) ag.read(sm::regmap::obj_header_addr());
+    for (int64_t c = 0; c < at; ++c) {
+      ag.sample();
+      tb_.cycle();
+      ag.update();
+    }
+    ag.abandon();
+  }
+
+  std::vector<std::string> trial(const Case& c, int len) {
+    start();
+    if (c.scn == Scn::kWrite || c.scn == Scn::kSoftWrite || c.scn == Scn::kRead) {
+      access(c.scn, c.at);
+    } else {
+      begin(c.scn);
+      for (int64_t i = 0; i < c.at - 1; ++i) tb_.cycle();
+    }
+    tb_.clear_camera();  // the camera is reset too
+    const std::string when = fmt::format("{}, {}-clock aresetn", c.name, len);
+    tb_.areset(len);
+    tb_.hold_low(false);
+    tb_.reseed(41);
+    std::vector<std::string> rec;
+    tb_.set_trace(&rec);
+    probe(when);
+    tb_.set_trace(nullptr);
+    return rec;
+  }
+
+  // Everything the core shows after the reset, checked against the documented reset
+  // state and the model, and recorded for the comparison.
+  void probe(const std::string& when) {
+    auto& axil = tb_.axil();
+    // Nothing was offered since the reset: both outputs stay idle.
+    tb_.pause(true);
+    for (int i = 0; i < 64; ++i) {
+      tb_.cycle();
+      t_.check(!tb_.top().m_axis_tvalid && !tb_.top().m_axis_obj_tvalid,
+               fmt::format("{}: no TVALID before any input (clock {} after the reset)", when, i));
+    }
+    for (const auto& reg : sm::regmap::registers()) {
+      const uint32_t v = axil.read(reg.addr), want = reset_word(reg, hw_);
+      tb_.note(fmt::format("{} = 0x{:08x}", reg.name, v));
+      t_.check(v == want, fmt::format("{}: {} reads 0x{:x}, documented reset value 0x{:x}", when, reg.name, v, want));
+    }
+    const uint32_t hdr = axil.read(sm::regmap::obj_header_addr());
+    tb_.note(fmt::format("OBJ_HEADER = 0x{:08x}", hdr));
+    t_.check(hdr == 0, fmt::format("{}: OBJ_HEADER reads 0x{:x} (VALID {}, COUNT {}), no list since the reset", when,
+                                   hdr, (hdr >> sm::regmap::kOBJ_HEADER_VALID_LSB) & 1u, hdr & 0xffu));
+    tb_.pause(false);
+    // A frame after the reset: bit-exact frame and packet (FaultTb checks them), its
+    // count, no error.
+    const int before = tb_.frames_out();
+    program();
+    tb_.queue(frame(2, 1));
+    tb_.run_camera();
+    tb_.drain(3000);
+    t_.check(tb_.frames_out() == before + 1,
+             fmt::format("{}: {} frames out after the reset, expected 1", when, tb_.frames_out() - before));
+    for (uint32_t a :
+         {sm::regmap::kSTATUS, sm::regmap::kERR_FLAGS, sm::regmap::kERR_CNT_LINE, sm::regmap::kERR_CNT_SOF,
+          sm::regmap::kERR_CNT_ROWS, sm::regmap::kERR_CNT_OUT, sm::regmap::kIN_FIFO, sm::regmap::obj_header_addr()})
+      tb_.note(fmt::format("after the frame: 0x{:03x} = 0x{:08x}", a, axil.read(a)));
+    const uint32_t st = axil.read(sm::regmap::kSTATUS);
+    t_.check((st & 0xffffu) == 1, fmt::format("{}: STATUS.FRAME_COUNT {} after one frame", when, st & 0xffffu));
+    tb_.check_errors(when);
+  }
+
+  bool same(const std::vector<std::string>& ref, const std::vector<std::string>& got, const std::string& name,
+            int len) const {
+    for (size_t i = 0; i < std::max(ref.size(), got.size()); ++i) {
+      const std::string a = i < ref.size() ? ref[i] : "(end)", b = i < got.size() ? got[i] : "(end)";
+      if (a == b) continue;
+      fmt::print("{}: after a {}-clock aresetn: {}\n{:>{}}  after a {}-clock aresetn: {}\n", name, len, b, "",
+                 name.size(), kLong, a);
+      return false;
+    }
+    return true;
+  }
+
+  Bench& t_;
+  FaultTb& tb_;
+  sm::HwConfig hw_;
+  const sm::Image8& l_;
+  const sm::Image8& r_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -600,6 +878,9 @@ int main(int argc, char** argv) {
   bench.option("--steps", n_frames, "input steps (a frame, faulty or not, and its recovery frame)");
   bench.option("--seed", seed, "random seed");
   bench.flag("--no-soft-reset", no_soft, "aresetn steps instead of CONTROL.SOFT_RESET");
+  bool phases = false;
+  bench.flag("--reset-phases", phases,
+             "instead of the random mix: aresetn of 1, 2, 3 clocks at every phase against a long one");
   // a flood of one rule must not hide another
   bench.report_each_kind(20);
   if (auto rc = bench.parse(argc, argv)) return *rc;
@@ -612,6 +893,10 @@ int main(int argc, char** argv) {
       throw std::runtime_error(fmt::format("{}: scene {}x{} smaller than the configuration {}x{}", scene, sl.w, sl.h,
                                            hw.max_width, hw.max_height));
     FaultTb tb(bench, hw, seed);
+    if (phases) {
+      ResetPhases(bench, tb, hw, sl, sr).run();
+      return bench.finish("tb_faults --reset-phases");
+    }
     auto& rng = tb.rng();
     auto& axil = tb.axil();
     using namespace sm::regmap;

@@ -1,5 +1,6 @@
 // Block test of sm_objects (docs/algorithm.md, section 8): frames of box scenes, random
-// and blocky disparity maps, merging shapes and overflow cases, back to back with random
+// and blocky disparity maps, merging shapes, overflow cases, label recycling and invalid
+// pixels, back to back with random
 // ce gaps and garbage on idle/virtual beats and on the register inputs outside the
 // frame's first beat. Every published list (read through the read port) and every
 // AXI4-Stream packet is compared with the model; a packet is held back once so that a
@@ -164,8 +165,55 @@ int main(int argc, char** argv) {
     add(m, D / 2, 1, 1);
   }
 
+  // 13: label recycling, components that ended below min_pixels: rows of single-pixel
+  // specks (more in all than LABEL_SLOTS, fewer per row), then a box that needs a label
+  const size_t f_specks = in.size();
+  {
+    DispImage m(w, h, make_disp(1, true));
+    const int per_row = std::min(w / 3, hw.label_slots - 2);
+    for (int y = 0; y <= 4; y += 2)
+      for (int i = 0; i < per_row; ++i) m.at(3 * i + y / 2 % 2, y) = make_disp(D - 3, true);
+    for (int y = 7; y < h - 1; ++y)
+      for (int x = 4; x < 10; ++x) m.at(x, y) = make_disp(D - 2 - static_cast<unsigned>(y % 2), true);
+    add(m, D / 2, 1, 2);
+  }
+  // 14: label recycling, absorbed labels: a staircase whose rows each start one pixel
+  // further left, with a new label that the component above absorbs a pixel later
+  const size_t f_stairs = in.size();
+  {
+    DispImage m(w, h, make_disp(1, true));
+    for (int y = 1; y < h - 1; ++y)
+      for (int x = w - 2 - y; x < w - 1; ++x) m.at(x, y) = make_disp(D - 2 - static_cast<unsigned>(x % 2), true);
+    add(m, D / 2, 1, 2);
+  }
+  // 15: invalid pixels whose disparity bits are near are never objects: an invalid box,
+  // and a valid box cut in two by an invalid column
+  const size_t f_invalid = in.size();
+  {
+    DispImage m(w, h, make_disp(1, true));
+    for (int y = 2; y < h - 2; ++y)
+      for (int x = 2; x < w - 2; ++x) m.at(x, y) = make_disp(D - 1, x >= w / 2 && x != w / 2 + 3);
+    add(m, D / 2, 1, 1);
+  }
+
   std::vector<ObjectList> want;
   for (size_t f = 0; f < in.size(); ++f) want.push_back(separate_objects(in[f], regs[f], hw));
+  // The model's lists of the directed frames (independent of the RTL): the recycling
+  // leaves room for every component, and the invalid pixels count for nothing.
+  auto expect = [&](size_t f, size_t n, const char* what) {
+    if (want[f].table_full || want[f].objects.size() != n)
+      t.fail(fmt::format("frame {} ({}): the model lists {} objects, table_full {}; expected {}, no table_full", f,
+                         what, want[f].objects.size(), want[f].table_full, n));
+  };
+  expect(f_specks, 1, "specks, then a box");
+  expect(f_stairs, 1, "staircase");
+  expect(f_invalid, 2, "invalid pixels");
+  if (want[f_stairs].objects.size() == 1 &&
+      want[f_stairs].objects[0].count != static_cast<uint32_t>((h - 2) * (h + 1) / 2))
+    t.fail(fmt::format("frame {} (staircase): {} pixels counted", f_stairs, want[f_stairs].objects[0].count));
+  if (want[f_invalid].objects.size() == 2 && want[f_invalid].objects[0].count + want[f_invalid].objects[1].count !=
+                                                 static_cast<uint32_t>((h - 4) * (w - 2 - w / 2 - 1)))
+    t.fail(fmt::format("frame {} (invalid pixels): valid pixels miscounted", f_invalid));
 
   const std::vector<int> heights(in.size(), h);
   const auto sched = make_schedule(w, heights, 2);
@@ -271,7 +319,7 @@ int main(int argc, char** argv) {
         else
           t.pass();
       }
-      if (f == 0 || f == 2 || f == 5)
+      if (f == 0 || f == 2 || f == 5 || f >= static_cast<int>(f_specks))
         fmt::print("frame {}: {} objects, too_many {}, table_full {}\n", f, e.objects.size(), e.too_many_objects,
                    e.table_full);
       // the packet engine was busy at publication: this list's packet is dropped

@@ -3,6 +3,9 @@
 // reciprocal as a rounded floating-point division.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
+
 #include <cmath>
 #include <cstdlib>
 #include <opencv2/imgproc.hpp>
@@ -233,4 +236,42 @@ TEST_CASE("cost shift, zero weight sum and bad input", "[aggregate]") {
   CHECK(sm::sw_aggregate(raw, left, all_codes(0), hw).at(2, 2, 0) == 0);
   CHECK_THROWS_AS(sm::sw_aggregate(raw, sm::Image8(4, 5), all_codes(1), hw), std::invalid_argument);
   CHECK_THROWS_AS(sm::sw_aggregate(sm::CostVolume(5, 5, 6), left, all_codes(1), hw), std::invalid_argument);
+}
+
+TEST_CASE("sw_aggregate equals the per-pixel sum at wide level counts and mixed weights", "[aggregate]") {
+  // Written from the spec (docs/algorithm.md section 5) pixel by pixel: level counts that
+  // take every block width of the vector kernels (32, 64, 128 levels and their tails).
+  struct P {
+    int sw, disp, shift;
+  };
+  for (const P p : {P{5, 128, 2}, P{7, 65, 0}, P{3, 200, 2}, P{5, 97, 1}}) {
+    const sm::HwConfig hw = config(15, p.sw, p.disp, p.shift);
+    const int w = 21, h = 9, r = (p.sw - 1) / 2;
+    std::mt19937 rng(static_cast<uint32_t>(p.disp));
+    sm::Image8 left(w, h);
+    for (auto& v : left.px) v = static_cast<uint8_t>(rng() % 96);  // |dI| >> 3: 0..11
+    std::array<uint8_t, 32> table{};
+    for (size_t k = 0; k < table.size(); ++k) table[k] = static_cast<uint8_t>(rng() % 4);
+    sm::CostVolume raw(w, h, hw.disp);
+    for (auto& v : raw.v) v = static_cast<uint8_t>(rng() % 225);
+    const sm::CostVolume out = sm::sw_aggregate(raw, left, table, hw);
+    const uint32_t cmax = (1u << hw.cost_bits()) - 1;
+    int bad = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int d = 0; d < hw.disp; ++d) {
+          uint32_t sum = 0, wsum = 0;
+          for (int j = -r; j <= r; ++j)
+            for (int i = -r; i <= r; ++i) {
+              if (x + i < 0 || x + i >= w || y + j < 0 || y + j >= h) continue;
+              const uint32_t wt = sm::sw_weight(table, std::abs(left.at(x + i, y + j) - left.at(x, y)));
+              wsum += wt;
+              sum += wt * (raw.at(x + i, y + j, d) >> p.shift);
+            }
+          const uint32_t want = std::min((sum * sm::sw_recip(wsum) + 2048) >> 12, cmax);
+          bad += out.at(x, y, d) != want;
+        }
+    INFO("sw " << p.sw << " levels " << p.disp << " shift " << p.shift);
+    CHECK(bad == 0);
+  }
 }

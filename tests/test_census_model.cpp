@@ -119,6 +119,37 @@ TEST_CASE("Hamming cost known answers and the x - d < 0 rule", "[cost]") {
   CHECK_THROWS_AS(sm::hamming_cost(cl, a, hw), std::invalid_argument);
 }
 
+TEST_CASE("Hamming cost equals its definition on random 256-bit vectors", "[cost]") {
+  // Every bit of the four words set at random (also above CB), an all-ones left pixel
+  // against all-zero right pixels (popcount 256: 0 as an 8-bit H), widths and level
+  // counts that exercise the 8-level blocks of the vector kernels and their tails.
+  std::mt19937_64 rng(5);
+  for (const auto& [w, disp] : {std::pair{70, 128}, std::pair{37, 37}, std::pair{9, 16}, std::pair{130, 254}}) {
+    INFO("width " << w << " levels " << disp);
+    const auto hw = config(15, disp);  // CB = 224
+    sm::CensusImage cl(w, 2, sm::CensusVec{0, 0, 0, 0}), cr(w, 2, sm::CensusVec{0, 0, 0, 0});
+    for (auto& v : cl.px) v = {rng(), rng(), rng(), rng()};
+    for (auto& v : cr.px) v = {rng(), rng(), rng(), rng()};
+    cl.at(w - 1, 1) = {~0ull, ~0ull, ~0ull, ~0ull};
+    for (int x = 0; x < w; ++x) cr.at(x, 1) = {0, 0, 0, 0};
+    const auto h = sm::hamming_cost(cl, cr, hw);
+    int wrong = 0;
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int d = 0; d < disp; ++d) {
+          int want = 224;
+          if (x >= d) {
+            want = 0;
+            for (size_t i = 0; i < 4; ++i) want += __builtin_popcountll(cl.at(x, y)[i] ^ cr.at(x - d, y)[i]);
+            want &= 0xff;
+          }
+          wrong += h.at(x, y, d) != want;
+        }
+    CHECK(wrong == 0);
+    CHECK(h.at(w - 1, 1, 0) == 0);  // 256 as an 8-bit H
+  }
+}
+
 TEST_CASE("minimum cost finds the shift of a random texture", "[cost]") {
   const int w = 80, h = 24, shift = 9;
   const auto hw = config(7, 16);

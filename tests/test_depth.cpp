@@ -532,3 +532,30 @@ TEST_CASE("sm_calibrate interrupted by SIGINT / SIGTERM leaves no temporary", "[
     CHECK(listing(out).empty());
   }
 }
+
+TEST_CASE("sm_evaluate rectifies a raw scene with its calib.json: a rotated scene scores as a rectified one",
+          "[unit][evaluate]") {
+  const fs::path dir = sm::test::fresh_dir(tmp_root() / "evaluate_calib");
+  const fs::path scene = dir / "data" / "rot";
+  REQUIRE(run(SM_SCENE_EXE, fmt::format("--out {} --width 96 --height 64 --levels 32 --seed 3 --objects 3 "
+                                        "--rot-deg 1.5 --vshift 1.5",
+                                        scene.string()))
+              .rc == 0);
+  auto bad = [&](const std::string& name) {
+    const fs::path js = dir / (name + ".json");
+    const auto r = run(SM_EVALUATE_EXE, fmt::format("{} --levels 32 --methods model -q --json {}",
+                                                    (dir / "data").string(), js.string()));
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    return nlohmann::json::parse(sm::test::slurp(js)).at("scenes").at(0);
+  };
+  const nlohmann::json with = bad("with");
+  CHECK(with.at("calib") == (scene / "calib.json").string());
+  fs::remove(scene / "calib.json");
+  const nlohmann::json without = bad("without");
+  CHECK(without.at("calib").is_null());
+  const double b_with = with.at("methods").at("model").at("bad1_pct");
+  const double b_without = without.at("methods").at("model").at("bad1_pct");
+  INFO(b_with << " % with the scene's calib.json, " << b_without << " % without");
+  CHECK(b_with < b_without / 2);
+}

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <tuple>
 
 #include "post.hpp"
 
@@ -224,44 +225,107 @@ TEST_CASE("objects: overflow of the list and of the label table raise the flags"
   CHECK(l.table_full);
   CHECK(l.too_many_objects);
   for (const Object& o : l.objects) CHECK(o.count == 1);  // the box was dropped
-  regs.obj_min_pixels = 2;                                // singletons no longer qualify: nothing listed, flag stays
+  // 20 components of the same row on 16 labels: the row itself overflows whatever the
+  // minimum size (none of them has ended when the table fills)
+  regs.obj_min_pixels = 2;
   l = separate_objects(s, regs, hw);
-  CHECK(l.objects.empty());
   CHECK(l.table_full);
-  CHECK_FALSE(l.too_many_objects);
+  REQUIRE(l.objects.size() == 1);  // the box: the specks freed their labels once they ended
+  CHECK(l.objects[0].count == 100);
 }
 
+TEST_CASE("objects: labels are recycled within the frame", "[unit][objects]") {
+  const HwConfig hw = small_hw();         // K = 4, 16 labels
+  Regs regs = object_regs(hw, 10, 0, 2);  // near, tol, min pixels
+  // 12 single-pixel specks on each of rows 0, 2 and 4 (36 components on 16 labels), then a
+  // box: each speck has ended two rows later and is below min_pixels, so its label is free
+  // again and nothing overflows
+  DispImage s = constant(40, 20, 0);
+  for (int y = 0; y <= 4; y += 2)
+    for (int i = 0; i < 12; ++i) s.at(3 * i, y) = make_disp(30, true);
+  for (int y = 8; y < 18; ++y)
+    for (int x = 5; x < 15; ++x) s.at(x, y) = make_disp(30, true);
+  ObjectList l = separate_objects(s, regs, hw);
+  CHECK_FALSE(l.table_full);
+  REQUIRE(l.objects.size() == 1);
+  CHECK((l.objects[0].x0 == 5 && l.objects[0].y0 == 8 && l.objects[0].x1 == 14 && l.objects[0].y1 == 17));
+  CHECK(l.objects[0].count == 100);
+  // specks that qualify (min_pixels 1) are objects and keep their labels: the box overflows
+  regs.obj_min_pixels = 1;
+  l = separate_objects(s, regs, hw);
+  CHECK(l.table_full);
+  CHECK(l.too_many_objects);
+  // A disc's upper half: each row starts one pixel further left, with a label of its own
+  // that the row above's component absorbs a pixel later (40 such labels, on 16). Absorbed
+  // labels are recycled: one object, every pixel counted.
+  DispImage t = constant(60, 44, 0);
+  long n = 0;
+  for (int y = 1; y <= 41; ++y)
+    for (int x = 50 - y; x <= 55; ++x, ++n) t.at(x, y) = make_disp(40 + (y % 2), true);
+  regs = object_regs(hw, 10, 1, 2);
+  l = separate_objects(t, regs, hw);
+  CHECK_FALSE(l.table_full);
+  REQUIRE(l.objects.size() == 1);
+  CHECK(l.objects[0].count == n);
+  CHECK((l.objects[0].x0 == 9 && l.objects[0].y0 == 1 && l.objects[0].x1 == 55 && l.objects[0].y1 == 41));
+  CHECK(l.objects[0].max_disp == 41);
+}
+
+TEST_CASE("objects: invalid pixels are never near, whatever their disparity bits", "[unit][objects]") {
+  const HwConfig hw = small_hw();
+  const Regs regs = object_regs(hw, 10, 1, 1);
+  DispImage m = constant(30, 12, 0);
+  for (int y = 2; y < 10; ++y)
+    for (int x = 2; x < 28; ++x) m.at(x, y) = make_disp(40, x != 15);  // column 15 invalid (d bits 40)
+  for (int y = 2; y < 10; ++y) m.at(15, y) = make_disp(40, false);
+  ObjectList l = separate_objects(m, regs, hw);
+  REQUIRE(l.objects.size() == 2);  // the invalid column splits the box
+  CHECK((l.objects[0].x1 == 14 && l.objects[1].x0 == 16));
+  CHECK(l.objects[0].count + l.objects[1].count == 8 * 25);
+  DispImage inv(30, 12, make_disp(50, false));  // every pixel invalid with d = 50 >= near
+  l = separate_objects(inv, regs, hw);
+  CHECK(l.objects.empty());
+  CHECK_FALSE(l.table_full);
+}
+
+// Random masks against OpenCV: with a table large enough never to recycle (every
+// component listed, 45 % of the pixels near), and with 64 labels, a sparser mask and a
+// minimum size of 5, where over 100 components start per frame and the ones below the
+// minimum and the absorbed labels are recycled.
 TEST_CASE("objects: components match cv::connectedComponentsWithStats", "[unit][objects]") {
-  HwConfig hw = small_hw();
-  hw.label_slots = 1024;
-  hw.max_objects = 1000;                  // model only: list every component
-  Regs regs = object_regs(hw, 10, 0, 1);  // near, tol, min pixels
-  std::mt19937 rng(17);
-  for (int trial = 0; trial < 5; ++trial) {
-    DispImage m(48, 32, make_disp(0, true));
-    cv::Mat mask(32, 48, CV_8U, cv::Scalar(0));
-    for (int y = 0; y < 32; ++y)
-      for (int x = 0; x < 48; ++x)
-        if (rng() % 100 < 45) {
-          m.at(x, y) = make_disp(33, true);
-          mask.at<uint8_t>(y, x) = 255;
-        }
-    cv::Mat lab, stats, cent;
-    const int n = cv::connectedComponentsWithStats(mask, lab, stats, cent, 4, CV_32S);
-    const ObjectList l = separate_objects(m, regs, hw);
-    CHECK_FALSE(l.table_full);
-    std::vector<std::array<int, 5>> a, b;
-    for (int i = 1; i < n; ++i)
-      a.push_back({stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
-                   stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT),
-                   stats.at<int>(i, cv::CC_STAT_AREA)});
-    for (const Object& o : l.objects)
-      b.push_back({o.x0, o.y0, o.x1 - o.x0 + 1, o.y1 - o.y0 + 1, static_cast<int>(o.count)});
-    CHECK(n > 20);
-    CHECK_FALSE(l.too_many_objects);
-    std::sort(a.begin(), a.end());
-    std::sort(b.begin(), b.end());
-    CHECK(a == b);
+  for (const auto& [slots, min_pixels, density] : {std::tuple<int, int, unsigned>{1024, 1, 45}, {64, 5, 30}}) {
+    HwConfig hw = small_hw();
+    hw.label_slots = slots;
+    hw.max_objects = 1000;                                                        // model only: list every component
+    const Regs regs = object_regs(hw, 10, 0, static_cast<uint16_t>(min_pixels));  // near, tol, min pixels
+    std::mt19937 rng(17);
+    for (int trial = 0; trial < 5; ++trial) {
+      DispImage m(48, 32, make_disp(0, true));
+      cv::Mat mask(32, 48, CV_8U, cv::Scalar(0));
+      for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 48; ++x)
+          if (rng() % 100 < density) {
+            m.at(x, y) = make_disp(33, true);
+            mask.at<uint8_t>(y, x) = 255;
+          }
+      cv::Mat lab, stats, cent;
+      const int n = cv::connectedComponentsWithStats(mask, lab, stats, cent, 4, CV_32S);
+      const ObjectList l = separate_objects(m, regs, hw);
+      CHECK_FALSE(l.table_full);
+      std::vector<std::array<int, 5>> a, b;
+      for (int i = 1; i < n; ++i)
+        if (stats.at<int>(i, cv::CC_STAT_AREA) >= min_pixels)
+          a.push_back({stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+                       stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT),
+                       stats.at<int>(i, cv::CC_STAT_AREA)});
+      for (const Object& o : l.objects)
+        b.push_back({o.x0, o.y0, o.x1 - o.x0 + 1, o.y1 - o.y0 + 1, static_cast<int>(o.count)});
+      CHECK(n > 100);  // more components than the small table holds
+      CHECK_FALSE(l.too_many_objects);
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      CHECK(a == b);
+    }
   }
 }
 

@@ -118,7 +118,7 @@ TEST_CASE("--sequence: pairs sorted by name, one per frame", "[sim][inputs]") {
     expect_error(sim("seq_bad", "--sequence \"" + seq.string() + "\""), "left* and");
   }
   SECTION("a missing folder is an error") {
-    expect_error(sim("seq_missing", "--sequence \"" + (kTmp / "no_such_folder").string() + "\""), "not a folder");
+    expect_error(sim("seq_missing", "--sequence \"" + (kTmp / "no_such_folder").string() + "\""), "no such folder");
   }
 }
 

@@ -17,6 +17,7 @@
 #include "calib_file.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_scenegen.hpp"
+#include "outword.hpp"
 #include "pipeline.hpp"
 #include "sm_chessboard_rig.hpp"
 #include "sm_cmd.hpp"
@@ -105,6 +106,7 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
     expect_error(model(o + " --disp 16 --occ 300"), "--occ = 300 is outside 0..255");
   }
   SECTION("missing calibration") { expect_error(model(o + " --disp 16 --calib " + fx.I("none.json")), "none.json"); }
+  SECTION("bad thread count") { expect_error(model(o + " --disp 16 --threads 0"), "--threads"); }
   SECTION("unwritable output") {
     expect_error(model(" --disp 16 -o " + (out / "no" / "d.png").string()), "cannot write");
   }
@@ -144,6 +146,12 @@ TEST_CASE("stereo_model writes the model's disparity", "[unit][tools][cli]") {
                                               (out / "d2.png").string());
   REQUIRE(r2.rc == 0);
   CHECK(cv::norm(cv::imread((out / "d2.png").string(), cv::IMREAD_UNCHANGED), ref, cv::NORM_INF) == 0);
+  // --threads: the same image.
+  const Run r3 =
+      run(SM_STEREO_MODEL_EXE,
+          fx.L() + " " + fx.R() + " --disp 16 --census 7 --sw 3 --occ 20 --threads 3 -o " + (out / "d3.png").string());
+  REQUIRE(r3.rc == 0);
+  CHECK(cv::norm(cv::imread((out / "d3.png").string(), cv::IMREAD_UNCHANGED), ref, cv::NORM_INF) == 0);
 }
 
 TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {
@@ -216,8 +224,26 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   CHECK(s["methods"]["bm"]["invalid"].get<long>() > 0);
   for (const char* m : {"bm", "sgbm", "sgbm-hh", "binsgbm"})
     CHECK(s["methods"][std::string(m) + "-dense"]["invalid"].get<long>() <= s["methods"][m]["invalid"].get<long>());
-  // Console: the three tables with their mean rows.
-  for (const char* t : {"bad-1.0 %", "streak % (streaks up to 1 row thick", "up to 5 rows thick", "ms per frame"})
+  // The output stage (issue 39): the dense sub-pixel output has every pixel valid and a
+  // confidence; the checked one leaves pixels invalid; the accuracy block agrees with bad1.
+  for (const char* m : {"model", "model_subpix", "model_checked", "sgbm"}) {
+    INFO(m);
+    const auto& a = s["methods"][m]["accuracy"];
+    CHECK(a["bad1_pct"].get<double>() == Approx(s["methods"][m]["bad1_pct"].get<double>()));
+    CHECK(a["bad05_pct"].get<double>() >= a["bad1_pct"].get<double>());
+    CHECK(a["bad1_pct"].get<double>() >= a["bad2_pct"].get<double>());
+    CHECK(a["density_pct"].get<double>() <= 100.0);
+  }
+  CHECK(s["methods"]["model_subpix"]["accuracy"]["density_pct"] == 100.0);
+  CHECK(s["methods"]["model_checked"]["accuracy"]["density_pct"].get<double>() < 100.0);
+  const auto& sp = s["methods"]["model_subpix"]["accuracy"]["sparsification"];
+  REQUIRE(sp["curve"].size() == 100);
+  CHECK(sp["auc"].get<double>() >= sp["oracle_auc"].get<double>());
+  CHECK_FALSE(s["methods"]["model"]["accuracy"].contains("sparsification"));
+  // Console: the tables with their mean rows.
+  for (const char* t :
+       {"bad-1.0 %", "streak % (streaks up to 1 row thick", "up to 5 rows thick", "ms per frame", "bad-0.5 %",
+        "bad-2.0 %", "mean absolute error", "density %", "bad-1.0 % over the valid", "sparsification"})
     CHECK(r.out.find(t) != std::string::npos);
   // --peer-levels: the peers at the given numDisparities, the model unchanged.
   const Run r2 = run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --levels 16 --peer-levels 32 -q " +
@@ -230,7 +256,7 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   CHECK(j2["scenes"][0]["methods"]["model"]["levels"] == 16);
   CHECK(j2["scenes"][0]["methods"]["model"]["bad1_pct"] == s["methods"]["model"]["bad1_pct"]);
   CHECK(j2["scenes"][0]["methods"]["model"]["streak"][0]["max_rows"] == 2);
-  CHECK(j2["scenes"][0]["methods"].size() == 6);  // the model's five outputs and bm
+  CHECK(j2["scenes"][0]["methods"].size() == 8);  // the model's seven outputs and bm
   const std::string ds = (fx.dir / "dataset").string() + " -q";
   expect_error(run(SM_EVALUATE_EXE, ds + " --peer-levels 40"), "--peer-levels 40");
   expect_error(run(SM_EVALUATE_EXE, ds + " --methods model,bm,model"), "twice");
@@ -251,7 +277,8 @@ TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {
   REQUIRE(js["scenes"].size() == 2);
   CHECK(js["scenes"][1]["name"] == "synthetic2");
   CHECK(js["scenes"][0]["width"] == 48);
-  CHECK(js["scenes"][0]["methods"].size() == 6);  // model_dp, model_f0, model_f1, model_f1f2, model, sgbm
+  // model_dp, model_f0, model_f1, model_f1f2, model, model_subpix, model_checked, sgbm
+  CHECK(js["scenes"][0]["methods"].size() == 8);
   expect_error(run(SM_EVALUATE_EXE, "--synthetic 1 --synthetic-size 48by32"), "48by32");
   expect_error(run(SM_EVALUATE_EXE, "--levels 15 --synthetic 1"), "--levels 15");
 }
@@ -261,10 +288,10 @@ TEST_CASE("sm_scene rejects bad parameters cleanly", "[unit][tools][cli]") {
   const fs::path out = tmp_root() / "scene_bad";
   fs::remove_all(out);
   fs::create_directories(out);
-  expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --width 8"), "image size");
+  expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --width 8"), "--width: 8: outside 16..4095");
   expect_error(run(SM_SCENE_EXE, "--out " + out.string() + " --levels 16 --bg-disp 30"), "exceeds levels");
   std::ofstream((out / "file").string()) << "x";
-  expect_error(run(SM_SCENE_EXE, "--out " + (out / "file").string()), "cannot create directory");
+  expect_error(run(SM_SCENE_EXE, "--out " + (out / "file").string()), "file: cannot write: not a folder");
   expect_only(out, {"file"});
 }
 
@@ -393,6 +420,33 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
     CHECK(cv::norm(raw, want, cv::NORM_INF) == 0);
     CHECK(cv::norm(cv::imread((out / "g.png").string(), cv::IMREAD_UNCHANGED), sm::tools::disp_to_grey(ref, 16),
                    cv::NORM_INF) == 0);
+  }
+  SECTION("--mode dense / checked: the planned output word's Q.4 disparity and its confidence") {
+    for (const char* mode : {"dense", "checked"}) {
+      INFO(mode);
+      const fs::path f = out / (std::string(mode) + ".png"), c = out / (std::string(mode) + "_conf.png");
+      const Run r = run(SM_STEREO_MODEL_EXE,
+                        lr + " --mode " + mode + " --disp-file " + f.string() + " --confidence " + c.string());
+      INFO(r.err);
+      REQUIRE(r.rc == 0);
+      const sm::OutImage word = sm::make_output(
+          res.evidence, res.post, 16, std::string(mode) == "dense" ? sm::dense_mode(sm::Regs{}.out) : sm::Regs{}.out);
+      cv::Mat want(ref.size(), CV_16UC1), conf(ref.size(), CV_8UC1);
+      for (int y = 0; y < ref.rows; ++y)
+        for (int x = 0; x < ref.cols; ++x) {
+          const uint32_t w = word.at(x, y);
+          want.at<uint16_t>(y, x) = sm::out_valid(w) ? static_cast<uint16_t>(sm::out_q4(w)) : 0;
+          conf.at<uint8_t>(y, x) = static_cast<uint8_t>(sm::out_conf(w));
+        }
+      CHECK(cv::norm(cv::imread(f.string(), cv::IMREAD_UNCHANGED), want, cv::NORM_INF) == 0);
+      CHECK(cv::norm(cv::imread(c.string(), cv::IMREAD_UNCHANGED), conf, cv::NORM_INF) == 0);
+    }
+    expect_error(run(SM_STEREO_MODEL_EXE, lr + " --mode checked --stage dp --disp-file " + (out / "x.pfm").string()),
+                 "--stage dp");
+    expect_error(run(SM_STEREO_MODEL_EXE,
+                     lr + " --disp-file " + (out / "x.pfm").string() + " --confidence " + (out / "x.png").string()),
+                 "--confidence needs");
+    expect_only(out, {"dense.png", "dense_conf.png", "checked.png", "checked_conf.png"});
   }
   SECTION("bad requests leave no output at all") {
     expect_error(run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.txt").string()), ".pfm or .png");

@@ -8,7 +8,10 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "post.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_json_file.hpp"
+#include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "sm_test_util.hpp"
 
@@ -326,4 +329,52 @@ TEST_CASE("register words, parameter fields and range errors have one definition
   CHECK(hw.disp == 64);
   CHECK(r.occ == 20);
   CHECK(sm::sw_table_word(r, 1) == 27u);
+}
+
+TEST_CASE("strict JSON files: one value, no key twice in one object", "[unit][tools]") {
+  using sm::tools::parse_json_strict;
+  // the same key in sibling objects, in objects of an array and at different depths is fine
+  CHECK(parse_json_strict(R"({"a": {"x": 1}, "b": {"x": 2}, "x": [{"x": 1}, {"x": 2}]})", "f.json")["b"]["x"] == 2);
+  CHECK(parse_json_strict("  [1, 2]\n\n", "f.json").size() == 2);
+  CHECK_THROWS_WITH(parse_json_strict(R"({"occ": 5, "occ": 30})", "f.json"),
+                    "f.json: key 'occ' given twice in one object");
+  CHECK_THROWS_WITH(parse_json_strict(R"([{"a": {"y": 1, "y": 2}}])", "f.json"),
+                    "f.json: key 'y' given twice in one object");
+  // after a nested object closes, its keys no longer count for the outer one, and back
+  CHECK_THROWS_WITH(parse_json_strict(R"({"k": {"k": 1}, "k": 2})", "f.json"),
+                    "f.json: key 'k' given twice in one object");
+  CHECK_THROWS_WITH(parse_json_strict("{\"occ\": 20} trailing", "f.json"),
+                    "f.json: content after the JSON value on line 1 (one value per file)");
+  CHECK_THROWS_WITH(parse_json_strict("{}\n{}\n", "f.json"),
+                    "f.json: content after the JSON value on line 2 (one value per file)");
+  CHECK_THROWS_WITH(parse_json_strict("", "f.json"), Catch::StartsWith("f.json: malformed JSON: "));
+  CHECK_THROWS_WITH(parse_json_strict("{\"occ\": ", "f.json"), Catch::StartsWith("f.json: malformed JSON: "));
+  const fs::path d = scratch("strict_json");
+  CHECK_THROWS_WITH(sm::tools::read_json_file(d.string()), d.string() + ": is a directory");
+  CHECK_THROWS_WITH(sm::tools::read_json_file((d / "none.json").string()), Catch::EndsWith("none.json: no such file"));
+}
+
+TEST_CASE("object flags: one explanation per flag, naming what to change", "[unit][tools]") {
+  sm::HwConfig hw;
+  hw.max_objects = 8;
+  hw.label_slots = 64;
+  sm::Regs regs = sm::Regs::defaults(hw);
+  regs.obj_min_pixels = 64;
+  sm::ObjectList l;
+  CHECK(object_flag_lines(sm::object_packet(l, false)[0], hw, regs).empty());
+  l.table_full = true;
+  std::vector<std::string> s = object_flag_lines(sm::object_packet(l, false)[0], hw, regs);
+  REQUIRE(s.size() == 1);
+  CHECK(s[0].rfind("TABLE-FULL:", 0) == 0);
+  CHECK(s[0].find("LABEL_SLOTS = 64") != std::string::npos);
+  CHECK(s[0].find("OBJ_MIN_PIXELS = 64") != std::string::npos);
+  l.table_full = false;
+  l.too_many_objects = true;
+  s = object_flag_lines(sm::object_packet(l, true)[0], hw, regs);
+  REQUIRE(s.size() == 2);
+  CHECK(s[0].rfind("TOO-MANY:", 0) == 0);
+  CHECK(s[0].find("MAX_OBJECTS = 8") != std::string::npos);
+  CHECK(s[1].rfind("LOST:", 0) == 0);
+  CHECK(s[1].find("m_axis_obj_tready") != std::string::npos);
+  CHECK(object_flag_lines(0xA5000700u, hw, regs).size() == 3);
 }

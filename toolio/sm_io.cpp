@@ -4,9 +4,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,28 +18,17 @@
 #include <sstream>
 
 #include "sm_signal_cleanup.hpp"
+#include "sm_cli.hpp"
 
 namespace fs = std::filesystem;
 
 namespace sm::tools {
 
 int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "{}: error: {}\n", tool, e.what());
-    return 1;
-  }
+  return run_guarded(tool, [&] { return run(argc, argv); });
 }
 
-std::optional<int> parse_args(CLI::App& app, int argc, char** argv) {
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
-  return std::nullopt;
-}
+std::optional<int> parse_args(CLI::App& app, int argc, char** argv) { return parse_cli(app, argc, argv); }
 
 void check_levels(const char* option, int levels) {
   if (levels < 4 || levels > 254 || levels % 2)
@@ -79,6 +69,15 @@ std::string temp_name(const fs::path& p) {
 }
 
 }  // namespace
+
+void check_input_file(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st)) throw ToolError(fmt::format("{}: no such file", path));
+  if (fs::is_directory(st)) throw ToolError(fmt::format("{}: is a directory", path));
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw ToolError(fmt::format("{}: cannot read: {}", path, std::strerror(errno)));
+}
 
 void quiet_opencv() { cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT); }
 
@@ -138,12 +137,12 @@ cv::Mat to_mat(const Image8& img) {
   return m;
 }
 
-void write_image_atomic(const std::string& path, const cv::Mat& img) {
+void write_image_atomic(const std::string& path, const cv::Mat& img, const std::vector<int>& params) {
   const std::string tmp = temp_name(path);
   const RemoveOnSignal guard(tmp);
   bool ok = false;
   try {
-    ok = cv::imwrite(tmp, img);
+    ok = cv::imwrite(tmp, img, params);
   } catch (const cv::Exception&) {
     ok = false;
   }

@@ -24,16 +24,22 @@ struct ToolError : std::runtime_error {
 };
 
 // A tool's main(): runs `run` and turns any exception into the one-line error
-// "<tool>: error: <what>" on stderr and exit code 1.
+// "<tool>: error: <what>" on stderr and exit code 1, or 2 for a command-line error
+// (run_guarded, kExitError / kExitUsage of toolio/sm_cli.hpp).
 int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** argv);
 
-// Parses a tool's command line into `app`: the exit code when the tool stops there
-// (--help, or a parse error, both printed by CLI11), nothing when it goes on.
+// Parses a tool's command line into `app`: 0 when the tool stops there (--help, printed by
+// CLI11), nothing when it goes on; a parse error throws UsageError (toolio/sm_cli.hpp)
+// with CLI11's message, which guarded_main prints as one line and exits 2.
 std::optional<int> parse_args(CLI::App& app, int argc, char** argv);
 
 // The disparity levels of the model and the RTL (DISP): even, 4..254; a ToolError
 // "<option> <levels>: must be even, 4..254" otherwise.
 void check_levels(const char* option, int levels);
+
+// An input file that must exist and be readable, checked before any work: a ToolError
+// "<path>: no such file", "<path>: is a directory" or "<path>: cannot read: <reason>".
+void check_input_file(const std::string& path);
 
 // Silences OpenCV's own logging (tools report errors themselves, in one line).
 void quiet_opencv();
@@ -50,8 +56,9 @@ Image8 to_image8(const cv::Mat& grey);  // CV_8UC1 -> Image8
 cv::Mat to_mat(const Image8& img);      // Image8 -> CV_8UC1 (copy)
 
 // Writes an image so that no partial file is ever left under `path`: encode to a
-// temporary name in the same directory, then rename. Throws ToolError.
-void write_image_atomic(const std::string& path, const cv::Mat& img);
+// temporary name in the same directory, then rename (`params`: cv::imwrite's, e.g. the PNG
+// compression level). Throws ToolError.
+void write_image_atomic(const std::string& path, const cv::Mat& img, const std::vector<int>& params = {});
 void write_text_atomic(const std::string& path, const std::string& text);
 
 // Disparity as float pixels, negative = invalid (no output).

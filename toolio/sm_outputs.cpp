@@ -1,9 +1,12 @@
 #include "sm_outputs.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 
 #include "sm_io.hpp"
@@ -12,6 +15,62 @@
 namespace fs = std::filesystem;
 
 namespace sm::tools {
+
+namespace {
+
+// Why a new file cannot be made in `dir` (an existing folder), or "" when it can: a
+// probe file is created and removed again (access() would let root pass a read-only folder).
+std::string probe_folder(const fs::path& dir) {
+  const fs::path probe = dir / fmt::format(".sm_probe{}", getpid());
+  const int fd = open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) return fmt::format("{}: {}", dir.string(), std::strerror(errno));
+  close(fd);
+  unlink(probe.c_str());
+  return {};
+}
+
+// Why a file cannot be made in folder `dir` (created if missing when create), or "".
+std::string folder_problem(fs::path dir, bool create) {
+  std::error_code ec;
+  if (dir.empty()) dir = ".";
+  if (!create && !fs::exists(dir, ec)) return fmt::format("folder {} does not exist", dir.string());
+  while (create && !fs::exists(dir, ec) && dir.has_parent_path() && dir.parent_path() != dir) dir = dir.parent_path();
+  if (!fs::exists(dir, ec)) dir = ".";
+  if (!fs::is_directory(dir, ec)) return fmt::format("{} is not a folder", dir.string());
+  return probe_folder(dir);
+}
+
+// Why file `path` cannot be written, or "".
+std::string output_problem(const std::string& path, bool create_parent) {
+  std::error_code ec;
+  const fs::path p(path);
+  if (p.filename().empty() || fs::is_directory(p, ec)) return "is a folder";
+  return folder_problem(p.parent_path(), create_parent);
+}
+
+}  // namespace
+
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs, bool create_parent) {
+  std::vector<std::pair<std::string, fs::path>> seen;  // option, absolute path
+  for (const auto& [opt, path] : outputs) {
+    if (path.empty()) continue;
+    const std::string why = output_problem(path, create_parent);
+    if (!why.empty()) throw ToolError(fmt::format("{} {}: cannot write: {}", opt, path, why));
+    std::error_code ec;
+    const fs::path abs = fs::weakly_canonical(fs::absolute(path), ec);
+    for (const auto& [o, a] : seen)
+      if (a == abs) throw ToolError(fmt::format("{} {}: same file as {}", opt, path, o));
+    seen.emplace_back(opt, abs);
+  }
+}
+
+void check_output_folder(const std::string& option, const std::string& dir) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw ToolError(fmt::format("{} {}: cannot write: not a folder", option, dir));
+  const std::string why = folder_problem(dir, true);
+  if (!why.empty()) throw ToolError(fmt::format("{} {}: cannot write: {}", option, dir, why));
+}
 
 OutputSet::~OutputSet() {
   if (!committed_) discard();

@@ -7,9 +7,22 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sm::tools {
+
+// Checks, before any work, that every output can be written: (option, path) pairs, empty
+// paths skipped. A path must not be a folder, its folder must exist (with create_parent:
+// its nearest existing ancestor) and accept a new file (a probe file is created and
+// removed), and no two outputs may name the same file. Throws ToolError
+// "<option> <path>: cannot write: <reason>" (reason: "folder nodir does not exist",
+// "ro: Permission denied", "is a folder", "f is not a folder") or
+// "<option> <path>: same file as <other option>".
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs, bool create_parent = false);
+// The same for an output folder (created by the tool when missing): it, or its nearest
+// existing ancestor, is a folder that accepts a new file.
+void check_output_folder(const std::string& option, const std::string& dir);
 
 class OutputSet {
  public:

@@ -18,7 +18,7 @@ std::string option_name(const std::string& reg) {
 
 }  // namespace
 
-RegOptions::RegOptions(CLI::App& app, const Regs& defaults, const std::set<std::string>& skip,
+RegOptions::RegOptions(CLI::App& app, const Regs& defaults, const HwConfig& hw, const std::set<std::string>& skip,
                        const std::map<std::string, std::string>& aliases) {
   for (const auto& v : value_registers()) {
     if (skip.count(v.name) || v.name == "SW_TABLE0" || v.name == "SW_TABLE1") continue;
@@ -26,7 +26,12 @@ RegOptions::RegOptions(CLI::App& app, const Regs& defaults, const std::set<std::
     o->reg = v.name;
     std::string names = option_name(v.name);
     if (const auto a = aliases.find(v.name); a != aliases.end()) names += "," + a->second;
+    const auto [lo, hi] = register_limits(v.name, hw);
+    // the range shown as CLI::Range shows it; the check is apply()'s (the configuration
+    // may still change with other options)
+    const CLI::Validator range([](std::string&) { return std::string(); }, fmt::format("INT in [{} - {}]", lo, hi));
     o->opt = app.add_option(names, o->value, fmt::format("{} (register {})", v.desc, v.name))
+                 ->check(range)
                  ->default_str(std::to_string(register_value(v.name, defaults)));
     opts_.push_back(std::move(o));
   }

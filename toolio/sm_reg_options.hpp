@@ -20,9 +20,10 @@ namespace sm::tools {
 class RegOptions {
  public:
   // Options for every value register but those in `skip` (map names; SW_TABLE0/1 have
-  // none: the tools take --sw-table codes), defaults shown from `defaults`; `aliases`
-  // adds names to a register's option (e.g. {"FILTER_ENABLE", "--filters"}).
-  RegOptions(CLI::App& app, const Regs& defaults, const std::set<std::string>& skip = {},
+  // none: the tools take --sw-table codes), defaults shown from `defaults`, ranges in the
+  // help ("INT in [lo - hi]") from the map at `hw` (apply() checks them at the run's
+  // configuration); `aliases` adds names to a register's option (e.g. {"FILTER_ENABLE", "--filters"}).
+  RegOptions(CLI::App& app, const Regs& defaults, const HwConfig& hw, const std::set<std::string>& skip = {},
              const std::map<std::string, std::string>& aliases = {});
   // Writes the options given on the command line into r; a value outside the register's
   // range at hw is a ToolError naming the option.

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "sm_io.hpp"
+#include "sm_json_file.hpp"
 #include "sm_regmap.hpp"
 
 namespace fs = std::filesystem;
@@ -98,6 +98,13 @@ int64_t register_value(const std::string& name, const Regs& r) {
   throw ToolError(fmt::format("{}: not a value register", name));
 }
 
+std::pair<int64_t, int64_t> register_limits(const std::string& name, const HwConfig& hw) {
+  const regmap::Reg* reg = find_register(name);
+  if (!reg) throw ToolError(fmt::format("{}: not a register", name));
+  const Range rg = register_range(*reg, hw);
+  return {rg.lo, rg.hi};
+}
+
 void set_register(const std::string& name, int64_t v, const HwConfig& hw, Regs& r, const std::string& what) {
   const auto& setters = register_setters();
   const regmap::Reg* reg = find_register(name);
@@ -109,21 +116,23 @@ void set_register(const std::string& name, int64_t v, const HwConfig& hw, Regs& 
 }
 
 RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
-  std::ifstream in(path);
-  if (!in) throw ToolError(fmt::format("{}: no such file", path));
   json j;
   try {
-    in >> j;
-  } catch (const json::exception&) {
-    throw ToolError(fmt::format("{}: malformed JSON", path));
+    j = read_json_file(path);  // one value, no key twice
+  } catch (const JsonFileError& e) {
+    throw ToolError(e.what());
   }
   if (!j.is_object()) throw ToolError(fmt::format("{}: not a JSON object", path));
 
   auto what = [&](const std::string& k) { return fmt::format("{}: '{}'", path, k); };
-  auto integer = [&](const std::string& k, const json& v) {
+  // An integer key's value; one above INT64_MAX is reported as written (outside lo..hi).
+  auto integer = [&](const std::string& k, const json& v, Range rg) {
     if (!v.is_number_integer()) throw ToolError(fmt::format("{} must be an integer, not {}", what(k), v.dump()));
-    return v.is_number_unsigned() ? static_cast<int64_t>(std::min<uint64_t>(v.get<uint64_t>(), INT64_MAX))
-                                  : v.get<int64_t>();
+    if (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX))
+      throw ToolError(fmt::format("{} = {} is outside {}..{}", what(k), v.get<uint64_t>(), rg.lo, rg.hi));
+    const int64_t x = v.is_number_unsigned() ? static_cast<int64_t>(v.get<uint64_t>()) : v.get<int64_t>();
+    check_range(what(k), x, rg.lo, rg.hi);
+    return x;
   };
 
   // Compile-time parameters first: the registers' ranges depend on them.
@@ -135,8 +144,7 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
     out.keys.push_back(it.key());
     if (auto h = hw_keys.find(it.key()); h != hw_keys.end()) {
       const defs::Limit& l = *h->second;
-      const int64_t x = integer(it.key(), it.value());
-      check_range(what(it.key()), x, l.min, l.max);
+      const int64_t x = integer(it.key(), it.value(), {l.min, l.max});
       *hw.field(l.name) = static_cast<int>(x);
     }
   }
@@ -151,8 +159,7 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
       r.sw_table.fill(0);
       for (size_t i = 0; i < v.size(); ++i) {
         const std::string ki = fmt::format("sw_table[{}]", i);
-        const int64_t x = integer(ki, v[i]);
-        check_range(what(ki), x, 0, 3);
+        const int64_t x = integer(ki, v[i], {0, 3});
         r.sw_table[i] = static_cast<uint8_t>(x);
       }
       continue;
@@ -168,7 +175,7 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
     // a register: its name in lower case
     const std::string name = upper(k);
     if (lower(name) != k || !is_value_register(name)) throw ToolError(fmt::format("{}: unknown key '{}'", path, k));
-    set_register(name, integer(k, v), hw, r, what(k));
+    set_register(name, integer(k, v, register_range(*find_register(name), hw)), hw, r, what(k));
   }
   return out;
 }

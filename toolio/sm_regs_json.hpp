@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sm_types.hpp"
@@ -47,6 +48,8 @@ struct ValueRegister {
 std::vector<ValueRegister> value_registers();
 // The register's value in r (the word a host writes, before sign extension).
 int64_t register_value(const std::string& name, const Regs& r);
+// The register's range at hw, lo..hi (rtl/regmap.json: the field's min/max, else its width).
+std::pair<int64_t, int64_t> register_limits(const std::string& name, const HwConfig& hw);
 // Sets the register in r; a value outside the map's range at hw is a ToolError
 // "<what> = <value> is outside <lo>..<hi>" (the wording of every range error of the
 // register file too, where <what> is "<file>: '<key>'").

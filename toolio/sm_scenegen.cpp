@@ -184,6 +184,9 @@ SyntheticScene render_scene(const SceneParams& p) {
   if ((p.focal_px != 0 || p.baseline_m != 0) && !(f_ok && b_ok))
     throw std::invalid_argument(
         fmt::format("focal length {} px and baseline {} m: give both, finite and > 0", p.focal_px, p.baseline_m));
+  for (double v : {p.bg_disp, p.bg_slant_x, p.bg_slant_y, p.gain_l, p.offset_l, p.gain_r, p.offset_r, p.rot_deg,
+                   p.vshift, p.noise})
+    if (!std::isfinite(v)) throw std::invalid_argument("scene parameters must be finite numbers");
   const std::vector<Surface> surf = build_surfaces(p);
   if (std::fabs(surf[0].b) >= 0.5) throw std::invalid_argument("background slant too steep");
 
@@ -240,6 +243,16 @@ SyntheticScene render_scene(const SceneParams& p) {
     throw std::invalid_argument(
         fmt::format("scene disparity {:.2f} exceeds levels-1 = {}", out.max_disp, p.levels - 1));
   if (out.min_disp < 0) throw std::invalid_argument(fmt::format("negative scene disparity {:.2f}", out.min_disp));
+  return out;
+}
+
+std::vector<PlacedObject> placed_objects(const SceneParams& p) {
+  const std::vector<Surface> surf = build_surfaces(p);
+  std::vector<PlacedObject> out;
+  for (size_t i = 1; i < surf.size(); ++i) {
+    const Surface& o = surf[i];
+    out.push_back({o.shape == Shape::kDisc, o.cx, o.cy, o.rx, o.ry, static_cast<int>(o.a)});
+  }
   return out;
 }
 

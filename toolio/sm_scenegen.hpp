@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace sm::tools {
 
@@ -48,6 +49,16 @@ struct SyntheticScene {
 
 // Throws std::invalid_argument on impossible parameters.
 SyntheticScene render_scene(const SceneParams& p);
+
+// An object render_scene places in front of the background (left-view coordinates):
+// a rectangle [cx - rx, cx + rx) x [cy - ry, cy + ry) or the disc (ellipse) of those
+// radii, fronto-parallel at an integer disparity. Nearer objects may hide parts of it.
+struct PlacedObject {
+  bool disc = false;
+  double cx = 0, cy = 0, rx = 0, ry = 0;
+  int disp = 0;
+};
+std::vector<PlacedObject> placed_objects(const SceneParams& p);
 
 // Writes left.png right.png gt.png (16-bit, value = d * 256) nonocc.png scale.txt
 // ("256 levels"), camera.json (homographies, gains) and calib.json (the right camera's

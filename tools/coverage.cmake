@@ -6,6 +6,8 @@
 add_executable(sm_coverage ${CMAKE_CURRENT_SOURCE_DIR}/sm_coverage.cpp)
 target_link_libraries(sm_coverage PRIVATE fmt::fmt CLI11::CLI11 nlohmann_json::nlohmann_json)
 target_compile_options(sm_coverage PRIVATE ${SM_WARNINGS})
+# toolio/sm_cli.hpp (and sm_json_file.hpp): header-only, no link to sm_toolio
+target_include_directories(sm_coverage PRIVATE ${CMAKE_SOURCE_DIR})
 
 if(SM_COVERAGE)
   find_program(SM_VERILATOR_COVERAGE verilator_coverage HINTS ${VERILATOR_ROOT}/bin /usr/bin REQUIRED)

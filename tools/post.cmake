@@ -2,3 +2,8 @@
 add_executable(sm_filter_study ${CMAKE_CURRENT_LIST_DIR}/sm_filter_study.cpp)
 target_link_libraries(sm_filter_study PRIVATE sm_toolio CLI11::CLI11 nlohmann_json::nlohmann_json)
 target_compile_options(sm_filter_study PRIVATE ${SM_WARNINGS})
+
+# Output-stage study: sub-pixel estimators, validity rules, confidence (docs/evaluation.md).
+add_executable(sm_output_study ${CMAKE_CURRENT_LIST_DIR}/sm_output_study.cpp)
+target_link_libraries(sm_output_study PRIVATE sm_toolio CLI11::CLI11 nlohmann_json::nlohmann_json)
+target_compile_options(sm_output_study PRIVATE ${SM_WARNINGS})

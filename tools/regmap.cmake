@@ -13,6 +13,8 @@
 add_executable(sm_regmap_gen ${CMAKE_CURRENT_SOURCE_DIR}/sm_regmap_gen.cpp)
 target_link_libraries(sm_regmap_gen PRIVATE nlohmann_json::nlohmann_json fmt::fmt CLI11::CLI11)
 target_compile_options(sm_regmap_gen PRIVATE ${SM_WARNINGS})
+# toolio/sm_cli.hpp (and sm_json_file.hpp): header-only, no link to sm_toolio
+target_include_directories(sm_regmap_gen PRIVATE ${CMAKE_SOURCE_DIR})
 
 set(SM_REGMAP_JSON ${SM_RTL_DIR}/regmap.json)
 set(SM_DEFS_JSON ${SM_RTL_DIR}/defs.json)

@@ -12,13 +12,18 @@
 // "page") is one point, covered when one of them reached the threshold: a count >= 1 for a line
 // point and >= 2 for a toggle point (two changes of one bit are a rise and a fall). The
 // same key in several input files is summed first, as verilator_coverage --write does.
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -29,14 +34,53 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "toolio/sm_cli.hpp"
+
 namespace {
 
 using json = nlohmann::ordered_json;
 
-[[noreturn]] void fail(const std::string& msg) {
-  fmt::print(stderr, "sm_coverage: error: {}\n", msg);
-  std::exit(1);
-}
+// One error line "sm_coverage: error: <msg>" and exit 1 (run_guarded in main).
+[[noreturn]] void fail(const std::string& msg) { throw std::runtime_error(msg); }
+
+// The output files, all or nothing: each opened under a temporary name next to it before
+// any work (a path that cannot be written fails at once), renamed into place together by
+// commit(); the temporaries are removed when the run fails.
+class Outputs {
+ public:
+  Outputs() = default;
+  Outputs(const Outputs&) = delete;
+  Outputs& operator=(const Outputs&) = delete;
+  ~Outputs() {
+    for (auto& f : files_) std::remove(f.temp.c_str());
+  }
+  // The stream to write `path` to; `option` names it in the errors.
+  std::ofstream& open(const std::string& option, const std::string& path) {
+    for (const auto& f : files_)
+      if (f.path == path) fail(fmt::format("{} {}: same file as {}", option, path, f.option));
+    const std::string temp = fmt::format("{}.tmp{}", path, ::getpid());
+    files_.push_back({option, path, temp, std::make_unique<std::ofstream>(temp, std::ios::binary)});
+    if (!*files_.back().out) fail(fmt::format("{} {}: cannot write: {}", option, path, std::strerror(errno)));
+    return *files_.back().out;
+  }
+  void commit() {
+    for (auto& f : files_) {
+      f.out->close();
+      if (!*f.out) fail(fmt::format("{} {}: write failed", f.option, f.path));
+    }
+    for (auto& f : files_)
+      if (std::rename(f.temp.c_str(), f.path.c_str()) != 0)
+        fail(fmt::format("{} {}: cannot write: {}", f.option, f.path, std::strerror(errno)));
+    files_.clear();
+  }
+
+ private:
+  struct File {
+    std::string option, path, temp;
+    std::unique_ptr<std::ofstream> out;
+  };
+  std::vector<File> files_;
+};
 
 enum class Kind { kLine, kToggle, kOther };
 
@@ -149,21 +193,16 @@ std::string pct(const Tally& t) {
   return p ? fmt::format("{:.1f}", *p) : std::string("-");
 }
 
-void write_subset(const std::string& path, const Data& d, Kind kind) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) fail(fmt::format("{}: cannot write", path));
+void write_subset(std::ostream& out, const Data& d, Kind kind) {
   out << "# SystemC::Coverage-3\n";
   for (const auto& k : d.keys) {
     Point p;
     parse_key(k, p);
     if (p.kind == kind) out << "C '" << k << "' " << d.count.at(k) << "\n";
   }
-  if (!out) fail(fmt::format("{}: write failed", path));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Per-module line and toggle coverage of Verilator coverage data"};
   std::vector<std::string> inputs;
   std::string json_path, line_dat, toggle_dat;
@@ -178,19 +217,23 @@ int main(int argc, char** argv) {
   app.add_option("--toggle-dat", toggle_dat, "write the toggle points (summed) to this .dat");
   app.add_option("--line-min", line_min, "count at which a line or branch point is covered")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(sm::tools::int_in(1, INT64_MAX));
   app.add_option("--toggle-min", toggle_min, "count at which a toggle point (one bit) is covered")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(sm::tools::int_in(1, INT64_MAX));
   app.add_option("--goal-line", goal_line, "line goal in percent")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(sm::tools::finite_in(0, 100));
   app.add_option("--goal-toggle", goal_toggle, "toggle goal in percent")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0));
+      ->check(sm::tools::finite_in(0, 100));
   app.add_flag("--markdown", markdown, "print the table as markdown");
   app.add_flag("--list-uncovered", list, "list the uncovered points of the modules below a goal");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto rc = sm::tools::parse_cli(app, argc, argv)) return *rc;
+  Outputs outs;
+  std::ofstream* json_out = json_path.empty() ? nullptr : &outs.open("--json", json_path);
+  std::ofstream* line_out = line_dat.empty() ? nullptr : &outs.open("--line-dat", line_dat);
+  std::ofstream* toggle_out = toggle_dat.empty() ? nullptr : &outs.open("--toggle-dat", toggle_dat);
 
   Data d;
   for (const auto& f : inputs) read_file(f, d);
@@ -306,12 +349,16 @@ int main(int argc, char** argv) {
       j["modules"][name] = {
           {"file", m.file}, {"line", m.line.to_json()}, {"toggle", m.toggle.to_json()}, {"below_goal", below(m)}};
     j["total"] = {{"line", tl.to_json()}, {"toggle", tt.to_json()}};
-    std::ofstream out(json_path);
-    if (!out) fail(fmt::format("{}: cannot write", json_path));
-    out << j.dump(2) << "\n";
-    if (!out) fail(fmt::format("{}: write failed", json_path));
+    *json_out << j.dump(2) << "\n";
   }
-  if (!line_dat.empty()) write_subset(line_dat, d, Kind::kLine);
-  if (!toggle_dat.empty()) write_subset(toggle_dat, d, Kind::kToggle);
+  if (line_out) write_subset(*line_out, d, Kind::kLine);
+  if (toggle_out) write_subset(*toggle_out, d, Kind::kToggle);
+  outs.commit();
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return sm::tools::run_guarded("sm_coverage", [&] { return run(argc, argv); });
 }

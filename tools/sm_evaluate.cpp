@@ -3,7 +3,10 @@
 // StereoSGBM and StereoBinarySGBM (opencv_contrib "stereo"; filtered and dense variants,
 // by default each at the scene's own disparity range) on a stereo dataset in the
 // ../shared/datasets layout, or on synthetic scenes from the sm_scene generator. Invalid
-// outputs count as bad (dense comparison). Disparity files made by another program
+// outputs count as bad (dense comparison); beside bad-1.0 every output gets bad-0.5, bad-2.0,
+// the mean absolute error and bad-1.0 over its valid pixels and its density, and the model's
+// sub-pixel outputs (model_subpix: dense, model_checked: the validity rules; model/outword.hpp)
+// the sparsification of their confidence. Disparity files made by another program
 // (--results: <scene>.pfm or <scene>.png) are scored the same way. docs/evaluation.md.
 #include <fmt/format.h>
 
@@ -16,18 +19,26 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
+#include <optional>
 #include <opencv2/core.hpp>
 #include <opencv2/stereo.hpp>
-#include <sstream>
+#include <regex>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_pictures.hpp"
+#include "toolio/sm_outputs.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "calib_file.hpp"
 #include "toolio/sm_scenegen.hpp"
+#include "outword.hpp"
 #include "pipeline.hpp"
+#include "sm_defs.hpp"
 
 namespace {
 
@@ -35,12 +46,23 @@ namespace fs = std::filesystem;
 using sm::tools::ToolError;
 using json = nlohmann::json;
 
-// One method: run() gives one or more disparity maps (CV_32F, < 0 invalid), one per name in
-// `outputs` (the model: the DP output and each post-processing step; everything else: one).
+// What a method's run gives: one disparity map (CV_32F, < 0 invalid) per name in `outputs`
+// and, where it has one, the output's confidence (CV_8U; empty otherwise).
+struct MethodOut {
+  std::vector<cv::Mat> disp, conf;
+};
+MethodOut maps(std::vector<cv::Mat> disp) {
+  const size_t n = disp.size();
+  return {std::move(disp), std::vector<cv::Mat>(n)};
+}
+
+// One method: run() gives one or more disparity maps, one per name in `outputs` (the model:
+// the DP output, each post-processing step and the sub-pixel dense and checked outputs;
+// everything else: one).
 struct Method {
-  std::string name;                                                              // --methods name
-  std::vector<std::string> outputs;                                              // table columns / JSON keys
-  std::function<std::vector<cv::Mat>(const sm::tools::Scene&, int levels)> run;  // one map per output
+  std::string name;                                                   // --methods name
+  std::vector<std::string> outputs;                                   // table columns / JSON keys
+  std::function<MethodOut(const sm::tools::Scene&, int levels)> run;  // one map per output
   bool peer = false;  // an OpenCV matcher: runs at --peer-levels (else at --levels)
   bool timed = true;  // false: read from a file, no run time
 };
@@ -54,6 +76,9 @@ cv::Mat from_fixed16(const cv::Mat& d16) {
 }
 
 int round16(int levels) { return (levels + 15) / 16 * 16; }
+
+// --threads: the model's thread count (set once before any method runs; same output for any).
+int model_threads = 1;
 
 // A scene's disparity file in the --results folder: <scene>.pfm or <scene>.png.
 std::string result_file(const std::string& dir, const std::string& scene) {
@@ -101,6 +126,29 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
   return from_fixed16(d);
 }
 
+// The model's output stage (model/outword.hpp) in its two modes: dense (every pixel valid,
+// the DP's fill, the Q.4 fraction) with its confidence, and checked (the registers' rules).
+void add_output_modes(const sm::PipelineResult& res, int levels, const sm::OutputRegs& regs, MethodOut& o) {
+  const sm::OutImage dense = sm::make_output(res.evidence, res.post, levels, sm::dense_mode(regs));
+  o.disp.push_back(sm::tools::out_to_float(dense));
+  o.conf.push_back(sm::tools::out_to_conf(dense));
+  o.disp.push_back(sm::tools::out_to_float(sm::make_output(res.evidence, res.post, levels, regs)));
+  o.conf.emplace_back();
+}
+
+// The scene folder's calib.json (sm_scene writes one; a raw, unrectified pair needs it),
+// when it is for the scene's size: its rectifier grids for the model. Nothing for a scene
+// without one (the Middlebury scenes are rectified). Throws when it does not fit `hw`.
+std::optional<sm::CalibFile> scene_calib(const sm::tools::Scene& s, const sm::HwConfig& hw) {
+  if (s.dir.empty()) return std::nullopt;
+  const std::string path = (fs::path(s.dir) / "calib.json").string();
+  if (!fs::exists(path)) return std::nullopt;
+  sm::CalibFile c = sm::load_calib(path);
+  if (c.width != s.left.cols || c.height != s.left.rows) return std::nullopt;
+  sm::check_calib_fits(path, c, hw);
+  return c;
+}
+
 std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs_file, const std::string& results_dir,
                                 double results_scale) {
   std::vector<Method> m;
@@ -108,7 +156,7 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
   // after each step: the DP output, F0 (band filter), F0+F1 (5x1 vertical median), F0+F1+F2
   // (3x3), F0+F1+F2+F3 (5x3) = the model's output.
   m.push_back({"model",
-               {"model_dp", "model_f0", "model_f1", "model_f1f2", "model"},
+               {"model_dp", "model_f0", "model_f1", "model_f1f2", "model", "model_subpix", "model_checked"},
                [occ, occ_given, regs_file](const sm::tools::Scene& s, int levels) {
                  sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
                  hw.disp = levels;
@@ -129,18 +177,24 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
                    if (occ_given) regs.occ = static_cast<uint8_t>(occ);
                    hw.validate();
                  }
-                 const auto res =
-                     sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false);
+                 if (const auto c = scene_calib(s, hw)) {  // a raw pair: rectified by the IP's grids
+                   regs.grid_l = c->left;
+                   regs.grid_r = c->right;
+                   regs.rect_enable = true;
+                 }
+                 const auto res = sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw,
+                                                   regs, false, model_threads);
                  if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
                    throw std::logic_error("model: expected four post-processing steps ending in the output");
-                 return std::vector<cv::Mat>{
-                     sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
-                     sm::tools::disp_to_float(res.post_steps[1]), sm::tools::disp_to_float(res.post_steps[2]),
-                     sm::tools::disp_to_float(res.post)};
+                 MethodOut o = maps({sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
+                                     sm::tools::disp_to_float(res.post_steps[1]),
+                                     sm::tools::disp_to_float(res.post_steps[2]), sm::tools::disp_to_float(res.post)});
+                 add_output_modes(res, hw.disp, regs.out, o);
+                 return o;
                }});
   using Scene = sm::tools::Scene;
   auto peer = [&m](const std::string& name, std::function<cv::Mat(const Scene&, int)> f) {
-    m.push_back({name, {name}, [f](const Scene& s, int nd) { return std::vector<cv::Mat>{f(s, nd)}; }, true});
+    m.push_back({name, {name}, [f](const Scene& s, int nd) { return maps({f(s, nd)}); }, true});
   };
   peer("bm", [](const Scene& s, int nd) { return run_bm(s, nd, false); });
   peer("bm-dense", [](const Scene& s, int nd) { return run_bm(s, nd, true); });
@@ -161,11 +215,66 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
                  if (d.size() != s.left.size())
                    throw ToolError(fmt::format("{}: size {}x{} differs from the scene's {}x{}", f, d.cols, d.rows,
                                                s.left.cols, s.left.rows));
-                 return std::vector<cv::Mat>{d};
+                 return maps({d});
                },
                false,
                false});
   return m;
+}
+
+// Accuracy of one output (docs/evaluation.md, "Sub-pixel, validity and confidence"): the
+// metrics of toolio/sm_metrics.hpp and, when the output has a confidence, its sparsification.
+void score_accuracy(const cv::Mat& est, const cv::Mat& conf, const sm::tools::Scene& sc, sm::tools::DispMetrics& acc,
+                    sm::tools::Sparsification& sparse, bool& has_conf) {
+  acc = sm::tools::disp_metrics(est, sc.gt, sc.nonocc);
+  has_conf = !conf.empty();
+  if (has_conf) sparse = sm::tools::sparsification(est, conf, sc.gt, sc.nonocc, 100);
+}
+
+json accuracy_json(const sm::tools::DispMetrics& a, const sm::tools::Sparsification& sp, bool has_conf) {
+  json j = {{"bad05_pct", a.pct(a.bad05)}, {"bad1_pct", a.pct(a.bad1)},  {"bad2_pct", a.pct(a.bad2)},
+            {"mae_valid", a.mae()},        {"density_pct", a.density()}, {"bad1_valid_pct", a.bad1_of_valid()}};
+  if (has_conf)
+    j["sparsification"] = {{"kept_step", 0.01},
+                           {"curve", sp.curve},
+                           {"oracle", sp.oracle},
+                           {"auc", sp.auc},
+                           {"oracle_auc", sp.oracle_auc}};
+  return j;
+}
+
+// The accuracy tables (one column per output, a mean row): bad-0.5/1.0/2.0 with invalid
+// pixels counted bad, the mean absolute error and bad-1.0 over the valid pixels, the
+// density, and for the outputs with a confidence the sparsification AUC against the oracle.
+template <class TableFn, class AllCols, class ConfCols>
+void print_accuracy_tables(const TableFn& table, const AllCols& all_cols, const ConfCols& conf_cols) {
+  auto pct = [&](const char* title, long sm::tools::DispMetrics::*field) {
+    table(
+        title, false, [field](const auto& c) { return fmt::format("{:.2f}", c.acc.pct(c.acc.*field)); },
+        [field](const auto& c) { return c.acc.pct(c.acc.*field); }, "{:.2f}", all_cols);
+  };
+  pct("bad-0.5 % (invalid = bad)", &sm::tools::DispMetrics::bad05);
+  pct("bad-2.0 % (invalid = bad)", &sm::tools::DispMetrics::bad2);
+  table(
+      "mean absolute error (px) over the valid pixels", false,
+      [](const auto& c) { return fmt::format("{:.3f}", c.acc.mae()); }, [](const auto& c) { return c.acc.mae(); },
+      "{:.3f}", all_cols);
+  table(
+      "density % (valid share of the evaluated pixels)", false,
+      [](const auto& c) { return fmt::format("{:.2f}", c.acc.density()); },
+      [](const auto& c) { return c.acc.density(); }, "{:.2f}", all_cols);
+  table(
+      "bad-1.0 % over the valid pixels", false,
+      [](const auto& c) { return fmt::format("{:.2f}", c.acc.bad1_of_valid()); },
+      [](const auto& c) { return c.acc.bad1_of_valid(); }, "{:.2f}", all_cols);
+  table(
+      "confidence: area under the sparsification curve (bad-1.0 % of the kept pixels, 1 % steps), oracle in "
+      "brackets",
+      false, [](const auto& c) { return fmt::format("{:.3f} ({:.3f})", c.sparse.auc, c.sparse.oracle_auc); },
+      [](const auto& c) { return c.sparse.auc; }, "{:.3f}", conf_cols);
+  table(
+      "confidence: oracle AUC", false, [](const auto& c) { return fmt::format("{:.3f}", c.sparse.oracle_auc); },
+      [](const auto& c) { return c.sparse.oracle_auc; }, "{:.3f}", conf_cols);
 }
 
 // A markdown table (header, rows of cells), printed with padded columns under a title.
@@ -192,6 +301,34 @@ struct Table {
   }
 };
 
+// --synthetic-size WxH: two integers 16..4095 (the scene generator's sizes), nothing else.
+std::pair<int, int> synthetic_size(const std::string& text) {
+  static const std::regex re("([0-9]{1,4})x([0-9]{1,4})");
+  std::smatch m;
+  if (std::regex_match(text, m, re)) {
+    const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+    if (w >= 16 && w <= 4095 && h >= 16 && h <= 4095) return {w, h};
+  }
+  throw ToolError(fmt::format("--synthetic-size {}: expected WxH, each 16..4095", text));
+}
+
+// The files named on the command line, checked before any work: the register file reads
+// and applies (its keys and ranges), the outputs can be written (the --disp-images folder
+// is created when the outputs are committed).
+void check_files(const std::string& regs_file, int levels, const std::string& json_path, const std::string& disp_dir) {
+  if (!regs_file.empty()) {
+    sm::tools::check_input_file(regs_file);
+    sm::HwConfig hw;  // the largest scene (the sizes are the scene's), --levels where given
+    hw.max_width = sm::defs::limit("MAX_WIDTH").max;
+    hw.max_height = sm::defs::limit("MAX_HEIGHT").max;
+    if (levels) hw.disp = levels;
+    sm::Regs r = sm::Regs::defaults(hw);
+    sm::tools::apply_regs_json(regs_file, hw, r);
+  }
+  sm::tools::check_outputs({{"--json", json_path}});
+  if (!disp_dir.empty()) sm::tools::check_output_folder("--disp-images", disp_dir);
+}
+
 int run(int argc, char** argv) {
   std::string dataset, json_path, disp_dir;
   std::vector<std::string> scenes_opt,
@@ -204,8 +341,8 @@ int run(int argc, char** argv) {
   std::vector<int> streak_rows{1, 5};
   bool quiet = false;
   CLI::App app{"bad-1.0, streak measure and run time of the model and OpenCV matchers on a stereo dataset"};
-  app.add_option("dataset", dataset,
-                 "dataset folder (scene subfolders with left/right/gt.png, scale.txt) or one scene folder");
+  auto* o_dataset = app.add_option(
+      "dataset", dataset, "dataset folder (scene subfolders with left/right/gt.png, scale.txt) or one scene folder");
   app.add_option("--scenes", scenes_opt, "comma-separated scene names (default: all)")->delimiter(',');
   app.add_option("--json", json_path, "write the results as JSON");
   app.add_option("--levels", levels, "model: disparity levels (0: per scene, from scale.txt, made even)")
@@ -216,7 +353,7 @@ int run(int argc, char** argv) {
   app.add_option("--streak-rows", streak_rows,
                  "streak measure: report streaks up to these many rows thick (comma-separated, each 1..8)")
       ->delimiter(',')
-      ->check(CLI::Range(1, 8))
+      ->check(sm::tools::int_in(1, 8))
       ->capture_default_str();
   app.add_option("--disp-images", disp_dir,
                  "write <scene>_<method>.png colour disparity maps (over the ground truth's range, with a colour "
@@ -230,34 +367,39 @@ int run(int argc, char** argv) {
                  "score another program's disparities: folder of <scene>.pfm (+inf = invalid) or <scene>.png "
                  "(value / --results-scale, 0 = invalid); adds the method 'results'");
   app.add_option("--results-scale", results_scale, "PNG results: disparity = value / scale (KITTI: 256)")
+      ->check(sm::tools::finite_in(1e-3, 1e6))
       ->capture_default_str();
-  app.add_option("--synthetic", synthetic, "evaluate N synthetic scenes (sm_scene seeds 1..N) instead of a dataset");
+  app.add_option("--synthetic", synthetic, "evaluate N synthetic scenes (sm_scene seeds 1..N) instead of a dataset")
+      ->check(sm::tools::int_in(1, 1000))
+      ->excludes(o_dataset);
   app.add_option("--synthetic-size", synth_size, "WxH of the synthetic scenes")->capture_default_str();
   app.add_option("--occ", occ, "model: DP occlusion penalty register")
-      ->check(CLI::Range(0, 255))
+      ->check(sm::tools::int_in(0, 255))
       ->capture_default_str();
   app.add_option("--regs", regs_file,
                  "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
                  "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
                  "the scene's, --occ wins when given");
+  app.add_option("--threads", model_threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
+      ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  sm::tools::quiet_opencv();
-  cv::setNumThreads(1);
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
     throw ToolError(fmt::format("--levels {}: must be 0 or even 4..254", levels));
+  check_files(regs_file, levels, json_path, disp_dir);
+  sm::tools::quiet_opencv();
+  cv::setNumThreads(1);
   if (peer_levels != 0 && (peer_levels < 16 || peer_levels > 256 || peer_levels % 16))
     throw ToolError(fmt::format("--peer-levels {}: must be 0 or a multiple of 16, 16..256", peer_levels));
   if (streak_rows.empty()) throw ToolError("--streak-rows: empty");
-  if (!(results_scale > 0)) throw ToolError(fmt::format("--results-scale {}: must be positive", results_scale));
   if (!results_dir.empty() && !fs::is_directory(results_dir))
     throw ToolError(fmt::format("{}: not a directory", results_dir));
 
+  if (model_threads < 1 || model_threads > 256)
+    throw ToolError(fmt::format("--threads {}: must be 1..256", model_threads));
   std::vector<Method> methods;
   {
     const bool occ_given = app.count("--occ") > 0;
-    if (!regs_file.empty() && !fs::is_regular_file(regs_file))
-      throw ToolError(fmt::format("{}: no such file", regs_file));
     const auto all = all_methods(occ, occ_given, regs_file, results_dir, results_scale);
     auto names_opt = methods_opt;
     names_opt.erase(std::remove(names_opt.begin(), names_opt.end(), ""), names_opt.end());
@@ -280,11 +422,7 @@ int run(int argc, char** argv) {
   std::vector<std::function<sm::tools::Scene()>> loaders;
   std::vector<std::string> names;
   if (synthetic > 0) {
-    int w = 0, h = 0;
-    char x = 0;
-    std::stringstream ss(synth_size);
-    if (!(ss >> w >> x >> h) || x != 'x')
-      throw ToolError(fmt::format("--synthetic-size '{}': expected WxH", synth_size));
+    const auto [w, h] = synthetic_size(synth_size);
     const int lv = levels ? levels : 128;
     for (int seed = 1; seed <= synthetic; ++seed) {
       names.push_back(fmt::format("synthetic{}", seed));
@@ -324,11 +462,8 @@ int run(int argc, char** argv) {
     if (loaders.empty())
       throw ToolError(fmt::format("{}: no scenes (folders with left.png right.png gt.png scale.txt)", dataset));
   }
-  if (!disp_dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(disp_dir, ec);
-    if (!fs::is_directory(disp_dir)) throw ToolError(fmt::format("{}: cannot create directory", disp_dir));
-  }
+  // Every output under a temporary name, renamed into place once the whole run succeeded.
+  sm::tools::OutputSet outs;
 
   json jout;
   jout["dataset"] = synthetic > 0 ? fmt::format("synthetic x{} ({})", synthetic, synth_size) : dataset;
@@ -339,10 +474,13 @@ int run(int argc, char** argv) {
       "estimate d is valid and bad and lies between two valid rows, at most max_rows rows apart, that differ from d "
       "by more than 1, with every row between evaluated and gt within 1 (toolio/sm_io.hpp, streaks)";
   jout["peer_levels"] = peer_levels ? json(peer_levels) : json("scene");
-  jout["threads"] = 1;
+  jout["threads"] = model_threads;  // the model's; OpenCV runs on one
   jout["scenes"] = json::array();
   struct Cell {
     sm::tools::BadStats bad;
+    sm::tools::DispMetrics acc;        // bad-0.5/1.0/2.0, MAE, density
+    sm::tools::Sparsification sparse;  // outputs with a confidence only
+    bool has_conf = false;
     std::vector<sm::tools::StreakStats> streak;  // one per --streak-rows
     double ms = -1;                              // < 0: not timed
   };
@@ -366,18 +504,26 @@ int run(int argc, char** argv) {
                {"height", sc.left.rows}, {"levels", lv},
                {"peer_levels", plv},     {"scene_levels", sc.levels},
                {"gt_scale", sc.scale},   {"nonocc_mask", !sc.nonocc.empty()}};
+    // the scene's calib.json rectifies the model's input (the OpenCV matchers get the raw pair)
+    const bool has_calib = !sc.dir.empty() && fs::exists(fs::path(sc.dir) / "calib.json");
+    js["calib"] = has_calib ? json((fs::path(sc.dir) / "calib.json").string()) : json(nullptr);
+    if (has_calib && !quiet) fmt::print(stderr, "{}: the model rectifies with the scene's calib.json\n", names[i]);
     for (const auto& m : methods) {
       ++step;
       const int mlv = m.peer ? plv : lv;
       if (!quiet)
         fmt::print(stderr, "[{}/{}] {} ({}, {} levels): {} ...\n", step, total_steps, names[i], row.size, mlv, m.name);
       const auto t0 = std::chrono::steady_clock::now();
-      const std::vector<cv::Mat> est = m.run(sc, mlv);
+      const MethodOut mo = m.run(sc, mlv);
+      const std::vector<cv::Mat>& est = mo.disp;
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       if (est.size() != m.outputs.size()) throw std::logic_error(m.name + ": wrong number of outputs");
       for (size_t k = 0; k < est.size(); ++k) {
         const std::string& out = m.outputs[k];
-        Cell c{sm::tools::bad1(est[k], sc.gt, sc.nonocc), {}, m.timed && out == m.name ? ms : -1.0};
+        Cell c;
+        c.bad = sm::tools::bad1(est[k], sc.gt, sc.nonocc);
+        c.ms = m.timed && out == m.name ? ms : -1.0;
+        score_accuracy(est[k], mo.conf[k], sc, c.acc, c.sparse, c.has_conf);
         json jst = json::array();
         for (int t : streak_rows) {
           c.streak.push_back(sm::tools::streaks(est[k], sc.gt, sc.nonocc, t));
@@ -390,20 +536,32 @@ int run(int argc, char** argv) {
                               {"smooth", c.streak[0].smooth},
                               {"streak", jst},
                               {"levels", mlv},
+                              {"accuracy", accuracy_json(c.acc, c.sparse, c.has_conf)},
                               {"ms", c.ms >= 0 ? json(c.ms) : json(nullptr)}};
         row.cells.push_back(c);
         if (!disp_dir.empty()) {
           const fs::path stem = fs::path(disp_dir) / fmt::format("{}_{}", names[i], out);
-          sm::tools::write_image_atomic(stem.string() + ".png",
-                                        sm::tools::disparity_picture(est[k], sm::tools::data_range(gt_f)));
-          sm::tools::write_image_atomic(stem.string() + "_errors.png",
-                                        sm::tools::error_map_picture(est[k], sc.gt, sc.nonocc));
+          outs.write(
+              stem.string() + ".png",
+              [&](const std::string& t) {
+                sm::tools::write_image_atomic(t, sm::tools::disparity_picture(est[k], sm::tools::data_range(gt_f)));
+              },
+              true);
+          outs.write(
+              stem.string() + "_errors.png",
+              [&](const std::string& t) {
+                sm::tools::write_image_atomic(t, sm::tools::error_map_picture(est[k], sc.gt, sc.nonocc));
+              },
+              true);
         }
       }
     }
     if (!disp_dir.empty())
-      sm::tools::write_image_atomic((fs::path(disp_dir) / fmt::format("{}_gt.png", names[i])).string(),
-                                    sm::tools::disparity_picture(gt_f, sm::tools::data_range(gt_f)));
+      outs.write((fs::path(disp_dir) / fmt::format("{}_gt.png", names[i])).string(),
+                 [&](const std::string& t) {
+                   sm::tools::write_image_atomic(t, sm::tools::disparity_picture(gt_f, sm::tools::data_range(gt_f)));
+                 },
+                 true);
     jout["scenes"].push_back(js);
     rows.push_back(row);
   }
@@ -453,8 +611,9 @@ int run(int argc, char** argv) {
                     streak_rows[i] == 1 ? "" : "s"),
         true, [i](const Cell& c) { return fmt::format("{:.2f}", c.streak[i].streak_pct()); },
         [i](const Cell& c) { return c.streak[i].streak_pct(); }, "{:.2f}", all_cols);
+  print_accuracy_tables(table, all_cols, [&](size_t k) { return !rows.empty() && rows[0].cells[k].has_conf; });
   table(
-      "ms per frame (single thread; the model's steps come from one run)", false,
+      "ms per frame (OpenCV on one thread, the model on --threads; the model's steps come from one run)", false,
       [](const Cell& c) { return fmt::format("{:.0f}", c.ms); }, [](const Cell& c) { return c.ms; }, "{:.0f}",
       [&](size_t k) { return !rows.empty() && rows[0].cells[k].ms >= 0; });
   for (size_t k = 0; k < outputs.size(); ++k) {
@@ -464,10 +623,17 @@ int run(int argc, char** argv) {
       jst.push_back(
           {{"max_rows", streak_rows[i]}, {"pct", mean_of(k, [i](const Cell& c) { return c.streak[i].streak_pct(); })}});
     jout["mean"][outputs[k]] = {{"bad1_pct", mean_of(k, [](const Cell& c) { return c.bad.bad_pct(); })},
+                                {"bad05_pct", mean_of(k, [](const Cell& c) { return c.acc.pct(c.acc.bad05); })},
+                                {"bad2_pct", mean_of(k, [](const Cell& c) { return c.acc.pct(c.acc.bad2); })},
+                                {"mae_valid", mean_of(k, [](const Cell& c) { return c.acc.mae(); })},
+                                {"density_pct", mean_of(k, [](const Cell& c) { return c.acc.density(); })},
+                                {"bad1_valid_pct", mean_of(k, [](const Cell& c) { return c.acc.bad1_of_valid(); })},
                                 {"streak", jst},
                                 {"ms", timed ? json(mean_of(k, [](const Cell& c) { return c.ms; })) : json(nullptr)}};
   }
-  if (!json_path.empty()) sm::tools::write_text_atomic(json_path, jout.dump(2) + "\n");
+  if (!json_path.empty())
+    outs.write(json_path, [&](const std::string& t) { sm::tools::write_text_atomic(t, jout.dump(2) + "\n"); });
+  outs.commit();
   return 0;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
@@ -40,8 +41,8 @@ int run(int argc, char** argv) {
   std::string json_out;
   std::string dump_dir;
   app.add_option("--datasets", datasets, "folder of scene folders (e.g. ../shared/datasets)");
-  app.add_option("--synthetic", synthetic, "number of synthetic 320x240 scenes")->check(CLI::Range(0, 100));
-  app.add_option("--disp", disp, "disparity levels (DISP)")->check(CLI::Range(4, 254))->capture_default_str();
+  app.add_option("--synthetic", synthetic, "number of synthetic 320x240 scenes")->check(sm::tools::int_in(0, 100));
+  app.add_option("--disp", disp, "disparity levels (DISP)")->check(sm::tools::int_in(4, 254))->capture_default_str();
   app.add_option("--json", json_out, "write the table as JSON");
   app.add_option("--dump", dump_dir, "write <scene>_dp.png and <scene>_err.png (bad pixels) here");
   if (const auto rc = parse_args(app, argc, argv)) return *rc;

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "float_ref/float_ref.hpp"
 
@@ -42,20 +43,24 @@ int run(int argc, char** argv) {
                  "occlusion penalties on the raw Hamming scale, comma-separated (model occ = penalty / "
                  "2^cost-shift when shift is on); one pair: the first")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber)
+      ->check(sm::tools::finite_in(0, 1e6))
       ->default_str(fmt::format("{}", fmt::join(pen, ",")));
   app.add_option("--post", post, "post filters: chain (the model's F0-F3), med5x5, none")->capture_default_str();
-  app.add_option("--levels", p.levels, "disparity levels")->check(CLI::Range(2, 256))->capture_default_str();
-  app.add_option("--census", p.census, "census window side")->check(CLI::Range(3, 15))->capture_default_str();
-  app.add_option("--sw", p.sw, "support-weight window side")->check(CLI::Range(1, 7))->capture_default_str();
+  app.add_option("--levels", p.levels, "disparity levels")->check(sm::tools::int_in(2, 256))->capture_default_str();
+  app.add_option("--census", p.census, "census window side")->check(sm::tools::int_in(3, 15))->capture_default_str();
+  app.add_option("--sw", p.sw, "support-weight window side")->check(sm::tools::int_in(1, 7))->capture_default_str();
   app.add_option("--cost-shift", p.cost_shift, "COST_SHIFT of the 'shift' simplification")
-      ->check(CLI::Range(0, 4))
+      ->check(sm::tools::int_in(0, 4))
       ->capture_default_str();
-  app.add_option("--gc", p.gc, "float weights: intensity scale")->capture_default_str();
-  app.add_option("--gp", p.gp, "float weights: spatial scale")->capture_default_str();
+  app.add_option("--gc", p.gc, "float weights: intensity scale")
+      ->check(sm::tools::finite_in(1e-6, 1e6))
+      ->capture_default_str();
+  app.add_option("--gp", p.gp, "float weights: spatial scale")
+      ->check(sm::tools::finite_in(1e-6, 1e6))
+      ->capture_default_str();
   app.add_option("--sw-table", table, "2-bit weight codes 0..3 by |dI| >> 3 of the 'table' simplification (up to 32)")
       ->delimiter(',')
-      ->check(CLI::Range(0, 3))
+      ->check(sm::tools::int_in(0, 3))
       ->default_str(fmt::format("{}", fmt::join(table, ",")));
   app.add_option("--disp-file", disp_file, "one pair: disparity file (.pfm or 16-bit .png, x16)");
   app.add_option("--json", json_path, "dataset: write the results as JSON");

@@ -23,6 +23,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "toolio/sm_cli.hpp"
+#include "toolio/sm_json_file.hpp"
+
 namespace {
 
 using nlohmann::json;
@@ -893,9 +896,7 @@ void write_if_changed(const std::string& path, const std::string& text) {
   if (!out) fail("cannot write " + path);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Generate sm_regmap.vh, sm_regmap.hpp, sm_regvalues.hpp and registers.md from regmap.json"};
   std::string in_path, out_dir, defs_path;
   app.add_option("json", in_path, "register map (rtl/regmap.json)")->required();
@@ -903,43 +904,42 @@ int main(int argc, char** argv) {
   app.add_option("--defs", defs_path,
                  "definitions (rtl/defs.json): also write sm_defs.vh, sm_defs_check.vh and sm_defs.hpp")
       ->check(CLI::ExistingFile);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto rc = sm::tools::parse_cli(app, argc, argv)) return *rc;
+  // one JSON value per file, no key twice (toolio/sm_json_file.hpp); errors name the file
+  Map m;
   try {
-    std::ifstream in(in_path);
-    if (!in) fail("cannot open file");
-    json j;
-    try {
-      j = json::parse(in);
-    } catch (const json::parse_error& e) {
-      fail(std::string("not valid JSON: ") + e.what());
-    }
-    Map m;
-    try {
-      m = parse(j);
-    } catch (const json::exception& e) {
-      fail(std::string("missing or malformed entry: ") + e.what());
-    }
-    write_if_changed(out_dir + "/sm_regmap.vh", gen_vh(m));
-    write_if_changed(out_dir + "/sm_regmap.hpp", gen_hpp(m));
-    write_if_changed(out_dir + "/sm_regvalues.hpp", gen_values_hpp(m));
-    write_if_changed(out_dir + "/registers.md", gen_md(m));
-    if (!defs_path.empty()) {
-      in_path = defs_path;  // the error line names the file at fault
-      std::ifstream din(defs_path);
-      if (!din) fail("cannot open file");
-      Defs d;
-      try {
-        d = parse_defs(json::parse(din));
-      } catch (const json::exception& e) {
-        fail(std::string("missing, malformed or not valid JSON: ") + e.what());
-      }
-      write_if_changed(out_dir + "/sm_defs.vh", gen_defs_vh(d));
-      write_if_changed(out_dir + "/sm_defs_check.vh", gen_defs_check_vh(d));
-      write_if_changed(out_dir + "/sm_defs.hpp", gen_defs_hpp(d));
-    }
+    m = parse(sm::tools::read_json_file(in_path));
+  } catch (const json::exception& e) {
+    fail(fmt::format("{}: missing or malformed entry: {}", in_path, e.what()));
+  } catch (const sm::tools::JsonFileError&) {
+    throw;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "sm_regmap_gen: %s: %s\n", in_path.c_str(), e.what());
-    return 1;
+    fail(fmt::format("{}: {}", in_path, e.what()));
+  }
+  write_if_changed(out_dir + "/sm_regmap.vh", gen_vh(m));
+  write_if_changed(out_dir + "/sm_regmap.hpp", gen_hpp(m));
+  write_if_changed(out_dir + "/sm_regvalues.hpp", gen_values_hpp(m));
+  write_if_changed(out_dir + "/registers.md", gen_md(m));
+  if (!defs_path.empty()) {
+    Defs d;
+    try {
+      d = parse_defs(sm::tools::read_json_file(defs_path));
+    } catch (const json::exception& e) {
+      fail(fmt::format("{}: missing or malformed entry: {}", defs_path, e.what()));
+    } catch (const sm::tools::JsonFileError&) {
+      throw;
+    } catch (const std::exception& e) {
+      fail(fmt::format("{}: {}", defs_path, e.what()));
+    }
+    write_if_changed(out_dir + "/sm_defs.vh", gen_defs_vh(d));
+    write_if_changed(out_dir + "/sm_defs_check.vh", gen_defs_check_vh(d));
+    write_if_changed(out_dir + "/sm_defs.hpp", gen_defs_hpp(d));
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return sm::tools::run_guarded("sm_regmap_gen", [&] { return run(argc, argv); });
 }

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "dp.hpp"
 #include "pipeline.hpp"
@@ -389,7 +390,8 @@ int run(int argc, char** argv) {
   app.add_option("--dump", dump_dir,
                  "write <scene>__<candidate>.png colour maps of the two base and --detail candidates");
   int occ = -1;
-  app.add_option("--occ", occ, "DP occlusion penalty register (default: Regs::defaults)")->check(CLI::Range(0, 255));
+  app.add_option("--occ", occ, "DP occlusion penalty register (default: Regs::defaults)")
+      ->check(sm::tools::int_in(0, 255));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
   quiet_opencv();
 

@@ -26,37 +26,107 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
+
+#include "toolio/sm_cli.hpp"
+#include "toolio/sm_json_file.hpp"
 
 using json = nlohmann::json;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& msg) {
-  fmt::print(stderr, "sm_synth_report: {}\n", msg);
-  std::exit(1);
+// One error line "sm_synth_report: error: <msg>" and exit 1 (run_guarded in main).
+[[noreturn]] void fail(const std::string& msg) { throw std::runtime_error(msg); }
+
+// One JSON value per file, no key twice (toolio/sm_json_file.hpp).
+json load(const std::string& path) {
+  try {
+    return sm::tools::read_json_file(path);
+  } catch (const sm::tools::JsonFileError& e) {
+    fail(e.what());
+  }
 }
 
-json load(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) fail(fmt::format("{}: cannot open", path));
-  json j = json::parse(f, nullptr, false);
-  if (j.is_discarded()) fail(fmt::format("{}: not valid JSON", path));
-  return j;
+// A report read back (show, combine): the keys this tool reads have the types it writes,
+// else "<file>: '<key>' must be <type>, not <value>". Absent keys read as 0 / "".
+void check_report(const std::string& path, const json& r) {
+  auto need = [&](const json& obj, const std::string& where, const char* key, bool (json::*is)() const noexcept,
+                  const char* type, bool required) {
+    const auto it = obj.find(key);
+    if (it == obj.end()) {
+      if (required) fail(fmt::format("{}: not a report (no '{}{}')", path, where, key));
+      return;
+    }
+    if (!((*it).*is)()) fail(fmt::format("{}: '{}{}' must be {}, not {}", path, where, key, type, it->dump()));
+  };
+  if (!r.is_object()) fail(fmt::format("{}: not a report (not a JSON object)", path));
+  need(r, "", "total", &json::is_object, "an object", true);
+  need(r, "", "blocks", &json::is_object, "an object", true);
+  for (const char* k : {"tool", "yosys", "top", "family", "config", "mode", "command"})
+    need(r, "", k, &json::is_string, "a string", false);
+  need(r, "", "seconds", &json::is_number, "a number", false);
+  need(r, "", "comb_loops", &json::is_number_integer, "an integer", false);
+  for (const char* k : {"critical_path", "missing_blocks", "parts"}) need(r, "", k, &json::is_array, "an array", false);
+  // the resource figures of the total and of every block
+  auto figures = [&](const json& b, const std::string& where) {
+    for (const char* k : {"luts", "luts_logic", "ffs", "latches", "lutram", "srl", "dsp", "muxf", "carry", "unmapped",
+                          "instances", "lut_levels", "lut_levels_reg2reg", "carry_on_path"})
+      need(b, where, k, &json::is_number_integer, "an integer", false);
+    need(b, where, "bram36", &json::is_number, "a number", false);
+    for (const char* k : {"lut_by_size", "bram_cells", "other"}) {
+      need(b, where, k, &json::is_object, "an object", false);
+      if (b.contains(k))
+        for (const auto& [n, v] : b[k].items())
+          if (!v.is_number_integer())
+            fail(fmt::format("{}: '{}{}.{}' must be an integer, not {}", path, where, k, n, v.dump()));
+    }
+  };
+  figures(r["total"], "total.");
+  for (const auto& [name, b] : r["blocks"].items()) {
+    if (!b.is_object()) fail(fmt::format("{}: 'blocks.{}' must be an object, not {}", path, name, b.dump()));
+    figures(b, "blocks." + name + ".");
+  }
+}
+
+// f() on a Yosys JSON file: a value of an unexpected type is one error line naming the file.
+template <class F>
+auto yosys_json(const std::string& path, F&& f) {
+  try {
+    return f();
+  } catch (const json::exception& e) {
+    fail(fmt::format("{}: unexpected Yosys JSON: {}", path, sm::tools::detail::json_error_text(e.what())));
+  }
+}
+
+// A report for show / combine: load + check_report.
+json load_report(const std::string& path) {
+  json r = load(path);
+  check_report(path, r);
+  return r;
+}
+
+std::string load_text(const std::string& path) {
+  try {
+    return sm::tools::read_text_file(path);
+  } catch (const sm::tools::JsonFileError& e) {
+    fail(e.what());
+  }
 }
 
 // Yosys 0.23's `stat -json` prints lines of its text "design hierarchy" listing into the
 // JSON when a module is instantiated more than once; such lines never start like JSON.
 json load_stat(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) fail(fmt::format("{}: cannot open", path));
+  std::istringstream f(load_text(path));
   std::string text, line;
   while (std::getline(f, line)) {
     auto p = line.find_first_not_of(" \t\r");
@@ -64,15 +134,28 @@ json load_stat(const std::string& path) {
     text += line;
     text += '\n';
   }
-  json j = json::parse(text, nullptr, false);
-  if (j.is_discarded()) fail(fmt::format("{}: not valid JSON", path));
-  return j;
+  try {
+    return sm::tools::parse_json_strict(text, path);
+  } catch (const sm::tools::JsonFileError& e) {
+    fail(e.what());
+  }
 }
 
+// Written under a temporary name and renamed: no partial report under `path`.
 void save(const std::string& path, const json& j) {
-  std::ofstream f(path);
-  if (!f) fail(fmt::format("{}: cannot write", path));
-  f << j.dump(2) << "\n";
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << j.dump(2) << "\n";
+    if (!f.flush()) {
+      std::remove(tmp.c_str());
+      fail(fmt::format("{}: cannot write", path));
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    fail(fmt::format("{}: cannot write", path));
+  }
 }
 
 // Yosys names: "\sm_census" (public), "$paramod$<hash>\sm_linebuf" (derived, long
@@ -493,14 +576,12 @@ void print_report(const json& r, bool md) {
   fmt::print(
       "{}LUTs by size {}; MUXF {}; CARRY {}; reg-to-reg levels {}; carry cells on "
       "the longest path {}{}\n",
-      md ? "\n" : "", t["lut_by_size"].dump(), t.value("muxf", 0), t.value("carry", 0),
+      md ? "\n" : "", t.value("lut_by_size", json::object()).dump(), t.value("muxf", 0), t.value("carry", 0),
       t.value("lut_levels_reg2reg", 0), t.value("carry_on_path", 0),
       t.value("unmapped", 0) ? fmt::format("; UNMAPPED cells {}", t["unmapped"].get<int>()) : std::string());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"Resource and logic-depth report of the Yosys synthesis flow"};
   app.require_subcommand(1);
 
@@ -517,9 +598,10 @@ int main(int argc, char** argv) {
   rep->add_option("--family", family, "synth_xilinx family")->required();
   rep->add_option("--config", config, "configuration name")->required();
   rep->add_option("--param", params, "NAME=VALUE applied to the module");
-  rep->add_option("--seconds", seconds, "Yosys run time");
+  rep->add_option("--seconds", seconds, "Yosys run time")->check(sm::tools::finite_in(0, 1e9));
   rep->add_option("--command", command, "how the run was made");
-  rep->add_option("--instances", instances, "instances of this module in its parent");
+  rep->add_option("--instances", instances, "instances of this module in its parent")
+      ->check(sm::tools::int_in(1, 1000000));
   rep->add_option("-o", out, "output JSON")->required();
   rep->add_flag("--quiet", quiet, "no table on stdout");
 
@@ -543,11 +625,11 @@ int main(int argc, char** argv) {
   show->add_flag("--markdown", md, "markdown table (docs/synthesis.md)");
   show->add_flag("--require-bram", need_bram, "exit 1 when a report holds no block RAM");
 
-  CLI11_PARSE(app, argc, argv);
+  if (const auto rc = sm::tools::parse_cli(app, argc, argv)) return *rc;
 
   if (*rep) {
     json stat = load_stat(stat_path);
-    StatResult s = parse_stat(stat, top, instances);
+    StatResult s = yosys_json(stat_path, [&] { return parse_stat(stat, top, instances); });
     json r =
         report_head(stat.value("creator", ""), base_name(norm(top)), family, config, params, "single run", seconds);
     r["command"] = command;
@@ -558,7 +640,8 @@ int main(int argc, char** argv) {
       r["blocks"][b]["instances"] = s.instances[b];
     }
     if (!net_path.empty()) {
-      Depth d = logic_depth(load(net_path), top);
+      const json net = load(net_path);
+      const Depth d = yosys_json(net_path, [&] { return logic_depth(net, top); });
       r["total"]["lut_levels"] = d.levels;
       r["total"]["lut_levels_reg2reg"] = d.levels_reg2reg;
       r["total"]["carry_on_path"] = d.carry_on_path;
@@ -582,16 +665,15 @@ int main(int argc, char** argv) {
       // "report.json@N": a block used N times (its report was made for one instance).
       std::string in = arg;
       int64_t k = 1;
-      if (auto at = arg.rfind('@'); at != std::string::npos && at > arg.rfind('/')) {
+      const size_t at = arg.rfind('@'), slash = arg.rfind('/');
+      if (at != std::string::npos && (slash == std::string::npos || at > slash)) {
         in = arg.substr(0, at);
-        try {
-          k = std::stoll(arg.substr(at + 1));
-        } catch (...) {
-          fail(fmt::format("{}: bad instance count", arg));
-        }
+        const std::string n = arg.substr(at + 1);
+        if (n.empty() || n.size() > 6 || n.find_first_not_of("0123456789") != std::string::npos || std::stoll(n) < 1)
+          fail(fmt::format("{}: bad instance count '{}' (want 1..999999)", arg, n));
+        k = std::stoll(n);
       }
-      json p = load(in);
-      if (!p.contains("total") || !p.contains("blocks")) fail(fmt::format("{}: not a report", in));
+      const json p = load_report(in);
       yosys = p.value("yosys", "");
       total.add(Res::from_json(p["total"]), k);
       for (auto& [b, j] : p["blocks"].items()) {
@@ -640,8 +722,7 @@ int main(int argc, char** argv) {
   } else if (*show) {
     int bad = 0;
     for (auto& in : inputs) {
-      json r = load(in);
-      if (!r.contains("total") || !r.contains("blocks")) fail(fmt::format("{}: not a report", in));
+      const json r = load_report(in);
       print_report(r, md);
       if (need_bram && r["total"].value("bram36", 0.0) <= 0) {
         fmt::print(stderr, "sm_synth_report: {}: {} has no block RAM but is expected to use it\n", in,
@@ -656,4 +737,10 @@ int main(int argc, char** argv) {
     return bad ? 1 : 0;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return sm::tools::run_guarded("sm_synth_report", [&] { return run(argc, argv); });
 }

@@ -1,10 +1,12 @@
 // stereo_model: runs the bit-exact reference model (model/pipeline.hpp) on one stereo
-// pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16) and/or
+// pair and writes the disparity losslessly (--disp-file: PFM, or 16-bit PNG x16; --mode dense /
+// checked: the Q.4 sub-pixel output, checked with invalid pixels, and --confidence) and/or
 // for viewing as a grey PNG (0..255 over 0..DISP-1, invalid = 0) and a colour-mapped PNG.
 // Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
-// names); options given on the command line win. With a calibration that holds the
-// rectified camera, metric depth (--depth-file) and a point cloud (--cloud, --cloud-view).
-// Outputs are all-or-nothing.
+// names; its width / height resize the images to that active size, as in stereo_sim);
+// options given on the command line win. With a calibration that holds the rectified
+// camera, metric depth (--depth-file) and a point cloud (--cloud, --cloud-view). Outputs
+// are checked writable before any work and written all-or-nothing.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -16,22 +18,67 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 #include <tuple>
 
 #include "calib_file.hpp"
 #include "toolio/sm_depth_options.hpp"
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
+#include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_pictures.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
+#include "outword.hpp"
 #include "pipeline.hpp"
+#include "sm_defs.hpp"
 
 namespace {
 
 using sm::tools::ToolError;
 using json = nlohmann::json;
+
+// The outputs, checked before any work: at least one, --disp-file .pfm or .png, every one
+// writable, no two the same file. Sets the default --colour (<out>_colour.png with -o).
+void check_outputs(const std::string& out, std::string& colour, const std::string& disp_file,
+                   const std::string& objects_json, const std::string& conf_png, const sm::tools::DepthOptions& depth) {
+  if (out.empty() && colour.empty() && disp_file.empty() && objects_json.empty() && conf_png.empty() && !depth.any())
+    throw ToolError("no output: give -o, --colour, --disp-file, --objects-json, --depth-file and/or --cloud");
+  if (!disp_file.empty()) {
+    std::string ext = std::filesystem::path(disp_file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext != ".pfm" && ext != ".png")
+      throw ToolError(fmt::format("{}: --disp-file must end in .pfm or .png", disp_file));
+  }
+  if (colour.empty() && !out.empty()) {
+    const std::filesystem::path p(out);
+    colour = (p.parent_path() / (p.stem().string() + "_colour.png")).string();
+  }
+  sm::tools::check_outputs({{"-o", out},
+                            {"--colour", colour},
+                            {"--disp-file", disp_file},
+                            {"--objects-json", objects_json},
+                            {"--confidence", conf_png},
+                            {"--depth-file", depth.depth_file},
+                            {"--cloud", depth.cloud},
+                            {"--cloud-view", depth.cloud_view}});
+}
+
+// The input images resized to the register file's active size (as stereo_sim resizes
+// its inputs), with a note on stderr.
+void resize_to_active(cv::Mat& left, cv::Mat& right, int w, int h, const std::string& regs) {
+  if (left.cols == w && left.rows == h) return;
+  fmt::print(stderr, "stereo_model: note: the images ({}x{}) are resized to the active size {}x{} of {}\n", left.cols,
+             left.rows, w, h, regs);
+  for (cv::Mat* m : {&left, &right}) {
+    cv::Mat resized;
+    cv::resize(*m, resized, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+    *m = resized;
+  }
+}
 
 int run(int argc, char** argv) {
   std::string left, right, out, colour, disp_file, regs_json, calib, stage = "post", objects_json;
@@ -39,6 +86,7 @@ int run(int argc, char** argv) {
   sm::Regs r = sm::Regs::defaults(hw);
   // Option defaults shown by --help are the model's own (HwConfig / Regs::defaults).
   bool no_rect = !r.rect_enable, verbose = false;
+  int threads = 1;
   // --help shows the table up to its last non-zero code
   std::vector<int> sw_table(r.sw_table.begin(), r.sw_table.end());
   while (sw_table.size() > 1 && sw_table.back() == 0) sw_table.pop_back();
@@ -56,6 +104,14 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"dp", "post"}))
       ->capture_default_str();
   app.add_option("--objects-json", objects_json, "write the object list as JSON");
+  std::string mode = "integer", conf_png;
+  app.add_option("--mode", mode,
+                 "disparity written: integer (the --stage output), dense (post + Q.4 fraction, every pixel valid) or "
+                 "checked (Q.4, pixels failing the validity rules invalid) -- the planned output word, "
+                 "model/outword.hpp")
+      ->check(CLI::IsMember({"integer", "dense", "checked"}))
+      ->capture_default_str();
+  app.add_option("--confidence", conf_png, "write the 8-bit confidence of --mode dense/checked as a grey PNG");
   app.add_option("--regs", regs_json, "JSON file of HwConfig/Regs fields (keys = field names)");
   app.add_option("--calib", calib, "calibration JSON (model/calib_file.hpp): rectification grids");
   auto* o_mw = app.add_option("--max-width", hw.max_width, "MAX_WIDTH (default: image width)");
@@ -70,40 +126,56 @@ int run(int argc, char** argv) {
       app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str(),
       app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str()};
   // the value registers (the active size comes from the images, RECT_ENABLE is --no-rect)
-  const sm::tools::RegOptions reg_opts(app, r, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
+  // ranges in --help at the default configuration (--disp, ... may change them)
+  const sm::tools::RegOptions reg_opts(app, r, hw, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
   auto* o_nr = app.add_flag("--no-rect", no_rect, "rect_enable = 0 (rectifier passes pixels through)");
   auto* o_swt = app.add_option("--sw-table", sw_table, "weight codes 0..3 by |dI|>>3, comma-separated (1..32)")
                     ->delimiter(',')
-                    ->check(CLI::Range(0, 3))
+                    ->check(sm::tools::int_in(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
+  app.add_option("--threads", threads, "threads of the model, 1..256 (same output for any count)")
+      ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   sm::tools::DepthOptions depth;
   depth.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  if (threads < 1 || threads > 256) throw ToolError(fmt::format("--threads {}: must be 1..256", threads));
 
-  if (out.empty() && colour.empty() && disp_file.empty() && !depth.any())
-    throw ToolError("no output: give -o, --colour, --disp-file, --depth-file and/or --cloud");
-  if (!disp_file.empty()) {
-    std::string ext = std::filesystem::path(disp_file).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".pfm" && ext != ".png")
-      throw ToolError(fmt::format("{}: --disp-file must end in .pfm or .png", disp_file));
-  }
+  check_outputs(out, colour, disp_file, objects_json, conf_png, depth);
+  if (!regs_json.empty()) sm::tools::check_input_file(regs_json);
+  if (!calib.empty()) sm::tools::check_input_file(calib);
+  if (mode != "integer" && stage == "dp")
+    throw ToolError("--mode " + mode + " works on the post output, not --stage dp");
+  if (mode == "integer" && !conf_png.empty()) throw ToolError("--confidence needs --mode dense or checked");
   sm::tools::quiet_opencv();
-  const sm::Image8 L = sm::tools::load_grey(left);
-  const sm::Image8 R = sm::tools::load_grey(right);
-  if (L.w != R.w || L.h != R.h)
-    throw ToolError(fmt::format("{}: size {}x{} differs from {} ({}x{})", right, R.w, R.h, left, L.w, L.h));
+  cv::Mat left_m = sm::tools::load_grey_mat(left), right_m = sm::tools::load_grey_mat(right);
+  if (left_m.size() != right_m.size())
+    throw ToolError(fmt::format("{}: size {}x{} differs from {} ({}x{})", right, right_m.cols, right_m.rows, left,
+                                left_m.cols, left_m.rows));
 
-  // Defaults (MAX_WIDTH x MAX_HEIGHT = image size), then --regs, then explicit options.
+  // Defaults (MAX_WIDTH x MAX_HEIGHT = active size = image size), then --regs, then explicit
+  // options. The file may set the active size (width, height): checked against its own
+  // MAX_WIDTH / MAX_HEIGHT or the largest the IP allows, the images are resized to it.
   const sm::HwConfig cli_hw = hw;
   hw = sm::HwConfig{};
-  hw.max_width = L.w;
-  hw.max_height = L.h;
+  hw.max_width = left_m.cols;
+  hw.max_height = left_m.rows;
+  int act_w = left_m.cols, act_h = left_m.rows;
   if (!regs_json.empty()) {
+    hw.max_width = sm::defs::limit("MAX_WIDTH").max;
+    hw.max_height = sm::defs::limit("MAX_HEIGHT").max;
+    r.width = act_w;
+    r.height = act_h;
     const sm::tools::RegsFile rf = sm::tools::apply_regs_json(regs_json, hw, r);
     if (calib.empty()) calib = rf.calib;  // the file's "calib" key, unless --calib is given
+    act_w = r.width;
+    act_h = r.height;
+    if (!rf.has("max_width")) hw.max_width = act_w;
+    if (!rf.has("max_height")) hw.max_height = act_h;
+    resize_to_active(left_m, right_m, act_w, act_h, regs_json);
   }
+  const sm::Image8 L = sm::tools::to_image8(left_m);
+  const sm::Image8 R = sm::tools::to_image8(right_m);
   if (o_mw->count()) hw.max_width = cli_hw.max_width;
   if (o_mh->count()) hw.max_height = cli_hw.max_height;
   if (hw_opts[0]->count()) hw.disp = cli_hw.disp;
@@ -156,16 +228,15 @@ int run(int argc, char** argv) {
 
   sm::PipelineResult res;
   try {
-    res = sm::run_pipeline(L, R, hw, r, false);
+    res = sm::run_pipeline(L, R, hw, r, false, threads);
   } catch (const std::invalid_argument& e) {
     throw ToolError(fmt::format("bad configuration: {}", e.what()));
   }
   const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
-  const cv::Mat df = sm::tools::disp_to_float(d);
-  if (colour.empty() && !out.empty()) {
-    const std::filesystem::path p(out);
-    colour = (p.parent_path() / (p.stem().string() + "_colour.png")).string();
-  }
+  const sm::OutImage word = mode == "integer" ? sm::OutImage{}
+                                              : sm::make_output(res.evidence, res.post, hw.disp,
+                                                                mode == "dense" ? sm::dense_mode(r.out) : r.out);
+  const cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;
   if (!out.empty())
@@ -178,8 +249,14 @@ int run(int argc, char** argv) {
     });
   if (!disp_file.empty()) outs.write(disp_file, [&](const std::string& t) { sm::tools::write_disparity_file(t, df); });
   if (camera) depth.write(outs, df, sm::tools::to_mat(res.rl), *camera);
+  if (!conf_png.empty())
+    outs.write(conf_png, [&](const std::string& t) { sm::tools::write_image_atomic(t, sm::tools::out_to_conf(word)); });
   if (!objects_json.empty()) {
-    json j = {{"too_many_objects", res.objects.too_many_objects}, {"table_full", res.objects.table_full}};
+    json j = {{"too_many_objects", res.objects.too_many_objects},
+              {"table_full", res.objects.table_full},
+              {"labels_started", res.objects.labels_started},
+              {"labels_peak", res.objects.labels_peak},
+              {"notes", sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r)}};
     j["objects"] = json::array();
     for (const auto& o : res.objects.objects) {
       json b = sm::tools::object_box_json(o);
@@ -198,11 +275,19 @@ int run(int argc, char** argv) {
     }
     fmt::print("  {:<12} {:9.1f} ms\n", "total", total);
     long valid = 0;
-    for (auto p : d.px) valid += sm::disp_valid(p);
+    if (mode == "integer")
+      for (auto p : d.px) valid += sm::disp_valid(p);
+    else
+      for (auto w : word.px) valid += sm::out_valid(w);
     std::string files;
-    for (const auto* f : {&out, &colour, &disp_file, &objects_json, &depth.depth_file, &depth.cloud, &depth.cloud_view})
+    for (const auto* f :
+         {&out, &colour, &disp_file, &objects_json, &conf_png, &depth.depth_file, &depth.cloud, &depth.cloud_view})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
+    fmt::print("  labels: {} started, at most {} in use at once (LABEL_SLOTS {})\n", res.objects.labels_started,
+               res.objects.labels_peak, hw.label_slots);
+    for (const std::string& l : sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r))
+      fmt::print("  {}\n", l);
   }
   return 0;
 }

@@ -6,6 +6,8 @@ add_executable(sm_synth_report ${CMAKE_CURRENT_SOURCE_DIR}/sm_synth_report.cpp)
 target_link_libraries(sm_synth_report PRIVATE fmt::fmt CLI11::CLI11
                                               nlohmann_json::nlohmann_json)
 target_compile_options(sm_synth_report PRIVATE ${SM_WARNINGS})
+# toolio/sm_cli.hpp (and sm_json_file.hpp): header-only, no link to sm_toolio
+target_include_directories(sm_synth_report PRIVATE ${CMAKE_SOURCE_DIR})
 
 set(SM_SYNTH_DRIVER ${CMAKE_CURRENT_SOURCE_DIR}/synth/sm_synth.sh)
 set(SM_SYNTH_DIR ${CMAKE_BINARY_DIR}/synth)

@@ -1,0 +1,48 @@
+// Per-pixel evidence of the output stage (docs/algorithm.md section 9): what the RTL keeps
+// per pixel beside the DP, taken from the aggregated costs of the line as they stream into
+// the DP (the WTA record) and from the DP's traceback (level, matched, background fill).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "dp.hpp"
+#include "sm_types.hpp"
+
+namespace sm {
+
+struct Evidence {
+  Image8 d;                    // the DP's level after the fill (DpLine::disp)
+  Image8 matched;              // 1: matched by the trellis, 0: unmatched (filled)
+  Image8 gap;                  // unmatched: |right match - left match| of its run (255 when the run touches a
+                               // line end); matched: 0
+  Image8 fill_bg;              // unmatched: min(left match, every match right of x) (0 if none); matched: d
+  Image8 cm, c0, cp;           // A(x, d-1), A(x, d), A(x, d+1) at the DP's level (0 outside 0..DISP-1)
+  Image8 dw;                   // WTA level: the lowest level of least A(x, .)
+  Image8 c1, c2;               // A(x, dw); least A(x, k) over |k - dw| >= 2 (C1 when no such level)
+  Image8 cmax;                 // greatest A(x, .)
+  Image8 lr;                   // right-view WTA level of right pixel x - d (the lowest k of least
+                               // A(x - d + k, k)); 255 when x < d
+  std::array<Image8, 5> band;  // A(x, dw - 2 .. dw + 2) (0 outside 0..DISP-1)
+  Evidence() = default;
+  Evidence(int w, int h);
+};
+
+// Row y of the evidence from the line's aggregated costs agg[x * nd + k] and its DP
+// result (line.match, line.disp).
+void evidence_line(const uint8_t* agg, int w, int nd, const DpLine& line, int y, Evidence& ev);
+
+// Right-view WTA of one line: out[xr] = the lowest k of least A(xr + k, k) over the levels
+// with xr + k < w (a diagonal minimum the RTL keeps as one running (cost, level) per level).
+void right_wta(const uint8_t* agg, int w, int nd, std::vector<uint8_t>& out);
+
+// Gap of each unmatched run of one line: |the match right of it - the match left of it|,
+// 255 when the run starts at x = 0 or ends at the line end; 0 for matched pixels.
+void run_gaps(const std::vector<int>& match, uint8_t* out);
+
+// Background fill of one line: for unmatched x, min(the match left of x, every match right
+// of x) (one of them when the other does not exist, 0 when the line has no match); matched
+// x keep their level. (The traceback runs right to left, so the running minimum is free.)
+void fill_background(const std::vector<int>& match, uint8_t* out);
+
+}  // namespace sm

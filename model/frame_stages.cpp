@@ -1,0 +1,22 @@
+#include "frame_stages.hpp"
+
+namespace sm {
+
+PipelineResult run_frame_stages(const Image8& left, const Image8& right, const HwConfig& hw, const Regs& regs,
+                                int threads) {
+  hw.validate();
+  validate_regs(regs, hw);
+  PipelineResult r;
+  r.bl = brightness(left, regs.gain_l, regs.offset_l);
+  r.br = brightness(right, regs.gain_r, regs.offset_r);
+  r.rl = rectify(r.bl, regs.grid_l, regs.rect_enable, hw);
+  r.rr = rectify(r.br, regs.grid_r, regs.rect_enable, hw);
+  r.raw = hamming_cost(census_transform(r.rl, hw, threads), census_transform(r.rr, hw, threads), hw, threads);
+  r.agg = sw_aggregate(r.raw, r.rl, regs.sw_table, hw, threads);
+  r.dp = trellis_dp_edge(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw, threads);
+  r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
+  r.objects = separate_objects(r.post, regs, hw);
+  return r;
+}
+
+}  // namespace sm

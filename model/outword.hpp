@@ -1,0 +1,32 @@
+// The planned output word of the IP (docs/algorithm.md section 9.4):
+//   m_axis_tdata[31:0] = {valid[31], 7'b0, confidence[23:16], disparity_q12_4[15:0]}
+// disparity_q12_4 = 16 d + f (d the integer level, f the Q.4 fraction; 0 when invalid).
+#pragma once
+
+#include <cstdint>
+
+#include "evidence.hpp"
+#include "output_regs.hpp"
+#include "sm_types.hpp"
+
+namespace sm {
+
+using OutImage = Plane<uint32_t>;
+constexpr uint32_t kOutValid = 0x80000000u;
+inline uint32_t make_out_word(bool valid, unsigned conf, unsigned q4) {
+  return valid ? kOutValid | (conf & 0xffu) << 16 | (q4 & 0xffffu) : 0u;
+}
+inline bool out_valid(uint32_t w) { return (w & kOutValid) != 0; }
+inline unsigned out_conf(uint32_t w) { return (w >> 16) & 0xffu; }
+inline unsigned out_q4(uint32_t w) { return w & 0xffffu; }
+
+// The output word of every pixel from the evidence and the post-processed disparity
+// (post: the filters' output, same size): level d_out = post's (or the background fill for
+// unmatched pixels when occ_en = 0 and fill_bg = 1), its Q.4 value (subpix_q4 at the DP's
+// level, subpix_after_post), the validity rules and the confidence. nd = DISP.
+OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant = 0);
+
+// Q.4 disparity as float pixels (negative = invalid), as disp_to_float for DispImage.
+// (In tools: toolio's out_to_float.)
+
+}  // namespace sm

@@ -1,0 +1,243 @@
+// Output-stage study (docs/evaluation.md, "Sub-pixel, validity and confidence"): runs the
+// reference pipeline once per scene, keeps the per-pixel evidence and the post-processed
+// disparity, then scores the sub-pixel estimators, validity rules and confidence formulas
+// of model/outword.hpp on all scenes at once (14-scene means), so each default is chosen
+// on every scene.
+//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf] [--json out.json]
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
+#include "confidence.hpp"
+#include "outword.hpp"
+#include "pipeline.hpp"
+
+using namespace sm;
+using namespace sm::tools;
+
+namespace {
+
+struct Frame {
+  std::string name;
+  int levels = 0;
+  Evidence ev;
+  DispImage post;
+  cv::Mat gt, mask;
+};
+
+bool classic(const std::string& n) { return n == "tsukuba" || n == "venus" || n == "teddy" || n == "cones"; }
+
+Frame run_scene(const std::string& dir, int levels) {
+  const Scene s = load_scene(dir);
+  Frame f;
+  f.name = std::filesystem::path(dir).filename().string();
+  f.levels = levels ? levels : std::min(254, (s.levels + 1) / 2 * 2);  // 0: as sm_evaluate --levels 0
+  HwConfig hw;
+  hw.disp = f.levels;
+  hw.max_width = s.left.cols;
+  hw.max_height = s.left.rows;
+  Regs regs = Regs::defaults(hw);
+  regs.filter_enable = 15;
+  auto r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, false);
+  f.ev = std::move(r.evidence);
+  f.post = std::move(r.post);
+  f.gt = s.gt;
+  f.mask = s.nonocc;
+  return f;
+}
+
+// Means over the frames of one configuration.
+struct Row {
+  double b05 = 0, b1 = 0, b2 = 0, mae = 0, dens = 0, b1v = 0, b1_classic = 0, auc = 0, oauc = 0, ratio = 0;
+};
+Row score(const std::vector<Frame>& fr, const OutputRegs& r, int conf_variant, bool sparsify) {
+  Row m;
+  int nc = 0;
+  for (const auto& f : fr) {
+    const OutImage o = make_output(f.ev, f.post, f.levels, r, conf_variant);
+    const cv::Mat e = out_to_float(o);
+    const DispMetrics d = disp_metrics(e, f.gt, f.mask);
+    m.b05 += d.pct(d.bad05);
+    m.b1 += d.pct(d.bad1);
+    m.b2 += d.pct(d.bad2);
+    m.mae += d.mae();
+    m.dens += d.density();
+    m.b1v += d.bad1_of_valid();
+    if (classic(f.name)) m.b1_classic += d.pct(d.bad1), ++nc;
+    if (sparsify) {
+      const Sparsification s = sparsification(e, out_to_conf(o), f.gt, f.mask);
+      m.auc += s.auc;
+      m.oauc += s.oracle_auc;
+      m.ratio += s.oracle_auc > 0 ? s.auc / s.oracle_auc : 0;
+    }
+  }
+  const double n = static_cast<double>(fr.size());
+  for (double* v : {&m.b05, &m.b1, &m.b2, &m.mae, &m.dens, &m.b1v, &m.auc, &m.oauc, &m.ratio}) *v /= n;
+  m.b1_classic /= std::max(1, nc);
+  return m;
+}
+
+void print_row(const std::string& name, const Row& m, bool sparsify) {
+  fmt::print("| {:<44} | {:6.2f} | {:6.2f} | {:6.2f} | {:5.3f} | {:6.2f} | {:6.2f} | {:6.2f} |", name, m.b05, m.b1,
+             m.b2, m.mae, m.b1_classic, m.dens, m.b1v);
+  if (sparsify) fmt::print(" {:6.3f} | {:6.3f} | {:5.2f} | {:5.2f} |", m.auc, m.oauc, m.auc / m.oauc, m.ratio);
+  fmt::print("\n");
+}
+
+void header(bool sparsify) {
+  fmt::print("\n| {:<44} | bad0.5 | bad1.0 | bad2.0 |  MAE  | b1 cl4 | dens % | b1 val |", "configuration");
+  if (sparsify) fmt::print("  AUC   | oracle | ratio | mean ratio |");
+  fmt::print("\n|{:-<46}|--------|--------|--------|-------|--------|--------|--------|", "");
+  if (sparsify) fmt::print("--------|--------|-------|-------|");
+  fmt::print("\n");
+}
+
+void study_subpix(const std::vector<Frame>& fr) {
+  header(false);
+  OutputRegs off = dense_mode(OutputRegs{});
+  off.fill_bg = 0;
+  off.subpix_en = 0;
+  print_row("integer (post, today's output)", score(fr, off, 0, false), false);
+  const char* src[] = {"DP level (per-level storage)", "WTA fraction if |d-wta|<=1", "WTA band +-2 at DP level"};
+  const char* fit[] = {"parabola", "equiangular"};
+  for (int fb = 0; fb <= 1; ++fb)
+    for (int s = 0; s < 3; ++s)
+      for (int f = 0; f < 2; ++f) {
+        OutputRegs r = off;
+        r.subpix_en = 1;
+        r.subpix_src = static_cast<uint8_t>(s);
+        r.subpix_fit = static_cast<uint8_t>(f);
+        r.fill_bg = static_cast<uint8_t>(fb);
+        print_row(fmt::format("{}, {}{}", src[s], fit[f], fb ? ", bg fill" : ""), score(fr, r, 0, false), false);
+      }
+}
+
+void study_valid(const std::vector<Frame>& fr) {
+  header(false);
+  // occ_en always on in the checked mode: without it the DP's fill paints phantom bars
+  for (int lr = -1; lr <= 4; ++lr)
+    for (int agree = -1; agree <= 4; ++agree)
+      for (int uniq = 0; uniq <= 1; ++uniq) {
+        OutputRegs r;
+        r.lr_en = lr >= 0;
+        r.lr_t = static_cast<uint8_t>(std::max(lr, 0));
+        r.agree_en = agree >= 0;
+        r.agree_t = static_cast<uint8_t>(std::max(agree, 0));
+        r.uniq_en = uniq > 0;
+        r.uniq_t = static_cast<uint8_t>(uniq);
+        auto t = [](int v) { return v < 0 ? std::string("off") : std::to_string(v); };
+        print_row(fmt::format("occ on, lr {} agree {} uniq {}", t(lr), t(agree), uniq ? t(uniq) : "off"),
+                  score(fr, r, 0, false), false);
+      }
+  for (int occ_t = 1; occ_t <= 3; ++occ_t)
+    for (int lr = 1; lr <= 3; ++lr) {
+      OutputRegs r;
+      r.occ_t = static_cast<uint8_t>(occ_t);
+      r.lr_t = static_cast<uint8_t>(lr);
+      print_row(fmt::format("defaults + occ_t {} lr {}", occ_t, lr), score(fr, r, 0, false), false);
+    }
+  for (int tex = 2; tex <= 8; tex += 2) {
+    OutputRegs r;
+    r.tex_en = 1;
+    r.tex_t = static_cast<uint8_t>(tex);
+    print_row(fmt::format("defaults + tex {}", tex), score(fr, r, 0, false), false);
+  }
+  OutputRegs fill = dense_mode(OutputRegs{});
+  fill.fill_bg = 1;
+  print_row("every rule off, background fill", score(fr, fill, 0, false), false);
+}
+
+void study_conf(const std::vector<Frame>& fr) {
+  header(true);
+  for (int v = 0; v < kConfidenceVariants; ++v)
+    print_row(fmt::format("dense, confidence variant {}", v), score(fr, dense_mode(OutputRegs{}), v, true), true);
+}
+
+// Every evaluated pixel's evidence, output level and ground truth as int16 columns
+// (x y d matched cm c0 cp dw c1 c2 cmax fill_bg post_d gt*16 b0..b4 lr), for offline analysis.
+void dump_features(const std::vector<Frame>& fr, const std::string& dir) {
+  std::filesystem::create_directories(dir);
+  for (const auto& f : fr) {
+    std::vector<int16_t> v;
+    const auto& e = f.ev;
+    for (int y = 0; y < f.post.h; ++y)
+      for (int x = 0; x < f.post.w; ++x) {
+        const float g = f.gt.at<float>(y, x);
+        if (!(g > 0) || (!f.mask.empty() && f.mask.at<uint8_t>(y, x) == 0)) continue;
+        const int cols[] = {x,
+                            y,
+                            e.d.at(x, y),
+                            e.matched.at(x, y),
+                            e.cm.at(x, y),
+                            e.c0.at(x, y),
+                            e.cp.at(x, y),
+                            e.dw.at(x, y),
+                            e.c1.at(x, y),
+                            e.c2.at(x, y),
+                            e.cmax.at(x, y),
+                            e.fill_bg.at(x, y),
+                            static_cast<int>(disp_value(f.post.at(x, y))),
+                            static_cast<int>(std::lround(g * 16)),
+                            e.band[0].at(x, y),
+                            e.band[1].at(x, y),
+                            e.band[2].at(x, y),
+                            e.band[3].at(x, y),
+                            e.band[4].at(x, y),
+                            e.lr.at(x, y)};
+        for (int c : cols) v.push_back(static_cast<int16_t>(c));
+      }
+    write_text_atomic((std::filesystem::path(dir) / (f.name + ".bin")).string(),
+                      std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(int16_t)));
+  }
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Score the output stage's sub-pixel estimators, validity rules and confidence on a dataset"};
+  std::string dataset;
+  std::vector<std::string> scenes, studies{"subpix", "valid", "conf"};
+  app.add_option("dataset", dataset, "dataset folder (../shared/datasets layout)")->required();
+  app.add_option("--scenes", scenes, "comma-separated scene names (default: all)")->delimiter(',');
+  std::string dump_dir;
+  int levels = HwConfig{}.disp;
+  app.add_option("--levels", levels, "disparity levels (0: per scene, as sm_evaluate --levels 0)")
+      ->check(CLI::Range(0, 254))
+      ->capture_default_str();
+  app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
+  app.add_option("--study", studies, "comma-separated subset of subpix,valid,conf")->delimiter(',');
+  if (const auto rc = parse_args(app, argc, argv)) return *rc;
+  quiet_opencv();
+  std::vector<Frame> fr;
+  for (const auto& d : list_scenes(dataset)) {
+    const std::string n = std::filesystem::path(d).filename().string();
+    if (!scenes.empty() && std::find(scenes.begin(), scenes.end(), n) == scenes.end()) continue;
+    fmt::print(stderr, "sm_output_study: {} ...\n", n);
+    fr.push_back(run_scene(d, levels));
+  }
+  if (fr.empty()) throw ToolError(fmt::format("{}: no scenes", dataset));
+  if (!dump_dir.empty()) dump_features(fr, dump_dir);
+  fmt::print("{} scenes; means over all of them (b1 cl4: bad-1.0 of the classic four)\n", fr.size());
+  for (const auto& s : studies) {
+    if (s == "subpix")
+      study_subpix(fr);
+    else if (s == "valid")
+      study_valid(fr);
+    else if (s == "conf")
+      study_conf(fr);
+    else
+      throw ToolError(fmt::format("--study: unknown '{}'", s));
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return guarded_main("sm_output_study", run, argc, argv); }
