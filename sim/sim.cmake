@@ -85,9 +85,10 @@ add_library(sm_stereo_sim_app STATIC
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_report.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_outputs.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_pictures.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_frame_source.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_shards.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_preflight.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_interrupt.cpp
-
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_depth.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/sm_sim_progress.cpp)
 target_include_directories(sm_stereo_sim_app PUBLIC ${CMAKE_CURRENT_SOURCE_DIR} ${SM_GEN_DIR})

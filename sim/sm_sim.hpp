@@ -13,6 +13,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -81,6 +82,17 @@ struct SimResult {
   std::vector<std::string> host_errors;  // refused writes, changes that came too late
 };
 
+// Frames streamed from their source: the camera asks for frame f (f = 0, 1, ... in
+// order) when its first pixel is due, and each disparity frame goes to `out` as it
+// leaves the IP (then SimResult::frames stays empty), so a run holds a few frames, not
+// all of them (sm_frame_source.hpp).
+using StereoFrame = std::pair<Image8, Image8>;
+struct FrameFeed {
+  size_t count = 0;                                     // frames of the run
+  std::function<const StereoFrame&(size_t f)> frame;    // the camera's frame f
+  std::function<void(size_t f, DispImage&& disp)> out;  // empty: kept in SimResult::frames
+};
+
 struct VcdWindow {
   std::string path;     // empty: no dump
   int frame = 0;        // start at this input frame ...
@@ -119,13 +131,20 @@ class SimEngine {
   // while the camera streams.
   SimResult run(const std::vector<std::pair<Image8, Image8>>& frames, int width, int height, const CameraTiming& timing,
                 const VcdWindow& vcd = {}, uint64_t max_cycles = 0, const std::vector<HostOp>* host = nullptr) {
+    FrameFeed feed;
+    feed.count = frames.size();
+    feed.frame = [&frames](size_t f) -> const StereoFrame& { return frames[f]; };
+    return run(feed, width, height, timing, vcd, max_cycles, host);
+  }
+  SimResult run(const FrameFeed& frames, int width, int height, const CameraTiming& timing, const VcdWindow& vcd = {},
+                uint64_t max_cycles = 0, const std::vector<HostOp>* host = nullptr) {
     RunState s(frames, width, height, timing, vcd, host);
     start_run(s);
     if (max_cycles == 0) max_cycles = default_max_cycles(s);
-    while (s.oframe < frames.size()) {
+    while (s.oframe < frames.count) {
       if (tb_.cycles() - s.start > max_cycles)
         throw std::runtime_error(fmt::format("simulation made no progress: {} of {} frames out after {} cycles",
-                                             s.oframe, frames.size(), tb_.cycles() - s.start));
+                                             s.oframe, frames.count, tb_.cycles() - s.start));
       update_wave(s);
       clock_streams(s);
     }
@@ -181,10 +200,12 @@ class SimEngine {
   // One run(): its inputs, the camera's position, the output frame being assembled, the
   // host's next operation and the wave window.
   struct RunState {
-    RunState(const std::vector<std::pair<Image8, Image8>>& frames_, int width_, int height_,
-             const CameraTiming& timing_, const VcdWindow& vcd_, const std::vector<HostOp>* host_)
+    RunState(const FrameFeed& frames_, int width_, int height_, const CameraTiming& timing_, const VcdWindow& vcd_,
+             const std::vector<HostOp>* host_)
         : frames(frames_), width(width_), height(height_), timing(timing_), vcd(vcd_), host(host_) {}
-    const std::vector<std::pair<Image8, Image8>>& frames;
+    const FrameFeed& frames;
+    const StereoFrame* cam = nullptr;  // the camera's frame f (fetched at its first pixel)
+    size_t cam_f = ~size_t{0};
     int width, height;
     const CameraTiming& timing;
     const VcdWindow& vcd;
@@ -216,7 +237,7 @@ class SimEngine {
   void start_run(RunState& s) {
     const CameraTiming& timing = s.timing;
     s.count_base = s.host && !s.host->empty() ? axil_.read(regmap::kSTATUS) & 0xffffu : 0;
-    s.res.stats.resize(s.frames.size());
+    s.res.stats.resize(s.frames.count);
     s.rng.seed(timing.seed);
     s.hb = timing.continuous ? 0 : timing.hblank;
     s.vb = timing.continuous ? 0 : timing.vblank_lines;
@@ -233,7 +254,7 @@ class SimEngine {
   }
 
   uint64_t default_max_cycles(const RunState& s) const {
-    return static_cast<uint64_t>(static_cast<double>((s.frames.size() + 2) * s.line_period *
+    return static_cast<uint64_t>(static_cast<double>((s.frames.count + 2) * s.line_period *
                                                      static_cast<uint64_t>(s.height + s.vb + 64) * 4) *
                                  std::max(s.ratio, static_cast<double>(s.timing.clocks_per_pixel))) +
            100000;
@@ -263,14 +284,18 @@ class SimEngine {
   void drive_inputs(RunState& s) {
     auto& t = tb_.top();
     const CameraTiming& timing = s.timing;
-    const bool have = s.f < s.frames.size() && tb_.cycles() >= s.due;
+    const bool have = s.f < s.frames.count && tb_.cycles() >= s.due;
     bool present = have;
     if (present && timing.idle_percent > 0 && s.x == 0 && static_cast<int>(s.rng() % 100) < timing.idle_percent)
       present = false;  // a late line start: idle cycles between pixels are in the tests' timing
     if (present && timing.idle_percent > 0 && static_cast<int>(s.rng() % 100) < timing.idle_percent) present = false;
     t.s_axis_tvalid = present;
     if (present) {
-      const auto& fr = s.frames[s.f];
+      if (s.cam_f != s.f) {
+        s.cam = &s.frames.frame(s.f);
+        s.cam_f = s.f;
+      }
+      const StereoFrame& fr = *s.cam;
       t.s_axis_tdata =
           static_cast<uint32_t>(fr.first.at(s.x, s.y)) | (static_cast<uint32_t>(fr.second.at(s.x, s.y)) << 8);
       t.s_axis_tuser = (s.x == 0 && s.y == 0);
@@ -366,9 +391,12 @@ class SimEngine {
     if (++s.oy < s.height) return;
     s.oy = 0;
     res.stats[s.oframe].last_out_cycle = now;
-    res.frames.push_back(std::move(s.cur));
+    if (s.frames.out)
+      s.frames.out(s.oframe, std::move(s.cur));
+    else
+      res.frames.push_back(std::move(s.cur));
     ++s.oframe;
-    if (on_frame) on_frame(s.oframe, s.frames.size());
+    if (on_frame) on_frame(s.oframe, s.frames.count);
   }
 
   // Let the last object packet out, and finish an AXI4-Lite access in flight (the
@@ -376,7 +404,7 @@ class SimEngine {
   void drain(RunState& s) {
     auto& t = tb_.top();
     t.s_axis_tvalid = 0;
-    for (int n = 0; (n < 4 * 64 * 8 + 64 && s.res.object_packets.size() < s.frames.size()) || agent_.busy(); ++n) {
+    for (int n = 0; (n < 4 * 64 * 8 + 64 && s.res.object_packets.size() < s.frames.count) || agent_.busy(); ++n) {
       t.m_axis_obj_tready = 1;
       t.eval();
       agent_.sample();

@@ -14,37 +14,44 @@ void count_mismatch(ModelCheck& c, size_t f, const What& what) {
   if (c.mismatches++ == 0) c.first_mismatch = what();
 }
 
-// Frame f (width x height) of the RTL against the model's.
-void check_frame(size_t f, int width, int height, const PipelineResult& m, const SimResult& res, ModelCheck& c) {
-  const DispImage& exp = m.post;
-  const DispImage& got = res.frames[f];
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      if (exp.at(x, y) != got.at(x, y))
-        count_mismatch(c, f, [&] {
-          return fmt::format("frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", f, x, y, exp.at(x, y), got.at(x, y));
-        });
-  const std::vector<uint32_t> want = object_packet(m.objects, false);
-  if (f < res.object_packets.size() && res.object_packets[f].words != want)
-    count_mismatch(c, f, [&] { return fmt::format("frame {}: object packet differs", f); });
-}
-
 }  // namespace
 
-ModelCheck check_against_model(bool no_check, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
-                               const SimResult& res) {
-  const size_t nframes = in.frames.size();
+ModelCheck start_check(bool no_check, size_t first, size_t nframes) {
   ModelCheck c;
+  c.done = !no_check;
+  c.first = first;
   c.frame_mismatches.assign(nframes, 0);
-  if (no_check) return c;
-  c.done = true;
-  for (size_t f = 0; f < nframes; ++f) {
-    c.model.push_back(run_pipeline(in.frames[f].first, in.frames[f].second, hw, plan.regs[f], false));
-    check_frame(f, plan.width, plan.height, c.model.back(), res, c);
-  }
+  if (c.done) c.want_packets.resize(nframes);
+  return c;
+}
+
+void check_frame(ModelCheck& c, size_t f, const HwConfig& hw, const Regs& regs, const StereoFrame& in,
+                 const DispImage& got) {
+  const bool last = f + 1 == c.frame_mismatches.size();
+  if (last) c.last_input = in;
+  if (!c.done) return;
+  PipelineResult m = run_pipeline(in.first, in.second, hw, regs, false);
+  const DispImage& exp = m.post;
+  const size_t fg = c.first + f;
+  for (int y = 0; y < exp.h; ++y)
+    for (int x = 0; x < exp.w; ++x)
+      if (exp.at(x, y) != got.at(x, y))
+        count_mismatch(c, f, [&] {
+          return fmt::format("frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", fg, x, y, exp.at(x, y),
+                             got.at(x, y));
+        });
+  c.want_packets[f] = object_packet(m.objects, false);
+  if (last) c.last_model = std::move(m);
+}
+
+void check_packets(ModelCheck& c, const SimResult& res) {
+  if (!c.done) return;
+  const size_t nframes = c.frame_mismatches.size();
+  for (size_t f = 0; f < nframes && f < res.object_packets.size(); ++f)
+    if (res.object_packets[f].words != c.want_packets[f])
+      count_mismatch(c, f, [&] { return fmt::format("frame {}: object packet differs", c.first + f); });
   if (res.object_packets.size() < nframes && c.mismatches++ == 0)
     c.first_mismatch = fmt::format("{} object packets for {} frames", res.object_packets.size(), nframes);
-  return c;
 }
 
 }  // namespace sm::simapp

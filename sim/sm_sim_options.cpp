@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "toolio/sm_reg_options.hpp"
+#include "sm_sim_shards.hpp"
 #include "sm_wave_names.hpp"
 
 namespace fs = std::filesystem;
@@ -64,9 +65,10 @@ SizeOptions add_input_options(CLI::App& app, const HwConfig& hw, SimOptions& o) 
   for (auto* a : {left, right}) a->excludes(seq)->excludes(video)->excludes(scene);
   seq->excludes(video)->excludes(scene);
   video->excludes(scene);
-  app.add_option("--frames", o.frames, "frames to stream (a pair or scene is repeated)")
-      ->check(in_range(1, 100000))
-      ->capture_default_str();
+  app.add_option("--frames", o.frames,
+                 "frames to stream: at most this many of a sequence or video (default: all of them); a pair or "
+                 "scene is repeated (default 2)")
+      ->check(in_range(1, 100000));
   // The active size's real limits: MIN_WIDTH..MAX_WIDTH and 16..MAX_HEIGHT (docs/registers.md).
   SizeOptions s;
   s.width = app.add_option("--width", o.width, "active width")
@@ -174,6 +176,8 @@ std::optional<int> parse_sim_options(int argc, char** argv, const ModelInfo& inf
   add_camera_options(*app, info.hw, opt);
   add_wave_options(*app, info, opt);
   add_output_options(*app, opt);
+  add_shard_options(*app, opt.shard);
+  opt.shard.argv.assign(argv, argv + argc);
   app->footer(
       "Exit codes: 0 the run is bit-exact, well framed and every register write on time (and, with --core-mhz, "
       "30 frames/s is met); 1 it is not; 2 bad input or an output that cannot be written (one line 'stereo_sim: "
@@ -194,6 +198,7 @@ std::optional<int> parse_sim_options(int argc, char** argv, const ModelInfo& inf
   // reg_opts reads its options' counts: the app stays alive with it
   opt.apply_reg_options = [app, reg_opts](const HwConfig& hw, Regs& r) { reg_opts->apply(hw, r); };
   if (opt.disp_file.empty()) opt.disp_file = opt.out_dir + "/disparity.pfm";
+  if (const auto rc = check_shard_options(opt)) return rc;
   if (opt.wave_depth > 0 && opt.wave_scopes.empty()) {
     fmt::print(stderr, "stereo_sim: error: --wave-depth needs --wave-scope\n");
     return 2;

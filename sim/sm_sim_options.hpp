@@ -13,11 +13,23 @@
 
 namespace sm::simapp {
 
+// Frame-parallel runs (sm_sim_shards.hpp): --jobs N, a shard's --frame-range A:B, and
+// --merge-shards DIR...
+struct ShardOptions {
+  int jobs = 1;
+  int list_shards = 0;        // --list-shards N: print the N shards' ranges and exit
+  bool given = false;         // --frame-range: this process simulates frames first..end-1
+  std::string range;          // --frame-range as given
+  size_t first = 0, end = 0;  // end 0: to the last frame
+  std::vector<std::string> merge;
+  std::vector<std::string> argv;  // the command line, for the shards' processes
+};
+
 // Everything the command line asks for. Later stages read it, never the command line.
 struct SimOptions {
   // inputs (one of: --left/--right, --sequence, --video, else --scene)
   std::string left, right, seq_dir, video, scene_dir;
-  int frames = 2;
+  int frames = 0;  // 0: a sequence's or video's every frame, a pair or scene twice
   // active size; *_given: set on the command line (wins over a register file's)
   int width = 0, height = 0;
   bool width_given = false, height_given = false;
@@ -48,6 +60,7 @@ struct SimOptions {
   tools::DepthOptions depth;  // --depth-file, --cloud, --cloud-max-depth, --cloud-view (sm_sim_depth)
   std::string synth_json;
   bool no_check = false, quiet = false;
+  ShardOptions shard;
 };
 
 // Parses the command line into `opt`. Returns an exit code when the run ends here (help,

@@ -11,26 +11,31 @@ namespace fs = std::filesystem;
 
 namespace sm::simapp {
 
-namespace {
-
-// <stem>_<frame><ext> beside `path`.
-std::string frame_path(const std::string& path, size_t f) {
-  const fs::path p(path);
+std::string frame_disparity_path(const std::string& disp_file, size_t f) {
+  const fs::path p(disp_file);
   return (p.parent_path() / fmt::format("{}_{:03d}{}", p.stem().string(), f, p.extension().string())).string();
 }
 
-void stage_disparity(tools::OutputSet& outs, const std::string& path, const cv::Mat& disp) {
+void write_disparity_files(tools::OutputSet& outs, const SimOptions& opt, const cv::Mat& disp) {
   outs.write(
-      path, [&](const std::string& temp) { tools::write_disparity_file(temp, disp); }, true);
+      opt.disp_file, [&](const std::string& temp) { tools::write_disparity_file(temp, disp); }, true);
 }
 
-}  // namespace
+FrameFiles::~FrameFiles() {
+  if (kept_) return;
+  std::error_code ec;
+  for (const auto& p : written_) fs::remove(p, ec);
+}
 
-void write_disparity_files(tools::OutputSet& outs, const SimOptions& opt, const SimResult& res, const cv::Mat& disp) {
-  stage_disparity(outs, opt.disp_file, disp);
-  if (!opt.disp_each) return;
-  for (size_t f = 0; f < res.frames.size(); ++f)
-    stage_disparity(outs, frame_path(opt.disp_file, f), tools::disp_to_float(res.frames[f]));
+void FrameFiles::write(size_t f, const DispImage& disp) {
+  const std::string path = frame_disparity_path(disp_file_, f);
+  if (written_.empty()) {
+    const fs::path dir = fs::path(path).parent_path();
+    if (!dir.empty()) fs::create_directories(dir);
+  }
+  on_signal_.emplace_back(path);
+  written_.push_back(path);  // before writing: a failed write's part is removed too
+  tools::write_disparity_file(path, tools::disp_to_float(disp));
 }
 
 }  // namespace sm::simapp

@@ -127,15 +127,14 @@ void write_disparity_pictures(tools::OutputSet& outs, const std::string& dir, co
   stage_image(outs, dir + "/disparity_color.png", tools::disparity_picture(disp, r, cam));
 }
 
-PipelineResult last_frame_model(const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
-                                const ModelCheck& check) {
-  const auto& frame = in.frames.back();
-  return !check.done ? run_pipeline(frame.first, frame.second, hw, plan.regs.back(), false) : check.model.back();
+PipelineResult last_frame_model(const HwConfig& hw, const RegisterPlan& plan, const ModelCheck& check) {
+  const auto& frame = check.last_input;
+  return !check.last_model ? run_pipeline(frame.first, frame.second, hw, plan.regs.back(), false) : *check.last_model;
 }
 
 void write_panel(tools::OutputSet& outs, const std::string& dir, const PanelData& p) {
   const SimInput& in = *p.in;
-  const auto& frame = in.frames.back();
+  const StereoFrame& frame = *p.frame;
   const PipelineResult& m = *p.model;
   const int k = std::max(1, (kMinTileRows + p.disp->rows - 1) / p.disp->rows);
   const cv::Mat disp_z = zoom(*p.disp, k);

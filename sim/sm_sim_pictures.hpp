@@ -34,6 +34,7 @@ void write_disparity_pictures(tools::OutputSet& outs, const std::string& dir, co
 // What the panel shows of the last frame.
 struct PanelData {
   const SimInput* in = nullptr;
+  const StereoFrame* frame = nullptr;                  // the last frame's input (ModelCheck::last_input)
   const PipelineResult* model = nullptr;               // the last frame's (last_frame_model)
   const cv::Mat* disp = nullptr;                       // float disparity
   tools::ColourRange range;                            // picture_range()
@@ -51,7 +52,6 @@ struct PanelData {
 void write_panel(tools::OutputSet& outs, const std::string& dir, const PanelData& p);
 
 // The reference model's result of the last frame: the check's, else run now (--no-check).
-PipelineResult last_frame_model(const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
-                                const ModelCheck& check);
+PipelineResult last_frame_model(const HwConfig& hw, const RegisterPlan& plan, const ModelCheck& check);
 
 }  // namespace sm::simapp

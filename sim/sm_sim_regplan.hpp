@@ -18,6 +18,10 @@ struct RegisterPlan {
   int width = 0, height = 0;                       // the active size (the options' or --regs')
   std::vector<Regs> regs;                          // per frame, validated
   std::vector<std::pair<int, std::string>> sched;  // --regs-at (frame, file), in frame order
+  // A shard (--frame-range): regs hold frames first.. only, and host_report what the
+  // host changed for them in the whole run's schedule (sm_sim_shards.hpp).
+  size_t first = 0;
+  std::vector<FrameHostPlan> host_report;
 };
 
 // Throws on a bad file, option or register value.

@@ -165,8 +165,9 @@ json frame_results(const HwConfig& hw, const RegisterPlan& plan, const SimRun& r
   const SimResult& res = run.out.res;
   json frames = json::array();
   for (size_t f = 0; f < plan.regs.size(); ++f) {
-    json fr = {
-        {"frame", f}, {"registers", regs_json(plan.regs[f], run.host[f].grid_bank)}, {"changed", run.host[f].changed}};
+    json fr = {{"frame", plan.first + f},
+               {"registers", regs_json(plan.regs[f], run.host[f].grid_bank)},
+               {"changed", run.host[f].changed}};
     if (f < res.object_packets.size()) {
       packets.push_back(decode_object_packet(res.object_packets[f].words));
       if (!res.object_packets[f].words.empty())
@@ -218,9 +219,10 @@ SimReport make_report(const SimOptions& opt, const ModelInfo& info, const SimInp
   const json status = decode_status(run.out, r.status_lines);
   r.fig = frame_figures(opt, plan, run, status);
   json& rep = r.json;
-  const size_t nframes = in.frames.size();
+  const size_t nframes = in.nframes;
   const double wall = run.out.wall;
   rep["input"] = in.name;
+  rep["frames_note"] = in.source->note();
   rep["config"] = config_json(info.hw, plan);
   rep["frames"] = nframes;
   add_timing(opt, run, r.fig, rep);
@@ -285,13 +287,13 @@ void print_objects(const SimRun& run, const ModelCheck& check, const std::vector
     std::string changed;
     for (const auto& c : run.host[f].changed) changed += (changed.empty() ? "" : ",") + c;
     if (f >= packets.size()) {
-      fmt::print("    frame {}: no packet\n", f);
+      fmt::print("    frame {}: no packet\n", check.first + f);
       continue;
     }
     const ObjectPacket& p = packets[f];
-    fmt::print("    frame {}: {} object(s){}{}{}{}{}{}\n", f, p.objects.size(), p.too_many ? ", TOO-MANY" : "",
-               p.table_full ? ", TABLE-FULL" : "", p.lost ? ", LOST (a packet before was dropped)" : "",
-               p.valid ? "" : ", MALFORMED packet",
+    fmt::print("    frame {}: {} object(s){}{}{}{}{}{}\n", check.first + f, p.objects.size(),
+               p.too_many ? ", TOO-MANY" : "", p.table_full ? ", TABLE-FULL" : "",
+               p.lost ? ", LOST (a packet before was dropped)" : "", p.valid ? "" : ", MALFORMED packet",
                !check.done || check.frame_mismatches[f] == 0 ? "" : ", differs from model",
                changed.empty() ? "" : "  [changed: " + changed + "]");
     for (size_t i = 0; i < p.objects.size(); ++i) {
@@ -307,10 +309,11 @@ void print_objects(const SimRun& run, const ModelCheck& check, const std::vector
 
 void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
                   const SimRun& run, const ModelCheck& check, const SimReport& rep) {
-  const size_t nframes = in.frames.size();
+  const size_t nframes = in.nframes;
   const json& j = rep.json;
   fmt::print("stereo_sim: {} frame(s) of {}x{}, DISP {}, census {}x{}, SW {}x{}\n", nframes, plan.width, plan.height,
              hw.disp, hw.census, hw.census, hw.sw, hw.sw);
+  fmt::print("  input: {}\n", in.source->note());
   print_figures(opt, hw, run, rep.fig);
   print_check(opt, plan, run.out.res, check);
   print_objects(run, check, rep.packets);

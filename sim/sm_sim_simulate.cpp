@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include "sm_sim_outputs.hpp"
+
 namespace sm::simapp {
 
 namespace {
@@ -42,16 +44,26 @@ void set_wave_request(const SimOptions& opt, RunRequest& req) {
 
 }  // namespace
 
-SimRun simulate(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
+SimRun simulate(const SimOptions& opt, const HwConfig& hw, SimInput& in, const RegisterPlan& plan,
                 const RunFn& run_model) {
-  check_wave_window(opt, in.frames.size(), plan.height);
+  check_wave_window(opt, in.nframes, plan.height);
   SimRun run;
   const HostSchedule host = schedule_host_writes(plan, hw, opt.late_regs);
-  run.host = host.frames;
+  run.host = plan.host_report.empty() ? host.frames : plan.host_report;
   run.fold = hw.clocks_per_beat();
   run.timing = camera_timing(opt, run.fold, plan.width, plan.height);
+  run.check = start_check(opt.no_check, in.first, in.nframes);
+  FrameWindow window(*in.source);
+  FrameFiles each(opt.disp_file);
   RunRequest req;
-  req.frames = &in.frames;
+  req.feed.count = in.nframes;
+  req.feed.frame = [&window](size_t f) -> const StereoFrame& { return window.at(f); };
+  req.feed.out = [&](size_t f, DispImage&& disp) {
+    check_frame(run.check, f, hw, plan.regs[f], window.at(f), disp);
+    if (opt.disp_each) each.write(in.first + f, disp);
+    window.release(f + 1);
+    if (f + 1 == in.nframes) run.last = std::move(disp);
+  };
   req.width = plan.width;
   req.height = plan.height;
   req.timing = run.timing;
@@ -60,6 +72,9 @@ SimRun simulate(const SimOptions& opt, const HwConfig& hw, const SimInput& in, c
   req.quiet = opt.quiet;
   set_wave_request(opt, req);
   run.ran = run_model(req, run.out);
+  if (!run.ran) return run;
+  check_packets(run.check, run.out.res);
+  each.keep();
   return run;
 }
 

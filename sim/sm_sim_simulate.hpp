@@ -6,6 +6,7 @@
 
 #include "sm_host.hpp"
 #include "sm_sim.hpp"
+#include "sm_sim_check.hpp"
 #include "sm_sim_inputs.hpp"
 #include "sm_sim_options.hpp"
 #include "sm_sim_regplan.hpp"
@@ -19,10 +20,14 @@ struct SimRun {
   CameraTiming timing;
   int fold = 1;  // clocks per pixel of the datapath (DISP / PU)
   RunResult out;
+  ModelCheck check;  // every frame against the model, as it left the RTL
+  DispImage last;    // the last frame's disparity
 };
 
-// Throws on a wave window or core clock the input and camera do not allow.
-SimRun simulate(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
+// Streams the input's frames through the model, each checked against the reference
+// model (and written with --disp-each-frame) as it leaves the RTL. Throws on a wave
+// window or core clock the input and camera do not allow.
+SimRun simulate(const SimOptions& opt, const HwConfig& hw, SimInput& in, const RegisterPlan& plan,
                 const RunFn& run_model);
 
 }  // namespace sm::simapp

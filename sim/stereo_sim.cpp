@@ -144,10 +144,10 @@ bool run_model(const RunRequest& req, RunResult& out) {
   // the wave's time stamps in the core clock's real period (ps)
   tb.set_clock_period_ps(static_cast<uint64_t>(std::llround(1e12 / req.timing.aclk_hz(req.width, req.height))));
   const auto t0 = std::chrono::steady_clock::now();
-  sm::simapp::SimProgress progress(req.frames->size(), req.height, req.quiet);
+  sm::simapp::SimProgress progress(req.feed.count, req.height, req.quiet);
   sim.on_row = [&](size_t frame, int row) { progress.row(frame, row); };
   sim.on_frame = [&](size_t done, size_t total) { progress.frame(done, total); };
-  out.res = sim.run(*req.frames, req.width, req.height, req.timing, vw, 0, req.host);
+  out.res = sim.run(req.feed, req.width, req.height, req.timing, vw, 0, req.host);
   out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   tb.close_trace();
   if (!part.path.empty()) {

@@ -28,11 +28,32 @@
 #include "sm_sim_preflight.hpp"
 #include "sm_sim_regplan.hpp"
 #include "sm_sim_report.hpp"
+#include "sm_sim_shards.hpp"
 #include "sm_sim_simulate.hpp"
 
 namespace sm::simapp {
 
 namespace {
+
+// Every output of the run, staged and committed together (all or none): the pictures,
+// --disp-file, the depth outputs, the panel and report.json.
+void write_outputs(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
+                   const ModelCheck& check, const SimCamera& cam, const cv::Mat& disp, const SimReport& rep) {
+  const RectCamera* camera = cam.camera ? &*cam.camera : nullptr;
+  const tools::ColourRange range = picture_range(in, disp);
+  const PipelineResult model = last_frame_model(hw, plan, check);
+  tools::OutputSet outs;
+  write_disparity_pictures(outs, opt.out_dir, disp, hw, range, camera);
+  write_disparity_files(outs, opt, disp);
+  write_depth_outputs(outs, opt, cam, disp, model.rl);
+  write_panel(outs, opt.out_dir,
+              {&in, &check.last_input, &model, &disp, range, &rep.packets, camera, opt.depth.cloud_max_depth,
+               rep.json.value("bad1_percent", 0.0)});
+  const std::string text = rep.json.dump(2) + "\n";
+  outs.write(
+      opt.out_dir + "/report.json", [&](const std::string& t) { tools::write_text_atomic(t, text); }, true);
+  outs.commit();
+}
 
 // Everything after the options were parsed; throws on error.
 int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn& wave_names, SimOptions& opt) {
@@ -43,34 +64,35 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   }
   check_wave_options(info, opt);
   tools::quiet_opencv();
+  if (!opt.shard.merge.empty()) return merge_shard_dirs(opt.shard.merge, opt.out_dir, opt.quiet);
   // every file and folder before any work: a bad one simulates nothing, writes nothing
   check_disp_file_option(opt);
   check_files(opt);
   const SimCamera cam = resolve_camera(opt, hw);  // before the plan: a scene's calib.json is its --calib
+  // the input's frames counted (none read): a sequence or video runs all of them unless
+  // --frames limits it; registers before any frame is read: a bad file simulates nothing
+  SimInput in = open_inputs(opt);
+  opt.frames = static_cast<int>(in.nframes);
   RegisterPlan plan = plan_registers(opt, hw);
-  const SimInput in = open_inputs(opt, plan.width, plan.height);
-  fit_plan_to_input(plan, in.frames.size());
+  fit_plan_to_input(plan, in.nframes);
+  if (opt.shard.list_shards > 0) {
+    for (const auto& r : shard_ranges(in.nframes, opt.shard.list_shards)) fmt::print("{}\n", r);
+    return 0;
+  }
+  if (opt.shard.jobs > 1) return run_jobs(opt, in.nframes);
+  fit_inputs(opt, plan.width, plan.height, in);
+  if (opt.shard.given) start_shard(opt, hw, plan, in);
   const SimRun run = simulate(opt, hw, in, plan, run_model);
   if (!run.ran) return 0;  // --wave-scopes
-  const ModelCheck check = check_against_model(opt.no_check, hw, in, plan, run.out.res);
-  const cv::Mat disp = tools::disp_to_float(run.out.res.frames.back());
+  // a warning, not progress: shown with -q too
+  if (in.source->resized())
+    fmt::print(stderr, "note: input resized to the active size {}x{}\n", plan.width, plan.height);
+  const ModelCheck& check = run.check;
+  const cv::Mat disp = tools::disp_to_float(run.last);
   SimReport rep = make_report(opt, info, in, plan, run, check, disp);
   add_calibration_report(cam, rep.json);
-  const RectCamera* camera = cam.camera ? &*cam.camera : nullptr;
-  const tools::ColourRange range = picture_range(in, disp);
-  const PipelineResult model = last_frame_model(hw, in, plan, check);
-  // all outputs or none
-  tools::OutputSet outs;
-  write_disparity_pictures(outs, opt.out_dir, disp, hw, range, camera);
-  write_disparity_files(outs, opt, run.out.res, disp);
-  write_depth_outputs(outs, opt, cam, disp, model.rl);
-  write_panel(outs, opt.out_dir,
-              {&in, &model, &disp, range, &rep.packets, camera, opt.depth.cloud_max_depth,
-               rep.json.value("bad1_percent", 0.0)});
-  const std::string text = rep.json.dump(2) + "\n";
-  outs.write(
-      opt.out_dir + "/report.json", [&](const std::string& t) { tools::write_text_atomic(t, text); }, true);
-  outs.commit();
+  if (opt.shard.given) add_shard_info(opt, in, rep.json);
+  write_outputs(opt, hw, in, plan, check, cam, disp, rep);
   print_report(opt, hw, in, plan, run, check, rep);
   if (!cam.note.empty()) fmt::print("calibration: {}\n", cam.note);
   return report_exit_code(opt, run, check, rep);

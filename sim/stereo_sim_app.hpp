@@ -38,7 +38,7 @@ struct ModelInfo {
 
 // One run of the model as the command line asks for it.
 struct RunRequest {
-  const std::vector<std::pair<Image8, Image8>>* frames = nullptr;
+  FrameFeed feed;  // the frames, streamed from their source
   int width = 0, height = 0;
   CameraTiming timing;
   const Regs* regs0 = nullptr;  // written before the first frame

@@ -37,3 +37,14 @@ add_test(NAME system_cocotb_small
          COMMAND ${SM_VENV}/bin/python ${CMAKE_SOURCE_DIR}/tests/cocotb/run_sm_top.py --ref ${_cb}/ref_small.json
                  --gen-dir ${SM_GEN_DIR} --build-dir ${_cb}/sm_top_small)
 set_tests_properties(system_cocotb_small PROPERTIES LABELS "system" TIMEOUT 600 COST 60)  # builds its model
+
+# The Dask front-end (tools/sm_farm.py shards) on a 2-worker LocalCluster: the same
+# 12-frame sequence and register schedule as system_sim_jobs, per-frame results identical
+# to the serial run's (tests/sim_shards_check.py).
+if(SM_WITH_TOP)
+  add_test(NAME system_sim_farm
+           COMMAND ${SM_VENV}/bin/python ${CMAKE_SOURCE_DIR}/tests/sim_shards_check.py --mode farm
+                   --stereo-sim $<TARGET_FILE:stereo_sim_small> --sm-scene $<TARGET_FILE:sm_scene>
+                   --farm ${CMAKE_SOURCE_DIR}/tools/sm_farm.py --tmp ${CMAKE_CURRENT_BINARY_DIR}/sim_farm_tmp)
+  set_tests_properties(system_sim_farm PROPERTIES LABELS "system" TIMEOUT 300)
+endif()

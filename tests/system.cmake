@@ -52,3 +52,15 @@ sm_unit_test(test_sim_inputs TEST system_sim_inputs LIBS sm_toolio nlohmann_json
              DEFINES SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/sim_inputs_tmp"
                      SM_STEREO_SIM_SMALL="$<TARGET_FILE:stereo_sim_small>"
              DEPENDS stereo_sim_small LABELS system TIMEOUT 600)
+
+# Frame-parallel runs (issue 41): a 12-frame sequence with a register schedule across the
+# shard boundary through stereo_sim --jobs 2 gives the serial run's per-frame results and
+# disparity files; a failing shard leaves no merged output (tests/sim_shards_check.py).
+find_package(Python3 COMPONENTS Interpreter)
+if(Python3_Interpreter_FOUND)
+  add_test(NAME system_sim_jobs
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/tests/sim_shards_check.py --mode jobs
+                   --stereo-sim $<TARGET_FILE:stereo_sim_small> --sm-scene $<TARGET_FILE:sm_scene>
+                   --tmp ${CMAKE_CURRENT_BINARY_DIR}/sim_jobs_tmp)
+  set_tests_properties(system_sim_jobs PROPERTIES LABELS "system" TIMEOUT 300)
+endif()

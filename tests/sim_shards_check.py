@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""Frame-parallel stereo_sim runs give the serial run's per-frame results (issue 41).
+
+A 12-frame sequence of three small synthetic scenes (one with a rotated right camera and
+its calibration) with a register schedule whose changes fall on both sides of the shard
+boundary at frame 6 (frames 5, 6 and 7: new values, new rectification grids, a grid bank
+switch) is simulated serially, then in two shards (--mode jobs: stereo_sim --jobs 2;
+--mode farm: tools/sm_farm.py shards on a 2-worker LocalCluster). The per-frame parts of
+report.json (registers, what the host changed, object packet, bit-exactness) and every
+per-frame disparity file must be identical; the merged report covers all 12 frames and
+takes its timing figures from the first shard. --mode jobs also checks all-or-nothing: a
+sequence whose frame 9 cannot be read fails in the second shard with one error line, a
+non-zero exit and no merged output.
+"""
+import argparse
+import filecmp
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+FAILS = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond:
+        FAILS.append(what)
+
+
+def run(args, ok=(0,)):
+    p = subprocess.run(args, capture_output=True, text=True)
+    if p.returncode not in ok:
+        print(" ".join(args), "\n", p.stdout, p.stderr)
+        sys.exit(f"exit {p.returncode}")
+    return p
+
+
+def make_inputs(sm_scene, tmp):
+    scenes = {}
+    for name, extra in (("plain", []), ("raw", ["--rot-deg", "1.5", "--vshift", "1.5"]), ("many", [])):
+        d = os.path.join(tmp, name)
+        seed = "2" if name == "many" else "3"
+        run([sm_scene, "--out", d, "--width", "64", "--height", "48", "--levels", "16", "--seed", seed, "--objects",
+             "3", *extra])
+        scenes[name] = d
+    seq = os.path.join(tmp, "seq12")
+    os.makedirs(seq)
+    order = ["plain", "raw", "many"]
+    for i in range(12):
+        s = scenes[order[i % 3]]
+        shutil.copy(os.path.join(s, "left.png"), os.path.join(seq, f"left_{i:03d}.png"))
+        shutil.copy(os.path.join(s, "right.png"), os.path.join(seq, f"right_{i:03d}.png"))
+    regs = {5: {"occ": 20, "offset_r": -3},
+            6: {"calib": os.path.join(scenes["raw"], "calib.json"), "obj_near": 6, "obj_min_pixels": 8},
+            7: {"calib": os.path.join(scenes["plain"], "calib.json"), "filter_enable": 5}}
+    args = ["--sequence", seq, "--disp-each-frame"]
+    for f, r in regs.items():
+        p = os.path.join(tmp, f"regs_{f}.json")
+        with open(p, "w") as fh:
+            json.dump(r, fh)
+        args += ["--regs-at", f"{f}={p}"]
+    return seq, args
+
+
+def compare(serial, par, label):
+    a = json.load(open(os.path.join(serial, "report.json")))
+    b = json.load(open(os.path.join(par, "report.json")))
+    check(a["frames"] == 12 and b["frames"] == 12, f"{label}: 12 frames in both reports")
+    check(a["bit_exact"] is True and b["bit_exact"] is True, f"{label}: both bit-exact against the model")
+    # a shard counts cycles from its own reset: frame cycles match the serial run's in
+    # the first shard only, every other per-frame field in all of them
+    n0 = b["shards"][0]["count"]
+    strip = [{k: v for k, v in fr.items() if k != "cycles" or fr["frame"] < n0} for fr in b["frame_results"]]
+    want = [{k: v for k, v in fr.items() if k != "cycles" or fr["frame"] < n0} for fr in a["frame_results"]]
+    check(len(a["frame_results"]) == 12 and want == strip,
+          f"{label}: per-frame results (registers, changes, object packets and notes, bit-exactness) identical")
+    check(all("cycles" in fr for fr in b["frame_results"]) and "frame_cycles_note" in b,
+          f"{label}: every frame's cycles, with the note on their clock")
+    for pic in ("disparity.png", "disparity_color.png", "panel.png"):
+        check(filecmp.cmp(os.path.join(serial, pic), os.path.join(par, pic), shallow=False),
+              f"{label}: {pic} identical")
+    changed = [fr["frame"] for fr in b["frame_results"] if fr["changed"]]
+    check(changed == [5, 6, 7], f"{label}: register changes at frames 5, 6, 7 across the boundary ({changed})")
+    check([s["first"] for s in b["shards"]] == [0, 6], f"{label}: two shards, frames 0..5 and 6..11")
+    check(b["timing_frames"]["count"] == 6 and b["cycles_per_frame_sof_to_last_pixel"] ==
+          a["cycles_per_frame_sof_to_last_pixel"], f"{label}: timing figures from the first shard")
+    same = all(filecmp.cmp(os.path.join(serial, f"disparity_{f:03d}.pfm"), os.path.join(par, f"disparity_{f:03d}.pfm"),
+                           shallow=False) for f in range(12))
+    check(same, f"{label}: the 12 per-frame disparity files identical")
+    check(filecmp.cmp(os.path.join(serial, "disparity.pfm"), os.path.join(par, "disparity.pfm"), shallow=False),
+          f"{label}: last frame's disparity identical")
+
+
+def failing_shard(sim, seq, tmp):
+    bad = os.path.join(tmp, "seq_bad")
+    shutil.copytree(seq, bad)
+    with open(os.path.join(bad, "left_009.png"), "wb") as f:
+        f.write(b"not a png")
+    out = os.path.join(tmp, "bad_out")
+    p = subprocess.run([sim, "--sequence", bad, "--jobs", "2", "--out", out, "-q"], capture_output=True, text=True)
+    lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
+    check(p.returncode == 2, f"a failing shard: exit 2 ({p.returncode})")
+    check(len(lines) == 1 and lines[0].startswith("stereo_sim: error: shard 1 (frames 6..11)"),
+          f"a failing shard: one error line naming it ({lines})")
+    check(not os.path.exists(os.path.join(out, "report.json")), "a failing shard: no merged report")
+    left = [n for n in os.listdir(tmp) if ".jobs" in n]
+    check(not left, f"a failing shard: no shard folders left ({left})")
+
+
+def farm_scenes(o, tmp):
+    """sm_farm.py accuracy on two scenes equals stereo_sim run on each; a refused register
+    value in a sweep is one error line, exit 2 and no output."""
+    ds = os.path.join(tmp, "dataset")
+    os.makedirs(ds)
+    for name in ("plain", "many"):
+        shutil.copytree(os.path.join(tmp, name), os.path.join(ds, name))
+    acc = os.path.join(tmp, "acc")
+    run([sys.executable, o.farm, "--workers", "2", "-q", "accuracy", ds, "--stereo-sim", o.stereo_sim, "--out", acc])
+    got = {s["name"]: s for s in json.load(open(os.path.join(acc, "summary.json")))["scenes"]}
+    for name in ("plain", "many"):
+        d = os.path.join(tmp, f"direct_{name}")
+        run([o.stereo_sim, "--scene", os.path.join(ds, name), "--frames", "1", "-q", "--out", d])
+        want = json.load(open(os.path.join(d, "report.json")))
+        check(got[name]["bad1_percent"] == want["bad1_percent"] and got[name]["bit_exact"] is True,
+              f"sm_farm.py accuracy, scene {name}: bad-1.0 {got[name]['bad1_percent']} as stereo_sim's")
+    bad = os.path.join(tmp, "sweep_bad")
+    p = subprocess.run([sys.executable, o.farm, "--workers", "2", "-q", "sweep", ds, "--rtl", o.stereo_sim, "--grid",
+                        "occ=8,999", "--out", bad], capture_output=True, text=True)
+    lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
+    check(p.returncode == 2 and len(lines) == 1 and "'occ' = 999" in lines[0],
+          f"sm_farm.py sweep with occ=999: exit 2, one error line ({p.returncode}, {lines})")
+    check(not os.path.exists(bad), "sm_farm.py sweep with occ=999: no output folder")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--mode", choices=["jobs", "farm"], required=True)
+    ap.add_argument("--stereo-sim", required=True)
+    ap.add_argument("--sm-scene", required=True)
+    ap.add_argument("--farm", help="tools/sm_farm.py (mode farm)")
+    ap.add_argument("--tmp", required=True)
+    o = ap.parse_args()
+    shutil.rmtree(o.tmp, ignore_errors=True)
+    os.makedirs(o.tmp)
+    seq, args = make_inputs(o.sm_scene, o.tmp)
+    serial = os.path.join(o.tmp, "serial")
+    run([o.stereo_sim, *args, "--out", serial, "-q"])
+    par = os.path.join(o.tmp, o.mode)
+    if o.mode == "jobs":
+        run([o.stereo_sim, *args, "--jobs", "2", "--out", par, "-q"])
+        compare(serial, par, "--jobs 2")
+        failing_shard(o.stereo_sim, seq, o.tmp)
+    else:
+        run([sys.executable, o.farm, "--workers", "2", "-q", "shards", "--stereo-sim", o.stereo_sim, "--shards", "2",
+             "--out", par, "--", *args])
+        compare(serial, par, "sm_farm.py shards, 2 workers")
+        farm_scenes(o, o.tmp)
+        left = [n for n in os.listdir(o.tmp) if ".farm" in n]
+        check(not left, f"no temporary folders left ({left})")
+    if FAILS:
+        sys.exit(f"{len(FAILS)} check(s) failed")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,364 @@
+#!/usr/bin/env python3
+"""sm_farm: stereo_sim and model runs as Dask tasks, on this machine or a cluster (issue 41).
+
+Subcommands (docs/farm.md):
+  shards    one stereo_sim run of a sequence or video, its frames split into contiguous
+            shards (stereo_sim --frame-range), merged by stereo_sim --merge-shards
+  accuracy  the RTL on every scene of a dataset folder (stereo_sim --scene, one frame
+            each): bad-1.0 and bit-exactness per scene, like bench/accuracy.sh
+  sweep     a grid of register values over a dataset: the model (sm_evaluate --regs) or
+            the RTL (stereo_sim --regs per scene)
+
+A LocalCluster of --workers processes with one thread each by default; --scheduler
+ADDRESS uses a running cluster (dask scheduler / dask worker, dask-jobqueue), whose
+workers must see the same file system. A task whose worker dies is retried (--retries);
+results are written all or nothing (a temporary folder renamed when complete); progress
+shows tasks done and the time left. Run it with the project's .venv python.
+"""
+import argparse
+import itertools
+import json
+import logging
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+TOOL = "sm_farm"
+
+
+class FarmError(Exception):
+    pass
+
+
+def run_task(args, log):
+    """One program run on a worker: its output in `log`; (exit code, last line)."""
+    with open(log, "w") as f:
+        rc = subprocess.run(args, stdout=f, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL).returncode
+    last = ""
+    with open(log, errors="replace") as f:
+        for line in f:
+            line = line.rstrip("\n").split("\r")[-1]
+            if line.strip():
+                last = line
+    return rc, last
+
+
+class TaskError(Exception):
+    """A program that ran and refused its input: the same on any worker, so not retried."""
+
+
+def run_checked(args, log, ok_codes=(0, 1)):
+    """run_task; an exit code outside ok_codes is a TaskError, a signal (the process was
+    killed, e.g. with its worker) an exception that Dask retries."""
+    rc, last = run_task(args, log)
+    if rc < 0:
+        raise RuntimeError(f"{os.path.basename(args[0])} killed by signal {-rc}")
+    if rc not in ok_codes:
+        raise TaskError(f"{os.path.basename(args[0])} exit {rc}: {last}")
+    return rc
+
+
+def no_retry(fn):
+    """Runs fn on a worker; a TaskError comes back as a value (Dask retries only exceptions)."""
+    def task(*args):
+        try:
+            return fn(*args)
+        except TaskError as e:
+            return TaskError(str(e))
+    return task
+
+
+def make_client(opts):
+    from distributed import Client, LocalCluster
+
+    if opts.scheduler:
+        return Client(opts.scheduler), None
+    cluster = LocalCluster(n_workers=opts.workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                           silence_logs=logging.CRITICAL)
+    return Client(cluster), cluster
+
+
+def run_all(opts, tasks, noun="tasks"):
+    """tasks: list of (name, function, args). Runs them as Dask tasks; results by name.
+    Progress: one line of `noun` done and the time left."""
+    from distributed import as_completed
+
+    client, cluster = make_client(opts)
+    try:
+        futures = {}
+        for name, fn, args in tasks:
+            fut = client.submit(no_retry(fn), *args, retries=opts.retries, pure=False, key=f"{TOOL}-{name}-{os.getpid()}")
+            futures[fut] = name
+        results, t0, done = {}, time.monotonic(), 0
+        for fut in as_completed(list(futures)):
+            name = futures[fut]
+            try:
+                results[name] = fut.result()
+                if isinstance(results[name], TaskError):
+                    raise results[name]
+            except Exception as e:  # refused, or failed after its retries: no output
+                for other in futures:
+                    other.cancel()
+                raise FarmError(f"task {name} failed: {e}")
+            done += 1
+            if not opts.quiet:
+                el = time.monotonic() - t0
+                left = el / done * (len(tasks) - done)
+                end = "\n" if done == len(tasks) else ""
+                print(f"\r{noun} done {done}/{len(tasks)} ({el:.1f} s, about {left:.0f} s left)", end=end,
+                      file=sys.stderr, flush=True)
+        return results
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def publish(tmp, out):
+    """Renames the complete temporary folder `tmp` to `out` (an old `out` is replaced)."""
+    old = None
+    if os.path.exists(out):
+        old = f"{out}.old{os.getpid()}"
+        os.rename(out, old)
+    os.rename(tmp, out)
+    if old:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def temp_beside(out):
+    parent = os.path.dirname(os.path.abspath(out))
+    os.makedirs(parent, exist_ok=True)
+    return tempfile.mkdtemp(prefix=f".{os.path.basename(os.path.abspath(out))}.farm", dir=parent)
+
+
+def need_file(path, what):
+    if not os.path.isfile(path) or not os.access(path, os.X_OK):
+        raise FarmError(f"{path}: {what} is not an executable file")
+
+
+# ---- shards ----
+
+def cmd_shards(opts):
+    need_file(opts.stereo_sim, "--stereo-sim")
+    sim_args = opts.sim_args
+    if not sim_args:
+        raise FarmError("shards: no stereo_sim input after -- (e.g. -- --sequence FOLDER)")
+    # stereo_sim checks the inputs and registers and prints the shards' ranges
+    p = subprocess.run([opts.stereo_sim, *sim_args, "--list-shards", str(opts.shards)], capture_output=True, text=True)
+    if p.returncode != 0:
+        raise FarmError(p.stderr.strip().splitlines()[-1] if p.stderr.strip() else f"stereo_sim exit {p.returncode}")
+    ranges = p.stdout.split()
+    tmp = temp_beside(opts.out)
+    try:
+        tasks = []
+        for i, r in enumerate(ranges):
+            d = os.path.join(tmp, f"shard_{i:03d}")
+            args = [opts.stereo_sim, *sim_args, "--frame-range", r, "--out", d, "-q"]
+            tasks.append((f"shard{i}", run_checked, (args, d + ".log")))
+        if not opts.quiet:
+            print(f"{TOOL}: {len(ranges)} shards ({' '.join(ranges)})", file=sys.stderr)
+        run_all(opts, tasks, "shards")
+        merged = os.path.join(tmp, "merged")
+        dirs = [os.path.join(tmp, f"shard_{i:03d}") for i in range(len(ranges))]
+        m = subprocess.run([opts.stereo_sim, "--merge-shards", *dirs, "--out", merged], capture_output=True, text=True)
+        if m.returncode not in (0, 1):
+            raise FarmError(f"merge: {m.stderr.strip()}")
+        # the merged report names its disparity file in the temporary folder: the final one
+        rep_path = os.path.join(merged, "report.json")
+        with open(rep_path) as f:
+            rep = json.load(f)
+        rep["disparity_file"] = os.path.join(opts.out, os.path.basename(rep["disparity_file"]))
+        for s in rep.get("shards", []):
+            s["folder"] = os.path.basename(s["folder"])
+        with open(rep_path, "w") as f:
+            json.dump(rep, f, indent=2)
+            f.write("\n")
+        sys.stdout.write(m.stdout.replace(merged, opts.out))
+        publish(merged, opts.out)
+        return m.returncode
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+# ---- accuracy ----
+
+def list_scenes(dataset):
+    if not os.path.isdir(dataset):
+        raise FarmError(f"{dataset}: not a folder")
+    scenes = sorted(d for d in os.listdir(dataset)
+                    if os.path.isfile(os.path.join(dataset, d, "left.png")) and
+                    os.path.isfile(os.path.join(dataset, d, "right.png")))
+    if not scenes:
+        raise FarmError(f"{dataset}: no scene folders (left.png, right.png)")
+    return scenes
+
+
+def sim_scene(stereo_sim, scene_dir, out, extra):
+    """stereo_sim on one scene: its bad-1.0 and whether it was bit-exact."""
+    run_checked([stereo_sim, "--scene", scene_dir, "--frames", "1", "-q", "--out", out, *extra], out + ".log")
+    with open(os.path.join(out, "report.json")) as f:
+        r = json.load(f)
+    return {"bad1_percent": r.get("bad1_percent"), "bit_exact": r.get("bit_exact")}
+
+
+def write_summary(opts, tmp, summary, lines):
+    with open(os.path.join(tmp, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=2)
+        f.write("\n")
+    with open(os.path.join(tmp, "summary.txt"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    publish(tmp, opts.out)
+
+
+def cmd_accuracy(opts):
+    need_file(opts.stereo_sim, "--stereo-sim")
+    scenes = list_scenes(opts.dataset)
+    if opts.scenes:
+        want = opts.scenes.split(",")
+        missing = [s for s in want if s not in scenes]
+        if missing:
+            raise FarmError(f"{opts.dataset}: no scene {missing[0]}")
+        scenes = want
+    tmp = temp_beside(opts.out)
+    try:
+        tasks = [(s, sim_scene, (opts.stereo_sim, os.path.join(opts.dataset, s), os.path.join(tmp, f"rtl_{s}"),
+                                 opts.sim_args)) for s in scenes]
+        res = run_all(opts, tasks, "scenes")
+        lines = ["| scene | RTL bad-1.0 % | bit-exact vs model |", "|---|---|---|"]
+        for s in scenes:
+            r = res[s]
+            lines.append(f"| {s} | {r['bad1_percent']:.2f} | {'yes' if r['bit_exact'] else 'NO'} |")
+        mean = sum(res[s]["bad1_percent"] for s in scenes) / len(scenes)
+        lines.append(f"| mean of {len(scenes)} | {mean:.2f} | "
+                     f"{'yes' if all(res[s]['bit_exact'] for s in scenes) else 'NO'} |")
+        write_summary(opts, tmp, {"scenes": [{"name": s, **res[s]} for s in scenes], "mean_bad1_percent": mean},
+                      lines)
+        return 0 if all(res[s]["bit_exact"] for s in scenes) else 1
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+
+
+# ---- sweep ----
+
+def parse_grid(items):
+    grid = []
+    for it in items:
+        key, eq, vals = it.partition("=")
+        try:
+            values = [int(v) for v in vals.split(",")]
+        except ValueError:
+            values = None
+        if not eq or not key or not values:
+            raise FarmError(f"--grid {it}: expected REGISTER=V1,V2,... with integer values")
+        grid.append((key.lower(), values))
+    return grid
+
+
+def model_point(sm_evaluate, dataset, regs, json_out, extra):
+    """sm_evaluate's model over the dataset with these registers: mean bad-1.0."""
+    run_checked([sm_evaluate, dataset, "--methods", "model", "--regs", regs, "--json", json_out, "-q", *extra],
+                json_out + ".log", ok_codes=(0,))
+    with open(json_out) as f:
+        r = json.load(f)
+    vals = [s["methods"]["model"]["bad1_pct"] for s in r["scenes"]]
+    return sum(vals) / len(vals)
+
+
+def cmd_sweep(opts):
+    grid = parse_grid(opts.grid)
+    if opts.rtl:
+        need_file(opts.rtl, "--rtl")
+        scenes = list_scenes(opts.dataset)
+    else:
+        need_file(opts.sm_evaluate, "--sm-evaluate")
+        if not os.path.isdir(opts.dataset):
+            raise FarmError(f"{opts.dataset}: not a folder")
+    points = [dict(zip([k for k, _ in grid], vals)) for vals in itertools.product(*[v for _, v in grid])]
+    tmp = temp_beside(opts.out)
+    try:
+        tasks = []
+        for i, p in enumerate(points):
+            regs = os.path.join(tmp, f"point_{i:03d}.json")
+            with open(regs, "w") as f:
+                json.dump(p, f)
+            if opts.rtl:
+                for s in scenes:
+                    tasks.append((f"p{i}-{s}", sim_scene, (opts.rtl, os.path.join(opts.dataset, s),
+                                                            os.path.join(tmp, f"rtl_{i:03d}_{s}"),
+                                                            ["--regs", regs, *opts.tool_args])))
+            else:
+                tasks.append((f"p{i}", model_point, (opts.sm_evaluate, opts.dataset, regs,
+                                                      os.path.join(tmp, f"model_{i:03d}.json"), opts.tool_args)))
+        res = run_all(opts, tasks, "runs")
+        rows, lines = [], ["| " + " | ".join(k for k, _ in grid) + " | mean bad-1.0 % |",
+                           "|" + "---|" * (len(grid) + 1)]
+        for i, p in enumerate(points):
+            if opts.rtl:
+                vals = [res[f"p{i}-{s}"]["bad1_percent"] for s in scenes]
+                mean = sum(vals) / len(vals)
+                exact = all(res[f"p{i}-{s}"]["bit_exact"] for s in scenes)
+            else:
+                mean, exact = res[f"p{i}"], None
+            rows.append({"registers": p, "mean_bad1_percent": mean, "rtl_bit_exact": exact})
+            lines.append("| " + " | ".join(str(p[k]) for k, _ in grid) + f" | {mean:.2f} |")
+        best = min(rows, key=lambda r: r["mean_bad1_percent"])
+        lines.append(f"best: {best['registers']} ({best['mean_bad1_percent']:.2f} %)")
+        write_summary(opts, tmp, {"dataset": opts.dataset, "tool": "rtl" if opts.rtl else "model", "points": rows},
+                      lines)
+        return 0
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+
+
+def parser():
+    ap = argparse.ArgumentParser(prog=TOOL, description=__doc__.split("\n\n")[0],
+                                 epilog="Options after -- go to stereo_sim (shards: its input and register options; "
+                                        "accuracy and sweep --rtl: more options) or sm_evaluate (sweep).")
+    ap.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster)")
+    ap.add_argument("--workers", type=int, default=2, help="LocalCluster workers, one thread each (default 2)")
+    ap.add_argument("--retries", type=int, default=2, help="retries of a task whose worker died or that failed")
+    ap.add_argument("-q", "--quiet", action="store_true", help="no progress line")
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    s = sub.add_parser("shards", help="one stereo_sim run in shards, merged")
+    s.add_argument("--stereo-sim", required=True, help="the stereo_sim executable")
+    s.add_argument("--shards", type=int, default=2, help="contiguous frame ranges (default 2)")
+    s.add_argument("--out", required=True, help="output folder of the merged run")
+    a = sub.add_parser("accuracy", help="the RTL on every scene of a dataset")
+    a.add_argument("dataset", help="dataset folder of scene folders")
+    a.add_argument("--stereo-sim", required=True, help="the stereo_sim executable")
+    a.add_argument("--scenes", help="comma-separated scene names (default: all)")
+    a.add_argument("--out", required=True, help="output folder (summary.json, summary.txt, rtl_<scene>/)")
+    w = sub.add_parser("sweep", help="a grid of register values over a dataset, model or RTL")
+    w.add_argument("dataset", help="dataset folder of scene folders")
+    w.add_argument("--grid", action="append", required=True, help="REGISTER=V1,V2,... (repeatable: the product)")
+    w.add_argument("--sm-evaluate", help="the model: sm_evaluate executable")
+    w.add_argument("--rtl", metavar="STEREO_SIM", help="the RTL instead: stereo_sim executable, one run per scene")
+    w.add_argument("--out", required=True, help="output folder (summary.json, summary.txt)")
+    return ap
+
+
+def main(argv=None):
+    # after "--": the options handed to stereo_sim (shards: its input and registers) or sm_evaluate
+    argv = sys.argv[1:] if argv is None else argv
+    cut = argv.index("--") if "--" in argv else len(argv)
+    opts = parser().parse_args(argv[:cut])
+    opts.sim_args = opts.tool_args = argv[cut + 1:]
+    try:
+        if opts.workers < 1 or opts.retries < 0 or getattr(opts, "shards", 1) < 1:
+            raise FarmError("--workers and --shards must be at least 1, --retries at least 0")
+        if opts.cmd == "sweep" and bool(opts.rtl) == bool(opts.sm_evaluate):
+            raise FarmError("sweep needs one of --sm-evaluate (the model) and --rtl (stereo_sim)")
+        return {"shards": cmd_shards, "accuracy": cmd_accuracy, "sweep": cmd_sweep}[opts.cmd](opts)
+    except (FarmError, OSError, json.JSONDecodeError, KeyError) as e:
+        print(f"{TOOL}: error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
