@@ -101,31 +101,6 @@ class SequenceSource : public FrameSource {
   size_t i_ = 0;
 };
 
-// FFmpeg prints its own complaints ("[png @ 0x...] ...") on stderr, past OpenCV's log
-// level; the one error line is ours, so stderr is parked on /dev/null while it decodes.
-class QuietStderr {
- public:
-  QuietStderr() {
-    std::fflush(stderr);
-    saved_ = dup(2);
-    const int nul = open("/dev/null", O_WRONLY);
-    if (saved_ >= 0 && nul >= 0) dup2(nul, 2);
-    if (nul >= 0) close(nul);
-  }
-  ~QuietStderr() {
-    std::fflush(stderr);
-    if (saved_ >= 0) {
-      dup2(saved_, 2);
-      close(saved_);
-    }
-  }
-  QuietStderr(const QuietStderr&) = delete;
-  QuietStderr& operator=(const QuietStderr&) = delete;
-
- private:
-  int saved_ = -1;
-};
-
 // A side-by-side stereo video (left half, right half). Its frames are counted by one
 // pass over the file when it is opened (container frame counts are not reliable); a
 // video that ends before the frames its header declares (truncated, damaged) is an
@@ -136,7 +111,7 @@ class VideoSource : public FrameSource {
     // FFmpeg would play a single picture as a one-frame video
     if (cv::haveImageReader(path_))
       fail(fmt::format("--video {}: a picture, not a video (a pair is --left/--right)", path_));
-    QuietStderr quiet;
+    tools::StderrMute quiet;  // FFmpeg's own complaints: the error line is ours
     cv::VideoCapture cap(path_);
     if (!cap.isOpened()) fail(fmt::format("{}: not a video OpenCV can read", path_));
     const double declared = cap.get(cv::CAP_PROP_FRAME_COUNT);
@@ -153,7 +128,7 @@ class VideoSource : public FrameSource {
   }
   StereoFrame next() override {
     cv::Mat f, g;
-    QuietStderr quiet;
+    tools::StderrMute quiet;  // FFmpeg's own complaints: the error line is ours
     if (!cap_.read(f)) fail(fmt::format("{}: frame {} could not be read", path_, i_));
     if (f.cols < 2) fail(fmt::format("{}: frame too narrow", path_));
     if (f.channels() == 3)

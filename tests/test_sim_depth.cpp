@@ -102,7 +102,7 @@ TEST_CASE("stereo_sim depth and cloud of a scene with a camera: median error bel
 
 TEST_CASE("stereo_sim depth options: one error line without a camera, nothing written", "[sim][depth]") {
   const fs::path scene = camera_scene("nocam_scene", 0, false);
-  for (const std::string& opt : {"--depth-file z.pfm", "--cloud c.ply", "--cloud-view v.png"}) {
+  for (const char* opt : {"--depth-file z.pfm", "--cloud c.ply", "--cloud-view v.png"}) {
     INFO(opt);
     const auto r = sim("nocam_run", scene_arg(scene) + " " + opt);
     CHECK(r.rc == 2);

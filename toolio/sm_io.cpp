@@ -30,37 +30,28 @@ int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** arg
 
 std::optional<int> parse_args(CLI::App& app, int argc, char** argv) { return parse_cli(app, argc, argv); }
 
+StderrMute::StderrMute() {
+  std::fflush(stderr);
+  saved_ = dup(2);
+  const int nul = open("/dev/null", O_WRONLY);
+  if (saved_ >= 0 && nul >= 0) dup2(nul, 2);
+  if (nul >= 0) close(nul);
+}
+
+StderrMute::~StderrMute() {
+  std::fflush(stderr);
+  if (saved_ >= 0) {
+    dup2(saved_, 2);
+    close(saved_);
+  }
+}
+
 void check_levels(const char* option, int levels) {
   if (levels < 4 || levels > 254 || levels % 2)
     throw ToolError(fmt::format("{} {}: must be even, 4..254", option, levels));
 }
 
 namespace {
-
-// libpng prints its own messages to stderr before OpenCV gives up on a broken file;
-// the tools promise a single error line, so stderr is parked on /dev/null meanwhile.
-class StderrMute {
- public:
-  StderrMute() {
-    std::fflush(stderr);
-    saved_ = dup(2);
-    int nul = open("/dev/null", O_WRONLY);
-    if (saved_ >= 0 && nul >= 0) dup2(nul, 2);
-    if (nul >= 0) close(nul);
-  }
-  ~StderrMute() {
-    std::fflush(stderr);
-    if (saved_ >= 0) {
-      dup2(saved_, 2);
-      close(saved_);
-    }
-  }
-  StderrMute(const StderrMute&) = delete;
-  StderrMute& operator=(const StderrMute&) = delete;
-
- private:
-  int saved_ = -1;
-};
 
 std::string temp_name(const fs::path& p) {
   fs::path dir = p.parent_path();

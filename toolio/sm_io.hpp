@@ -44,6 +44,20 @@ void check_input_file(const std::string& path);
 // Silences OpenCV's own logging (tools report errors themselves, in one line).
 void quiet_opencv();
 
+// Parks stderr on /dev/null while it lives: libpng and FFmpeg print their own complaints
+// ("[png @ 0x...] ...") on stderr past OpenCV's log level, and the tools promise one
+// error line of their own.
+class StderrMute {
+ public:
+  StderrMute();
+  ~StderrMute();
+  StderrMute(const StderrMute&) = delete;
+  StderrMute& operator=(const StderrMute&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
 // Reads an image file (PNG/JPEG/...) with cv::imread flags; throws ToolError when the
 // file is missing, unreadable or not a decodable image (libpng's chatter is suppressed).
 cv::Mat read_image(const std::string& path, int flags);
