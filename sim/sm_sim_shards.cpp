@@ -479,7 +479,7 @@ int merge_shards(const std::vector<std::string>& dirs, const std::string& out_di
     fs::copy_file(from, part, fs::copy_options::overwrite_existing);
     fs::rename(part, to);
   }
-  tools::write_text_atomic(out_dir + "/report.json", m.dump(2) + "\n");
+  tools::write_json_atomic(out_dir + "/report.json", m);
   (void)quiet;
   print_merged(m, out_dir);
   const bool ok = (m["bit_exact"].is_null() || m["bit_exact"].get<bool>()) && m["framing_ok"].get<bool>() &&

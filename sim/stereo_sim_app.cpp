@@ -49,9 +49,8 @@ void write_outputs(const SimOptions& opt, const HwConfig& hw, const SimInput& in
   write_panel(outs, opt.out_dir,
               {&in, &check.last_input, &model, &disp, range, &rep.packets, camera, opt.depth.cloud_max_depth,
                rep.json.value("bad1_percent", 0.0)});
-  const std::string text = rep.json.dump(2) + "\n";
   outs.write(
-      opt.out_dir + "/report.json", [&](const std::string& t) { tools::write_text_atomic(t, text); }, true);
+      opt.out_dir + "/report.json", [&](const std::string& t) { tools::write_json_atomic(t, rep.json); }, true);
   outs.commit();
 }
 

@@ -11,10 +11,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iomanip>
 #include <limits>
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "sm_signal_cleanup.hpp"
@@ -145,12 +148,16 @@ void write_image_atomic(const std::string& path, const cv::Mat& img, const std::
   }
 }
 
-void write_text_atomic(const std::string& path, const std::string& text) {
+namespace {
+
+// Writes through `body` to a temporary name beside `path`, then renames it: no partial file
+// is ever left under `path`. Throws ToolError.
+void write_stream_atomic(const std::string& path, const std::function<void(std::ostream&)>& body) {
   const std::string tmp = temp_name(path);
   const RemoveOnSignal guard(tmp);
   {
     std::ofstream f(tmp, std::ios::binary);
-    f << text;
+    body(f);
     f.close();
     if (!f) {
       std::error_code ec;
@@ -164,6 +171,17 @@ void write_text_atomic(const std::string& path, const std::string& text) {
     fs::remove(tmp, ec);
     throw ToolError(fmt::format("{}: cannot write file", path));
   }
+}
+
+}  // namespace
+
+void write_text_atomic(const std::string& path, const std::string& text) {
+  write_stream_atomic(path, [&](std::ostream& f) { f << text; });
+}
+
+void write_json_atomic(const std::string& path, const nlohmann::json& j) {
+  // streamed, not dumped to a string first: a long run's report is megabytes
+  write_stream_atomic(path, [&](std::ostream& f) { f << std::setw(2) << j << '\n'; });
 }
 
 cv::Mat disp_to_float(const DispImage& d) {

@@ -4,6 +4,7 @@
 // See docs/evaluation.md.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
 #include <opencv2/core.hpp>
 #include <optional>
 #include <stdexcept>
@@ -74,6 +75,8 @@ cv::Mat to_mat(const Image8& img);      // Image8 -> CV_8UC1 (copy)
 // compression level). Throws ToolError.
 void write_image_atomic(const std::string& path, const cv::Mat& img, const std::vector<int>& params = {});
 void write_text_atomic(const std::string& path, const std::string& text);
+// The same for a JSON document, indented by 2 and ended by a newline (streamed to the file).
+void write_json_atomic(const std::string& path, const nlohmann::json& j);
 
 // Disparity as float pixels, negative = invalid (no output).
 cv::Mat disp_to_float(const DispImage& d);
