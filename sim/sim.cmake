@@ -12,7 +12,7 @@ separate_arguments(_sm_sim_cxxflags UNIX_COMMAND "${SM_SIM_CXXFLAGS}")
 # CSE / PRE over Verilator's long straight-line functions (-ftime-report on the paper
 # configuration: alias walking 34 %, PRE 8 %, CSE after reload 11 %). Without GCSE and
 # with fewer alias queries per access the paper model's per-cycle code compiles in 37 s of
-# CPU instead of 61 s, and stereo_sim runs as fast (farm-bench, 5 runs each: paper 0.95,
+# CPU instead of 61 s, and stereo_sim runs as fast (alternating whole-process runs, 5 each: paper 0.95,
 # zynq 0.96 of the -O3 time). Before SM_SIM_CXXFLAGS, so a flag given there wins.
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   list(PREPEND _sm_sim_cxxflags -fno-gcse -fno-gcse-after-reload
