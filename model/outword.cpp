@@ -17,6 +17,7 @@ OutFields out_fields(const Evidence& ev, int x, int y, int nd, const OutputRegs&
   const unsigned on = (r.occ_en ? kFailOcc : 0u) | (r.uniq_en ? kFailUniq : 0u) | (r.agree_en ? kFailAgree : 0u) |
                       (r.tex_en ? kFailTex : 0u) | (r.lr_en ? kFailLr : 0u);
   f.fail = (valid_failures(ev, x, y, f.d, r) & on) != 0;
+  f.border_en = r.occ_en != 0;
   const uint8_t c = confidence(ev, x, y, f.d);
   f.lr_ok = (c & 0x80) != 0;
   f.matched = ev.matched.at(x, y) != 0;
@@ -28,14 +29,14 @@ OutFields out_fields(const Evidence& ev, int x, int y, int nd, const OutputRegs&
 
 int out_level(const OutFields& f, DispPix p) { return std::min<int>(f.fb, static_cast<int>(disp_value(p))); }
 
-uint32_t out_word(const OutFields& f, DispPix p, int x, int nd, const OutputRegs& r) {
+uint32_t out_word(const OutFields& f, DispPix p, int x, int nd) {
   const int post_d = static_cast<int>(disp_value(p));
   // the background fill replaces a nearer level and carries no fraction
   const bool bg = f.fb < post_d;
   const int d_out = out_level(f, p);
   const int q4 = bg ? 16 * d_out : subpix_after_post(16 * f.d + f.off, f.d, post_d);
   const bool border = x < d_out;
-  const bool valid = disp_valid(p) && !f.fail && !(r.occ_en && border);
+  const bool valid = disp_valid(p) && !f.fail && !(f.border_en && border);
   const unsigned conf = f.lr_ok << 7 | (f.matched && !border) << 6 | f.agree_ok << 5 | f.ratio;
   return make_out_word(valid, conf, static_cast<unsigned>(std::clamp(q4, 0, 16 * (nd - 1))));
 }
@@ -46,7 +47,7 @@ OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const Ou
   for (int y = 0; y < post.h; ++y)
     for (int x = 0; x < post.w; ++x) {
       const OutFields f = out_fields(ev, x, y, nd, r);
-      uint32_t w = out_word(f, post.at(x, y), x, nd, r);
+      uint32_t w = out_word(f, post.at(x, y), x, nd);
       if (conf_variant != 0 && out_valid(w))  // the study's alternatives to the specified bits
         w = (w & ~0xff0000u) | uint32_t{confidence(ev, x, y, out_level(f, post.at(x, y)), conf_variant)} << 16;
       out.at(x, y) = w;

@@ -25,21 +25,22 @@ inline unsigned out_q4(uint32_t w) { return w & 0xffffu; }
 // through the post filters; after them out_word forms the word from those fields and the
 // filters' level.
 struct OutFields {
-  uint8_t d = 0;          // the DP's level (after its fill)
-  int8_t off = 0;         // the Q.4 value at d minus 16 d (subpix_q4; -24..24)
-  bool fail = false;      // an enabled rule other than the left border fails
-  bool lr_ok = false;     // confidence bit 7: |lr - d| <= 1
-  bool matched = false;   // matched by the trellis (confidence bit 6 with x >= d_out)
-  bool agree_ok = false;  // confidence bit 5: |d - dw| <= 1
-  uint8_t ratio = 0;      // confidence bits 4:0
-  uint8_t fb = 0;         // background fill level (unmatched, occ_en 0, fill_bg 1), else DISP - 1
+  uint8_t d = 0;           // the DP's level (after its fill)
+  int8_t off = 0;          // the Q.4 value at d minus 16 d (subpix_q4; -24..24)
+  bool fail = false;       // an enabled rule other than the left border fails
+  bool border_en = false;  // the left-border rule (x < d_out) is on (occ_en)
+  bool lr_ok = false;      // confidence bit 7: |lr - d| <= 1
+  bool matched = false;    // matched by the trellis (confidence bit 6 with x >= d_out)
+  bool agree_ok = false;   // confidence bit 5: |d - dw| <= 1
+  uint8_t ratio = 0;       // confidence bits 4:0
+  uint8_t fb = 0;          // background fill level (unmatched, occ_en 0, fill_bg 1), else DISP - 1
 };
 // The fields of evidence pixel (x, y). nd = DISP.
 OutFields out_fields(const Evidence& ev, int x, int y, int nd, const OutputRegs& r);
 // The output level: the post filters' level, or the background fill where it is lower.
 int out_level(const OutFields& f, DispPix p);
 // The output word of a pixel at column x from its fields and the post filters' output p.
-uint32_t out_word(const OutFields& f, DispPix p, int x, int nd, const OutputRegs& r);
+uint32_t out_word(const OutFields& f, DispPix p, int x, int nd);
 
 // The output word of every pixel from the evidence and the post-processed disparity
 // (post: the filters' output, same size): level d_out = post's (or the background fill for

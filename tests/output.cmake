@@ -1,2 +1,12 @@
 # Output stage (docs/algorithm.md section 9: sub-pixel, validity, confidence): model tests.
 sm_unit_test(test_output_model LIBS sm_toolio INCLUDES ${CMAKE_SOURCE_DIR}/tests/common DISCOVER)
+
+# The output word after the post filters (sm_outword) against the model's out_word: DISP 16
+# at odd widths, DISP 10 (not a power of two), the paper's DISP 128 at its width and at one
+# narrower than DISP (every column then meets the left-border rule).
+sm_rtl_test(NAME tb_outword TOP sm_outword SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outword.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 ARGS --widths 37,2,64 --height 9)
+sm_rtl_test(NAME tb_outword_odd TOP sm_outword SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outword.cpp
+            PARAMS MAX_WIDTH=50 DISP=10 ARGS --widths 23,3 --height 7)
+sm_rtl_test(NAME tb_outword_paper TOP sm_outword SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outword.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 ARGS --widths 320,67 --height 6)
