@@ -115,15 +115,16 @@ int main(int argc, char** argv) {
       const Pixel& p = in[o->frame][pix];
       const long lat = static_cast<long>(k - 1) - beat_of[o->frame][pix];
       if (lat != 1) {
-        t.fail(fmt::format("{}latency at frame {} x {} y {}: {} beats, documented 1", where, o->frame, o->x, o->y, lat));
+        t.fail(
+            fmt::format("{}latency at frame {} x {} y {}: {} beats, documented 1", where, o->frame, o->x, o->y, lat));
         continue;
       }
       const uint32_t want = out_word(p.f, p.post, o->x, hw.disp);
       t.check(tb->m_word == want, [&] {
-        return fmt::format("{}frame {} x {} y {}: d {} off {} fb {} post {:#06x} fail {} border_en {}: word {:#010x}, "
-                           "model {:#010x}",
-                           where, o->frame, o->x, o->y, p.f.d, p.f.off, p.f.fb, p.post, p.f.fail, p.f.border_en,
-                           tb->m_word, want);
+        return fmt::format(
+            "{}frame {} x {} y {}: d {} off {} fb {} post {:#06x} fail {} border_en {}: word {:#010x}, "
+            "model {:#010x}",
+            where, o->frame, o->x, o->y, p.f.d, p.f.off, p.f.fb, p.post, p.f.fail, p.f.border_en, tb->m_word, want);
       });
     }
     t.all_out(where);
