@@ -10,3 +10,11 @@ sm_rtl_test(NAME tb_outword_odd TOP sm_outword SOURCES ${CMAKE_CURRENT_LIST_DIR}
             PARAMS MAX_WIDTH=50 DISP=10 ARGS --widths 23,3 --height 7)
 sm_rtl_test(NAME tb_outword_paper TOP sm_outword SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outword.cpp
             PARAMS MAX_WIDTH=320 DISP=128 ARGS --widths 320,67 --height 6)
+
+# The output stage's row store (sm_line_store): reader lags of one row to LINES - 1 rows,
+# a width below MAX_WIDTH (rows do not fill their stride) and a non-power-of-two depth.
+sm_rtl_test(NAME tb_line_store TOP sm_line_store SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_line_store.cpp
+            PARAMS DATA_W=13 MAX_WIDTH=40 LINES=3 ARGS --width 37 --rows 11 --lags 37,50,74)
+sm_rtl_test(NAME tb_line_store_deep RUN tb_line_store ARGS --width 40 --rows 9 --lags 40,79,80)
+sm_rtl_test(NAME tb_line_store_16 TOP sm_line_store SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_line_store.cpp
+            PARAMS DATA_W=30 MAX_WIDTH=64 LINES=16 ARGS --width 23 --rows 40 --lags 23,200,345)
