@@ -18,3 +18,12 @@ sm_rtl_test(NAME tb_line_store TOP sm_line_store SOURCES ${CMAKE_CURRENT_LIST_DI
 sm_rtl_test(NAME tb_line_store_deep RUN tb_line_store ARGS --width 40 --rows 9 --lags 40,79,80)
 sm_rtl_test(NAME tb_line_store_16 TOP sm_line_store SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_line_store.cpp
             PARAMS DATA_W=30 MAX_WIDTH=64 LINES=16 ARGS --width 23 --rows 40 --lags 23,200,345)
+
+# The output stage's first half (sm_outfields) against the model's out_fields: DISP 16 and
+# CW 4, DISP 10 and CW 3 (neither a power of two), the paper's DISP 128 and CW 6.
+sm_rtl_test(NAME tb_outfields TOP sm_outfields SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outfields.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CW=4 ARGS --width 37 --height 40)
+sm_rtl_test(NAME tb_outfields_odd TOP sm_outfields SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outfields.cpp
+            PARAMS MAX_WIDTH=50 DISP=10 CW=3 ARGS --width 23 --height 30)
+sm_rtl_test(NAME tb_outfields_paper TOP sm_outfields SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outfields.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 CW=6 ARGS --width 320 --height 5)

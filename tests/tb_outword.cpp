@@ -12,6 +12,7 @@
 
 #include SM_VTOP_H
 #include "disp_stream.hpp"
+#include "out_fields_bits.hpp"
 #include "outword.hpp"
 #include "sm_block_test.hpp"
 
@@ -53,18 +54,6 @@ Pixel random_pixel(std::mt19937& rng, int x, int nd) {
   return p;
 }
 
-uint32_t pack(const OutFields& f, int dw) {
-  uint32_t v = f.fb;
-  v = v << 5 | f.ratio;
-  v = v << 1 | f.agree_ok;
-  v = v << 1 | f.matched;
-  v = v << 1 | f.lr_ok;
-  v = v << 1 | f.border_en;
-  v = v << 1 | f.fail;
-  v = v << 6 | (static_cast<uint32_t>(f.off) & 63u);
-  return v << dw | f.d;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,7 +90,7 @@ int main(int argc, char** argv) {
         tb->s_side = b.side;
         const Pixel* p = b.frame >= 0 ? &in[b.frame][static_cast<size_t>(b.y) * w + b.x] : nullptr;
         tb->s_disp = p ? p->post : static_cast<uint16_t>(rng());
-        tb->s_fields = p ? pack(p->f, dw) : static_cast<uint32_t>(rng());
+        tb->s_fields = p ? pack_fields(p->f, dw) : static_cast<uint32_t>(rng());
       } else {  // garbage the block must not take
         tb->s_side = rng() & 31;
         tb->s_disp = static_cast<uint16_t>(rng());
