@@ -154,4 +154,19 @@ void evidence_line(const uint8_t* agg, int w, int nd, const DpLine& line, int y,
   }
 }
 
+Evidence evidence_frame(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
+                        const HwConfig& hw) {
+  Evidence ev(agg.w, agg.h);
+  DpScratch scratch;
+  DpLine line;
+  std::vector<uint8_t> pen;
+  for (int y = 0; y < agg.h; ++y) {
+    edge_penalties(&left.px[static_cast<size_t>(y) * left.w], agg.w, occ, occ_edge, edge_t, pen);
+    const uint8_t* a = agg.pix(0, y);
+    trellis_line_pen(a, agg.w, pen.data(), hw, scratch, line);
+    evidence_line(a, agg.w, agg.d, line, y, ev);
+  }
+  return ev;
+}
+
 }  // namespace sm

@@ -32,6 +32,12 @@ struct Evidence {
 // result (line.match, line.disp).
 void evidence_line(const uint8_t* agg, int w, int nd, const DpLine& line, int y, Evidence& ev);
 
+// The evidence of a whole frame from its aggregated costs: each row's trellis DP (with the
+// edge-dependent penalties of the rectified left image, as trellis_dp_edge) traced again
+// for its matches, then evidence_line. The stage function run_frame_stages composes.
+Evidence evidence_frame(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
+                        const HwConfig& hw);
+
 // Right-view WTA of one line: out[xr] = the lowest k of least A(xr + k, k) over the levels
 // with xr + k < w (a diagonal minimum the RTL keeps as one running (cost, level) per level).
 void right_wta(const uint8_t* agg, int w, int nd, std::vector<uint8_t>& out);

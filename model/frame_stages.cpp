@@ -1,5 +1,8 @@
 #include "frame_stages.hpp"
 
+#include "evidence.hpp"
+#include "outword.hpp"
+
 namespace sm {
 
 PipelineResult run_frame_stages(const Image8& left, const Image8& right, const HwConfig& hw, const Regs& regs,
@@ -15,7 +18,9 @@ PipelineResult run_frame_stages(const Image8& left, const Image8& right, const H
   r.agg = sw_aggregate(r.raw, r.rl, regs.sw_table, hw, threads);
   r.dp = trellis_dp_edge(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw, threads);
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
-  r.objects = separate_objects(r.post, regs, hw);
+  r.evidence = evidence_frame(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw);
+  r.out = make_output(r.evidence, r.post, hw.disp, regs.out);
+  r.objects = separate_objects(object_levels(r.out), regs, hw);
   return r;
 }
 

@@ -55,4 +55,13 @@ OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const Ou
   return out;
 }
 
+DispImage object_levels(const OutImage& out) {
+  DispImage d(out.w, out.h);
+  for (size_t i = 0; i < out.px.size(); ++i) {
+    const uint32_t w = out.px[i];
+    d.px[i] = out_valid(w) ? make_disp((out_q4(w) + 8) >> 4, true) : make_disp(0, false);
+  }
+  return d;
+}
+
 }  // namespace sm

@@ -48,6 +48,11 @@ uint32_t out_word(const OutFields& f, DispPix p, int x, int nd);
 // level, subpix_after_post), the validity rules and the confidence. nd = DISP.
 OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant = 0);
 
+// What the object labeller reads of each output word (section 8): its valid bit and its
+// level rounded to the nearest integer, (q4 + 8) >> 4 (invalid pixels: level 0, never
+// an object).
+DispImage object_levels(const OutImage& out);
+
 // Q.4 disparity as float pixels (negative = invalid), as disp_to_float for DispImage.
 // (In tools: toolio's out_to_float.)
 

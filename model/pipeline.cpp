@@ -165,7 +165,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   lap("post");
   r.out = make_output(r.evidence, r.post, nd, regs.out);
   lap("output");
-  r.objects = separate_objects(r.post, regs, hw);
+  r.objects = separate_objects(object_levels(r.out), regs, hw);
   lap("objects");
   return r;
 }

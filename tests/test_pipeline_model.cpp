@@ -44,6 +44,7 @@ void check_equal(const sm::PipelineResult& a, const sm::PipelineResult& b) {
   CHECK(a.dp == b.dp);
   CHECK(a.post_steps == b.post_steps);
   CHECK(a.post == b.post);
+  CHECK(a.out == b.out);
   CHECK(a.objects.objects == b.objects.objects);
   CHECK(a.objects.too_many_objects == b.objects.too_many_objects);
   CHECK(a.objects.table_full == b.objects.table_full);
