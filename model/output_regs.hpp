@@ -1,10 +1,13 @@
-// Planned registers of the output stage (sub-pixel estimator, validity rules, confidence;
-// docs/algorithm.md section 9). Model-side only for now: the RTL that reads them comes
-// later, and rtl/regmap.json may list only registers the RTL implements, so they live here
-// (Regs::out) until then. Reset values = the defaults chosen on the 14 scenes.
+// The output stage's settings (sub-pixel estimator, validity rules; docs/algorithm.md
+// section 9) as the model's functions take them. The registers SUBPIX .. TEX_T of
+// rtl/regmap.json (members of Regs) give them (output_regs); the studies also set the
+// model-only estimator subpix_src 0, which no register reaches. The member defaults are
+// the registers' reset values, chosen on the 14 scenes.
 #pragma once
 
 #include <cstdint>
+
+#include "sm_types.hpp"
 
 namespace sm {
 
@@ -38,6 +41,43 @@ inline OutputRegs dense_mode(OutputRegs r) {
   r.occ_en = r.lr_en = r.uniq_en = r.agree_en = r.tex_en = 0;
   r.fill_bg = 0;
   return r;
+}
+
+// The settings the registers of r give: SUBPIX 0 = no fraction, 1 / 2 = estimator 1 / 2.
+inline OutputRegs output_regs(const Regs& r) {
+  OutputRegs o;
+  o.subpix_en = r.subpix != 0;
+  o.subpix_src = r.subpix != 0 ? r.subpix : 2;
+  o.subpix_fit = r.subpix_fit;
+  o.occ_en = r.occ_en;
+  o.occ_t = r.occ_t;
+  o.fill_bg = r.fill_bg;
+  o.lr_en = r.lr_en;
+  o.lr_t = r.lr_t;
+  o.agree_en = r.agree_en;
+  o.agree_t = r.agree_t;
+  o.uniq_en = r.uniq_en;
+  o.uniq_t = r.uniq_t;
+  o.tex_en = r.tex_en;
+  o.tex_t = r.tex_t;
+  return o;
+}
+
+// The registers that give o (the inverse of output_regs for the estimators 1 and 2).
+inline void set_output_regs(Regs& r, const OutputRegs& o) {
+  r.subpix = o.subpix_en ? o.subpix_src : 0;
+  r.subpix_fit = o.subpix_fit;
+  r.occ_en = o.occ_en;
+  r.occ_t = o.occ_t;
+  r.fill_bg = o.fill_bg;
+  r.lr_en = o.lr_en;
+  r.lr_t = o.lr_t;
+  r.agree_en = o.agree_en;
+  r.agree_t = o.agree_t;
+  r.uniq_en = o.uniq_en;
+  r.uniq_t = o.uniq_t;
+  r.tex_en = o.tex_en;
+  r.tex_t = o.tex_t;
 }
 
 }  // namespace sm

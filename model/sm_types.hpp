@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "output_regs.hpp"
 #include "sm_defs.hpp"  // generated from rtl/defs.json
 
 namespace sm {
@@ -137,9 +136,6 @@ struct Regs : RegValues {
   // SW_TABLE0/1: 2-bit weight codes by |dI| >> 3 (all 0 here, the reset values of
   // regmap.json by defaults())
   std::array<uint8_t, 32> sw_table{};
-  // Planned registers of the output stage (sub-pixel, validity, confidence; not yet in the
-  // RTL, so not in rtl/regmap.json): model/output_regs.hpp.
-  OutputRegs out;
   // The registers' reset values at hw (rtl/regmap.json: width = max_width, ...) and the
   // identity grids of that size.
   static Regs defaults(const HwConfig& hw);

@@ -189,7 +189,7 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
                  MethodOut o = maps({sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
                                      sm::tools::disp_to_float(res.post_steps[1]),
                                      sm::tools::disp_to_float(res.post_steps[2]), sm::tools::disp_to_float(res.post)});
-                 add_output_modes(res, hw.disp, regs.out, o);
+                 add_output_modes(res, hw.disp, sm::output_regs(regs), o);
                  return o;
                }});
   using Scene = sm::tools::Scene;

@@ -233,9 +233,10 @@ int run(int argc, char** argv) {
     throw ToolError(fmt::format("bad configuration: {}", e.what()));
   }
   const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
-  const sm::OutImage word = mode == "integer" ? sm::OutImage{}
-                                              : sm::make_output(res.evidence, res.post, hw.disp,
-                                                                mode == "dense" ? sm::dense_mode(r.out) : r.out);
+  const sm::OutImage word =
+      mode == "integer" ? sm::OutImage{}
+                        : sm::make_output(res.evidence, res.post, hw.disp,
+                                          mode == "dense" ? sm::dense_mode(sm::output_regs(r)) : sm::output_regs(r));
   const cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;
