@@ -71,6 +71,10 @@ module sm_axil_regs #(
     output wire [7:0]        cfg_obj_near,
     output wire [7:0]        cfg_obj_tol,
     output wire [15:0]       cfg_obj_min_pixels,
+    // the output stage's registers SUBPIX .. TEX_T in sm_outfields' s_cfg layout: {TEX_T,
+    // UNIQ_T, AGREE_T, LR_T, OCC_T, TEX_EN, UNIQ_EN, AGREE_EN, LR_EN, FILL_BG, OCC_EN,
+    // SUBPIX_FIT, SUBPIX}
+    output wire [48:0]       cfg_out,
     /* verilator coverage_on */
     // object list read port: obj_rd_data is sampled two clocks after obj_rd_idx changes
     output reg  [OIW-1:0]    obj_rd_idx,
@@ -163,6 +167,12 @@ module sm_axil_regs #(
   assign cfg_obj_near       = shadow_q[SM_OBJ_NEAR_VALUE_SOFF +: SM_OBJ_NEAR_VALUE_SW];
   assign cfg_obj_tol        = shadow_q[SM_OBJ_TOL_VALUE_SOFF +: SM_OBJ_TOL_VALUE_SW];
   assign cfg_obj_min_pixels = shadow_q[SM_OBJ_MIN_PIXELS_VALUE_SOFF +: SM_OBJ_MIN_PIXELS_VALUE_SW];
+  assign cfg_out = {shadow_q[SM_TEX_T_VALUE_SOFF +: 8], shadow_q[SM_UNIQ_T_VALUE_SOFF +: 8],
+                    shadow_q[SM_AGREE_T_VALUE_SOFF +: 8], shadow_q[SM_LR_T_VALUE_SOFF +: 8],
+                    shadow_q[SM_OCC_T_VALUE_SOFF +: 8], shadow_q[SM_TEX_EN_VALUE_SOFF],
+                    shadow_q[SM_UNIQ_EN_VALUE_SOFF], shadow_q[SM_AGREE_EN_VALUE_SOFF], shadow_q[SM_LR_EN_VALUE_SOFF],
+                    shadow_q[SM_FILL_BG_VALUE_SOFF], shadow_q[SM_OCC_EN_VALUE_SOFF],
+                    shadow_q[SM_SUBPIX_FIT_VALUE_SOFF], shadow_q[SM_SUBPIX_VALUE_SOFF +: 2]};
 
   // ---- address decoding (the byte-lane bits a[1:0] are ignored by design)
   /* verilator lint_off UNUSEDSIGNAL */

@@ -25,8 +25,8 @@ module sm_outfmt #(
     input  wire [XW-1:0] width,         // active width (shadow), latched at each sof
     input  wire [YW-1:0] height,        // the height of the frame whose sof enters next
     input  wire [`SM_SIDE_W-1:0] in_side,       // last stage's beat
-    input  wire [15:0]   in_disp,
-    output wire [15:0]   m_axis_tdata,
+    input  wire [31:0]   in_word,       // the output word (docs/algorithm.md 9.4)
+    output wire [31:0]   m_axis_tdata,
     output wire          m_axis_tuser,
     output wire          m_axis_tlast,
     output wire          m_axis_tvalid,
@@ -60,7 +60,7 @@ module sm_outfmt #(
   reg  [LW-1:0] eofs_q;   // frames whose last pixel is queued
   wire          full;
   wire [LW-1:0] level;
-  wire [18:0]   head;  // {last pixel of the frame, tuser, tlast, tdata}
+  wire [34:0]   head;  // {last pixel of the frame, tuser, tlast, tdata}
   wire          fifo_valid;
   wire          pad_wr = pad_q && !full;
   wire          wr_in = ce && in_real;
@@ -80,13 +80,13 @@ module sm_outfmt #(
   wire          last_px = tlast && (y == cur_h - 1'b1);
 
   sm_fifo #(
-      .DATA_W(19),
+      .DATA_W(35),
       .DEPTH (FIFO_DEPTH)
   ) u_out_fifo (
       .clk       (clk),
       .rst_n     (rst_n),
       .wr_en     (wr),
-      .din       ({last_px, sof, tlast, pad_q ? 16'd0 : in_disp}),
+      .din       ({last_px, sof, tlast, pad_q ? 32'd0 : in_word}),
       .full      (full),
       .rd_en     (pop),
       .dout      (head),
@@ -94,10 +94,10 @@ module sm_outfmt #(
       .level     (level)
   );
   // tuser / tlast only with tvalid (the FIFO head holds stale bits when empty)
-  assign m_axis_tuser = m_axis_tvalid & head[17];
-  assign m_axis_tlast = m_axis_tvalid & head[16];
-  assign m_axis_tdata = head[15:0];
-  wire          head_eof = head[18];
+  assign m_axis_tuser = m_axis_tvalid & head[33];
+  assign m_axis_tlast = m_axis_tvalid & head[32];
+  assign m_axis_tdata = head[31:0];
+  wire          head_eof = head[34];
 
   // Level after this clock; room is registered, so it must already count this clock's
   // write and read to be exact for the next ce.
@@ -105,9 +105,9 @@ module sm_outfmt #(
   wire [LW-1:0] level_next = level + {{(LW-1){1'b0}}, wr_ok} - {{(LW-1){1'b0}}, pop};
   wire          popped_eof = pop && head_eof;
   wire [LW-1:0] eofs_next = eofs_q + {{(LW-1){1'b0}}, wr_ok && last_px} - {{(LW-1){1'b0}}, popped_eof};
-  wire          rd_open_next = rd ? (!head_eof && (head[17] || rd_open_q)) : rd_open_q;
+  wire          rd_open_next = rd ? (!head_eof && (head[33] || rd_open_q)) : rd_open_q;
   // The sink's frame at a restart: it has taken the frame's tuser beat, or is offered it.
-  wire          keep_next = restart ? (rd_open_next || (m_axis_tvalid && head[17] && !rd))
+  wire          keep_next = restart ? (rd_open_next || (m_axis_tvalid && head[33] && !rd))
                                     : keep_q && !(rd && head_eof);
   wire          open_w = wr_ok ? !last_px : open_q;
   // Padding is needed when the sink's frame is the one being written: no last pixel of
@@ -161,7 +161,7 @@ module sm_outfmt #(
   // Simulation-only AXI4-Stream rule (Verilator --assert builds): once tvalid is high it
   // stays high, with the same beat, until the sink takes it.
   reg        chk_wait_q;
-  reg [17:0] chk_beat_q;
+  reg [33:0] chk_beat_q;
   always @(posedge clk) begin
     chk_wait_q <= rst_n && m_axis_tvalid && !m_axis_tready;
     chk_beat_q <= {m_axis_tuser, m_axis_tlast, m_axis_tdata};

@@ -33,8 +33,8 @@ module sm_top #(
     input  wire        s_axis_tlast,
     input  wire        s_axis_tvalid,
     output wire        s_axis_tready,
-    // disparity: tdata[15] = valid, tdata[DW-1:0] = disparity
-    output wire [15:0] m_axis_tdata,
+    // disparity (docs/algorithm.md 9.4): tdata = {valid, 7'b0, confidence[7:0], 16 d + fraction}
+    output wire [31:0] m_axis_tdata,
     output wire        m_axis_tuser,
     output wire        m_axis_tlast,
     output wire        m_axis_tvalid,
@@ -76,6 +76,7 @@ module sm_top #(
   localparam OIW  = $clog2(4 + 4 * MAX_OBJECTS);
   localparam PUE  = (PU == 0) ? DISP : PU;  // levels per clock
   localparam F    = DISP / PUE;             // clocks per pixel
+  localparam DWD  = $clog2(DISP);           // disparity level bits
   localparam FCW  = (F > 1) ? $clog2(F) : 1;
   localparam IN_DEPTH = 1 << $clog2(MAX_WIDTH + 32);  // input FIFO (sm_seq's depth rule)
   localparam IN_LW    = $clog2(IN_DEPTH) + 1;         // its level, 0..IN_DEPTH + 1
@@ -99,6 +100,7 @@ module sm_top #(
   wire [3:0]    cfg_filter_enable;
   wire [7:0]    cfg_obj_near, cfg_obj_tol;
   wire [15:0]   cfg_obj_min_pixels;
+  wire [48:0]   cfg_out;
   wire          grid_we;
   wire [31:0]   grid_wdata;
   wire [GAW-1:0] grid_waddr;  // {camera, bank, point}
@@ -156,7 +158,7 @@ module sm_top #(
       .cfg_grid_bank(cfg_grid_bank), .cfg_occ(cfg_occ), .cfg_occ_edge(cfg_occ_edge),
       .cfg_edge_t(cfg_edge_t), .cfg_sw_table(cfg_sw_table),
       .cfg_filter_enable(cfg_filter_enable), .cfg_obj_near(cfg_obj_near), .cfg_obj_tol(cfg_obj_tol),
-      .cfg_obj_min_pixels(cfg_obj_min_pixels),
+      .cfg_obj_min_pixels(cfg_obj_min_pixels), .cfg_out(cfg_out),
       .obj_rd_idx(obj_rd_idx), .obj_rd_data(obj_rd_data_q),
       .grid_we(grid_we), .grid_waddr(grid_waddr), .grid_wdata(grid_wdata)
   );
@@ -221,8 +223,9 @@ module sm_top #(
   localparam P_FILT = P_EDGT + 8;      // filter enables: F1..F3 medians, then F0 band
   localparam P_OBJ  = P_FILT + 4;      // object near, tol, min pixels, then the height
   localparam P_H    = P_OBJ + 32;
-  localparam PW     = P_H + YW;
-  wire [PW-1:0]   fr_par = {cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
+  localparam P_OUT  = P_H + YW;        // the output stage's registers (sm_outfields' s_cfg)
+  localparam PW     = P_OUT + 49;
+  wire [PW-1:0]   fr_par = {cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
                             cfg_edge_t, cfg_occ_edge, cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
   wire [4*PW-1:0] fr_hist;
   sm_frame_hist #(.PW(PW)) u_fhist (
@@ -308,13 +311,17 @@ module sm_top #(
   wire [`SM_SIDE_W-1:0] dp_side;
   wire [15:0] dp_disp;
   wire [15:0] par_occ;  // {at an edge, flat}
+  wire        dp_matched;
+  wire [7:0]  dp_gap;
+  wire [DWD-1:0] dp_fill_bg;
   sm_frame_sel #(.PW(PW), .LSB(P_OCC), .W(16), .NEXT(1)) u_fsel_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(dp_side), .hist(fr_hist), .par(par_occ)
   );
   sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW), .PU(PUE)) u_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
       .occ(par_occ[7:0]), .occ_edge(par_occ[15:8]), .s_edge(dp_edge),
-      .s_side(ag_side), .s_cost(ag_cost), .m_side(dp_side), .m_disp(dp_disp)
+      .s_side(ag_side), .s_cost(ag_cost), .m_side(dp_side), .m_disp(dp_disp),
+      .m_matched(dp_matched), .m_gap(dp_gap), .m_fill_bg(dp_fill_bg)
   );
 
   // ---------------------------------------------------------------- post-processing
@@ -349,6 +356,24 @@ module sm_top #(
       .s_side(f2_side), .s_disp(f2_disp), .m_side(f3_side), .m_disp(f3_disp)
   );
 
+  // ---------------------------------------------------------------- output stage
+  // Sub-pixel disparity, validity and confidence (docs/algorithm.md section 9). Its
+  // registers are those of the frame whose first pixel the DP's read-out emits next: the
+  // DP's input (ag_side) sees that frame's start two rows before.
+  wire [48:0] par_out;
+  sm_frame_sel #(.PW(PW), .LSB(P_OUT), .W(49), .NEXT(0)) u_fsel_out (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ag_side), .hist(fr_hist), .par(par_out)
+  );
+  wire [`SM_SIDE_W-1:0] out_side, obj_side;
+  wire [31:0] out_word;
+  wire [15:0] obj_disp;
+  sm_outstage #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW), .PU(PUE), .BAND_K(BAND_K)) u_outstage (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .s_side(ag_side), .s_cost(ag_cost),
+      .dp_side(dp_side), .dp_disp(dp_disp), .dp_matched(dp_matched), .dp_gap(dp_gap), .dp_fill_bg(dp_fill_bg),
+      .s_cfg(par_out), .post_side(f3_side), .post_disp(f3_disp),
+      .m_side(out_side), .m_word(out_word), .m_obj_side(obj_side), .m_obj_disp(obj_disp)
+  );
+
   // Object list: the register file reads word (idx) of the list window -- header at 0,
   // object i at 4 + 4i .. 7 + 4i (rtl/regmap.json) -- two clocks after it sets idx.
   localparam IW = (MAX_OBJECTS > 1) ? $clog2(MAX_OBJECTS) : 1;
@@ -373,7 +398,7 @@ module sm_top #(
   ) u_objects (
       .clk(aclk), .rst_n(rst_n), .out_rst_n(host_rst_n), .ce(ce), .width(width), .height(frame_height),
       .near_thr(par_obj[7:0]), .tol(par_obj[15:8]), .min_pixels(par_obj[31:16]),
-      .s_side(f3_side), .s_disp(f3_disp),
+      .s_side(obj_side), .s_disp(obj_disp),
       .list_ready(list_ready), .obj_count(obj_count), .too_many(too_many), .table_full(table_full),
       .pkt_lost(pkt_lost), .rd_index(obj_word_idx[IW+1:2]),
       .rd_x0(rd_x0), .rd_y0(rd_y0), .rd_x1(rd_x1), .rd_y1(rd_y1), .rd_count(rd_count), .rd_sum(rd_sum),
@@ -399,7 +424,7 @@ module sm_top #(
   // ---------------------------------------------------------------- output
   sm_outfmt #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT)) u_out (
       .clk(aclk), .rst_n(host_rst_n), .restart(!rst_n), .ce(ce), .width(width), .height(frame_height),
-      .in_side(f3_side), .in_disp(f3_disp), .room(out_room), .err_overflow(out_overflow),
+      .in_side(out_side), .in_word(out_word), .room(out_room), .err_overflow(out_overflow),
       .m_axis_tdata(m_axis_tdata), .m_axis_tuser(m_axis_tuser), .m_axis_tlast(m_axis_tlast),
       .m_axis_tvalid(m_axis_tvalid), .m_axis_tready(m_axis_tready)
   );
@@ -414,9 +439,9 @@ module sm_top #(
   reg        chk_rst_q;
   reg        chk_host_rst_q;
   reg        chk_wait_q, chk_owait_q;
-  reg [17:0] chk_beat_q;
+  reg [33:0] chk_beat_q;
   reg [32:0] chk_obeat_q;
-  wire [17:0] chk_beat  = {m_axis_tuser, m_axis_tlast, m_axis_tdata};
+  wire [33:0] chk_beat  = {m_axis_tuser, m_axis_tlast, m_axis_tdata};
   wire [32:0] chk_obeat = {m_axis_obj_tlast, m_axis_obj_tdata};
   initial chk_live_q = 1'b0;
   always @(posedge aclk) begin
