@@ -49,7 +49,7 @@ int run(int argc, char** argv) {
     for (int y = 0; y < li.h; ++y)
       for (int x = 0; x < li.w; ++x) {
         in_txt += fmt::format("{:04x}\n", li.at(x, y) | (ri.at(x, y) << 8));
-        exp_txt += fmt::format("{:04x}\n", res.post.at(x, y));
+        exp_txt += fmt::format("{:08x}\n", res.out.at(x, y));
       }
   sm::tools::write_text_atomic(out + "/in.hex", in_txt);
   sm::tools::write_text_atomic(out + "/expected.hex", exp_txt);

@@ -23,7 +23,7 @@ module sm_bench_tb;
   reg  [15:0] s_tdata = 16'd0;
   reg         s_tuser = 1'b0, s_tlast = 1'b0, s_tvalid = 1'b0;
   wire        s_tready;
-  wire [15:0] m_tdata;
+  wire [31:0] m_tdata;
   wire        m_tuser, m_tlast, m_tvalid;
   wire [31:0] obj_tdata;
   wire        obj_tlast, obj_tvalid;
@@ -92,7 +92,7 @@ module sm_bench_tb;
       end
     end
     if (m_tvalid) begin
-      $fwrite(fo, "%04x\n", m_tdata);
+      $fwrite(fo, "%08x\n", m_tdata);
       nout = nout + 1;
     end
   end

@@ -22,6 +22,7 @@
 #include "sm_host.hpp"
 #include "sm_regmap.hpp"
 #include "sm_tb.hpp"
+#include "outword.hpp"
 #include "sm_types.hpp"
 
 namespace sm {
@@ -72,7 +73,7 @@ struct FrameStats {
 };
 
 struct SimResult {
-  std::vector<DispImage> frames;  // disparity frames out of m_axis
+  std::vector<OutImage> frames;  // output words of each frame out of m_axis
   std::vector<ObjWords> object_packets;
   std::vector<FrameStats> stats;
   uint64_t cycles = 0;
@@ -90,7 +91,7 @@ using StereoFrame = std::pair<Image8, Image8>;
 struct FrameFeed {
   size_t count = 0;                                     // frames of the run
   std::function<const StereoFrame&(size_t f)> frame;    // the camera's frame f
-  std::function<void(size_t f, DispImage&& disp)> out;  // empty: kept in SimResult::frames
+  std::function<void(size_t f, OutImage&& words)> out;  // empty: kept in SimResult::frames
 };
 
 struct VcdWindow {
@@ -222,7 +223,7 @@ class SimEngine {
     uint64_t due = 0;  // cycle the camera's next pixel is due
     size_t f = 0;      // camera: frame, column, row
     int x = 0, y = 0;
-    DispImage cur;  // output: the frame being assembled, column, row, frames done
+    OutImage cur;  // output: the frame being assembled, column, row, frames done
     int ox = 0, oy = 0;
     size_t oframe = 0;
     std::vector<uint32_t> pkt;  // object packet being assembled
@@ -377,14 +378,14 @@ class SimEngine {
     if (s.ox == 0 && s.oy == 0) {
       if (!ou && res.framing_error.empty())
         res.framing_error = fmt::format("frame {}: first pixel without tuser", s.oframe);
-      s.cur = DispImage(s.width, s.height);
+      s.cur = OutImage(s.width, s.height);
       res.stats[s.oframe].first_out_cycle = now;
     } else if (ou && res.framing_error.empty()) {
       res.framing_error = fmt::format("frame {}: tuser at x {} y {}", s.oframe, s.ox, s.oy);
     }
     if (ol != (s.ox == s.width - 1) && res.framing_error.empty())
       res.framing_error = fmt::format("frame {}: tlast {} at x {} y {}", s.oframe, ol, s.ox, s.oy);
-    s.cur.at(s.ox, s.oy) = static_cast<DispPix>(od);
+    s.cur.at(s.ox, s.oy) = od;
     if (++s.ox < s.width) return;
     s.ox = 0;
     if (on_row) on_row(s.oframe, s.oy);

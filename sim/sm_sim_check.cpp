@@ -26,18 +26,18 @@ ModelCheck start_check(bool no_check, size_t first, size_t nframes) {
 }
 
 void check_frame(ModelCheck& c, size_t f, const HwConfig& hw, const Regs& regs, const StereoFrame& in,
-                 const DispImage& got) {
+                 const OutImage& got) {
   const bool last = f + 1 == c.frame_mismatches.size();
   if (last) c.last_input = in;
   if (!c.done) return;
   PipelineResult m = run_pipeline(in.first, in.second, hw, regs, false);
-  const DispImage& exp = m.post;
+  const OutImage& exp = m.out;
   const size_t fg = c.first + f;
   for (int y = 0; y < exp.h; ++y)
     for (int x = 0; x < exp.w; ++x)
       if (exp.at(x, y) != got.at(x, y))
         count_mismatch(c, f, [&] {
-          return fmt::format("frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}", fg, x, y, exp.at(x, y),
+          return fmt::format("frame {} x {} y {}: expected 0x{:08x} got 0x{:08x}", fg, x, y, exp.at(x, y),
                              got.at(x, y));
         });
   c.want_packets[f] = object_packet(m.objects, false);

@@ -31,7 +31,7 @@ ModelCheck start_check(bool no_check, size_t first, size_t nframes);
 
 // Frame f of the run (its input and the RTL's disparity) against the model with regs.
 void check_frame(ModelCheck& c, size_t f, const HwConfig& hw, const Regs& regs, const StereoFrame& in,
-                 const DispImage& got);
+                 const OutImage& got);
 
 // The RTL's object packets against the model's, once the run is over.
 void check_packets(ModelCheck& c, const SimResult& res);

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 
 namespace fs = std::filesystem;
 
@@ -27,7 +28,7 @@ FrameFiles::~FrameFiles() {
   for (const auto& p : written_) fs::remove(p, ec);
 }
 
-void FrameFiles::write(size_t f, const DispImage& disp) {
+void FrameFiles::write(size_t f, const OutImage& disp) {
   const std::string path = frame_disparity_path(disp_file_, f);
   if (written_.empty()) {
     const fs::path dir = fs::path(path).parent_path();
@@ -35,7 +36,7 @@ void FrameFiles::write(size_t f, const DispImage& disp) {
   }
   on_signal_.emplace_back(path);
   written_.push_back(path);  // before writing: a failed write's part is removed too
-  tools::write_disparity_file(path, tools::disp_to_float(disp));
+  tools::write_disparity_file(path, tools::out_to_float(disp));
 }
 
 }  // namespace sm::simapp

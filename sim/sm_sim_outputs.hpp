@@ -30,7 +30,7 @@ class FrameFiles {
   FrameFiles(const FrameFiles&) = delete;
   FrameFiles& operator=(const FrameFiles&) = delete;
   ~FrameFiles();
-  void write(size_t f, const DispImage& disp);
+  void write(size_t f, const OutImage& disp);
   void keep() { kept_ = true; }
 
  private:

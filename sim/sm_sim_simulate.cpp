@@ -58,7 +58,7 @@ SimRun simulate(const SimOptions& opt, const HwConfig& hw, SimInput& in, const R
   RunRequest req;
   req.feed.count = in.nframes;
   req.feed.frame = [&window](size_t f) -> const StereoFrame& { return window.at(f); };
-  req.feed.out = [&](size_t f, DispImage&& disp) {
+  req.feed.out = [&](size_t f, OutImage&& disp) {
     check_frame(run.check, f, hw, plan.regs[f], window.at(f), disp);
     if (opt.disp_each) each.write(in.first + f, disp);
     window.release(f + 1);

@@ -21,7 +21,7 @@ struct SimRun {
   int fold = 1;  // clocks per pixel of the datapath (DISP / PU)
   RunResult out;
   ModelCheck check;  // every frame against the model, as it left the RTL
-  DispImage last;    // the last frame's disparity
+  OutImage last;     // the last frame's output words
 };
 
 // Streams the input's frames through the model, each checked against the reference

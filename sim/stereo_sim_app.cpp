@@ -18,6 +18,7 @@
 #include <filesystem>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "sm_sim_check.hpp"
 #include "sm_sim_depth.hpp"
@@ -87,7 +88,7 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   if (in.source->resized())
     fmt::print(stderr, "note: input resized to the active size {}x{}\n", plan.width, plan.height);
   const ModelCheck& check = run.check;
-  const cv::Mat disp = tools::disp_to_float(run.last);
+  const cv::Mat disp = tools::out_to_float(run.last);
   SimReport rep = make_report(opt, info, in, plan, run, check, disp);
   add_calibration_report(cam, rep.json);
   if (opt.shard.given) add_shard_info(opt, in, rep.json);

@@ -208,7 +208,7 @@ class FaultTb {
     t.eval();
     const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
     const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
-    const uint16_t od = static_cast<uint16_t>(t.m_axis_tdata);
+    const uint32_t od = t.m_axis_tdata;
     const bool ou = t.m_axis_tuser, ol = t.m_axis_tlast;
     const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
     const uint32_t objd = t.m_axis_obj_tdata;
@@ -238,7 +238,7 @@ class FaultTb {
         note(
             fmt::format("m_axis_tvalid {} m_axis_obj_tvalid {} s_axis_tready {}", sig & 1u, (sig >> 1) & 1u, sig >> 2));
       trace_sig_ = sig;
-      if (out_hs) note(fmt::format("m_axis 0x{:04x} tuser {} tlast {}", od, ou, ol));
+      if (out_hs) note(fmt::format("m_axis 0x{:08x} tuser {} tlast {}", od, ou, ol));
       if (obj_hs) note(fmt::format("m_axis_obj 0x{:08x} tlast {}", objd, objl));
     }
     if (obj_hs && !lost_now) {
@@ -410,14 +410,14 @@ class FaultTb {
   // tuser / tlast only with TVALID.
   void check_protocol(const Top& t, bool ready) {
     const bool ov = t.m_axis_tvalid, objv = t.m_axis_obj_tvalid;
-    const uint32_t beat = (static_cast<uint32_t>(t.m_axis_tdata) & 0xffffu) | (t.m_axis_tuser ? 1u << 16 : 0u) |
-                          (t.m_axis_tlast ? 1u << 17 : 0u);
+    const uint64_t beat =
+        uint64_t{t.m_axis_tdata} | (t.m_axis_tuser ? 1ull << 32 : 0ull) | (t.m_axis_tlast ? 1ull << 33 : 0ull);
     const uint64_t obeat = t.m_axis_obj_tdata | (t.m_axis_obj_tlast ? 1ull << 32 : 0ull);
     auto fail = [&](const std::string& what) { t_.check(false, fmt::format("cycle {}: {}", tb_.cycles(), what)); };
     if (reset_prev_ && (ov || objv))
       fail(fmt::format("TVALID high in the clock after a reset edge (m_axis {}, m_axis_obj {})", ov, objv));
     if (wait_out_ && (!ov || beat != wait_beat_))
-      fail(fmt::format("m_axis beat 0x{:05x} withdrawn or changed before tready (now valid {} 0x{:05x})", wait_beat_,
+      fail(fmt::format("m_axis beat 0x{:09x} withdrawn or changed before tready (now valid {} 0x{:09x})", wait_beat_,
                        ov, beat));
     if (wait_obj_ && (!objv || obeat != wait_obeat_))
       fail(fmt::format("m_axis_obj beat 0x{:09x} withdrawn or changed before tready", wait_obeat_));
@@ -440,7 +440,7 @@ class FaultTb {
     out_id_ = 0;
   }
 
-  void out_beat(uint16_t d, bool user, bool last) {
+  void out_beat(uint32_t d, bool user, bool last) {
     ++beats_;
     if (!in_frame_) {
       if (!t_.check(user, fmt::format("output frame {}: first beat without tuser", frames_out_))) {
@@ -453,7 +453,7 @@ class FaultTb {
       in_frame_ = true;
       ox_ = oy_ = 0;
       const ExpFrame& e = pre_.empty() ? model_.frames.front() : pre_.front();
-      cur_ = sm::DispImage(e.w, e.h);
+      cur_ = sm::OutImage(e.w, e.h);
     } else {
       t_.check(!user, fmt::format("output frame {}: tuser at x {} y {}", frames_out_, ox_, oy_));
     }
@@ -482,7 +482,7 @@ class FaultTb {
     const auto& m = f.result(hw_);
     const int n = f.w * f.h;
     int k = 0;
-    while (k < n && m.post.at(k % f.w, k / f.w) == cur_.at(k % f.w, k / f.w)) ++k;
+    while (k < n && m.out.at(k % f.w, k / f.w) == cur_.at(k % f.w, k / f.w)) ++k;
     int bad = 0;
     for (int i = k; i < n; ++i) bad += cur_.at(i % f.w, i / f.w) != 0;
     t_.check(bad == 0, fmt::format("output frame {} at a soft reset: model up to pixel {}, then {} of {} pixels not 0",
@@ -503,9 +503,9 @@ class FaultTb {
     int n = 0;
     for (int y = 0; y < f.h; ++y)
       for (int x = 0; x < f.w; ++x)
-        if (m.post.at(x, y) != cur_.at(x, y) && n++ == 0)
-          fmt::print("first mismatch: output frame {} ({}x{}, {}) x {} y {}: expected 0x{:04x} got 0x{:04x}\n",
-                     frames_out_, f.w, f.h, f.faulty ? "faulty input" : "well-formed input", x, y, m.post.at(x, y),
+        if (m.out.at(x, y) != cur_.at(x, y) && n++ == 0)
+          fmt::print("first mismatch: output frame {} ({}x{}, {}) x {} y {}: expected 0x{:08x} got 0x{:08x}\n",
+                     frames_out_, f.w, f.h, f.faulty ? "faulty input" : "well-formed input", x, y, m.out.at(x, y),
                      cur_.at(x, y));
     t_.check(n == 0, fmt::format("output frame {} bit-exact ({} pixels differ)", frames_out_, n));
     if (f.faulty) {
@@ -567,7 +567,7 @@ class FaultTb {
   bool paused_ = false, force_ready_ = false, in_reset_ = false, reset_prev_ = false, hold_low_ = false;
   // sink-side protocol state
   bool wait_out_ = false, wait_obj_ = false;
-  uint32_t wait_beat_ = 0;
+  uint64_t wait_beat_ = 0;
   uint64_t wait_obeat_ = 0;
   bool hdr_seen_ = false;
   uint64_t hdr_cycle_ = 0, soft_cycle_ = 0;
@@ -582,7 +582,7 @@ class FaultTb {
   // output side
   bool in_frame_ = false;
   int ox_ = 0, oy_ = 0;
-  sm::DispImage cur_;
+  sm::OutImage cur_;
   static constexpr int kKeep = 64;
   std::array<std::vector<uint32_t>, kKeep> done_pkts_;  // packets of output frames
   int next_pkt_ = 0, out_id_ = 0;

@@ -25,7 +25,7 @@ namespace {
 
 struct Expect {
   int frame, x, y;
-  uint16_t data;
+  uint32_t data;
   bool user, last;
 };
 
@@ -55,12 +55,12 @@ int main(int argc, char** argv) {
   }
 
   std::mt19937 rng(99);
-  std::vector<std::vector<uint16_t>> img;  // disparity words by frame
+  std::vector<std::vector<uint32_t>> img;  // disparity words by frame
   std::deque<Expect> expect;
   for (const auto& s : sched) {
     if (s.b.frame < 0) continue;
     if (static_cast<int>(img.size()) <= s.b.frame) img.resize(static_cast<size_t>(s.b.frame) + 1);
-    const uint16_t d = static_cast<uint16_t>((rng() & 1 ? 0x8000 : 0) | (rng() & 0x7fff));
+    const uint32_t d = static_cast<uint32_t>(rng());  // any word: the formatter passes it through
     img[static_cast<size_t>(s.b.frame)].push_back(d);
     expect.push_back({s.b.frame, s.b.x, s.b.y, d, s.b.x == 0 && s.b.y == 0, s.b.x == s.w - 1});
   }
@@ -92,11 +92,11 @@ int main(int argc, char** argv) {
         top->height =
             static_cast<uint32_t>(s.frame < static_cast<int>(h1.size()) ? h1[static_cast<size_t>(s.frame)]
                                                                         : h2[static_cast<size_t>(s.frame) - h1.size()]);
-      top->in_disp = s.frame >= 0 ? img[static_cast<size_t>(s.frame)][static_cast<size_t>(s.y * sched[next].w + s.x)]
-                                  : static_cast<uint16_t>(rng());
+      top->in_word = s.frame >= 0 ? img[static_cast<size_t>(s.frame)][static_cast<size_t>(s.y * sched[next].w + s.x)]
+                                  : static_cast<uint32_t>(rng());
     } else {                                              // garbage
       top->in_side = static_cast<uint8_t>(rng() & 0x1e);  // never real: not taken anyway
-      top->in_disp = static_cast<uint16_t>(rng());
+      top->in_word = static_cast<uint32_t>(rng());
       if (rng() & 1) top->in_side = static_cast<uint8_t>(rng() & 0x1f);
     }
     top->m_axis_tready = static_cast<int>(rng() % 100) >= bp;
@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < pushed; ++i) {
     top->ce = 1;
     top->in_side = static_cast<uint8_t>(sm::test::kReal | (i % W1 == 0 ? sm::test::kSol : 0));
-    top->in_disp = static_cast<uint16_t>(i);
+    top->in_word = static_cast<uint32_t>(i);
     top->eval();
     if (top->err_overflow) ++overflows;
     tick();
@@ -155,14 +155,14 @@ int main(int argc, char** argv) {
   // high): the frame the sink is receiving is completed -- queued pixels, then 0 words --
   // every other queued beat is dropped, and room stays low until the FIFO is empty.
   struct Out {
-    uint16_t d;
+    uint32_t d;
     bool u, l;
   };
   std::vector<Out> seen;
-  auto step = [&](bool ce, uint8_t side, uint16_t d, bool ready, bool restart) {
+  auto step = [&](bool ce, uint8_t side, uint32_t d, bool ready, bool restart) {
     top->ce = ce;
     top->in_side = side;
-    top->in_disp = d;
+    top->in_word = d;
     top->m_axis_tready = ready;
     top->restart = restart;
     top->eval();
@@ -174,7 +174,7 @@ int main(int argc, char** argv) {
   const int RW = kCap > 64 ? 19 : 3, RH = kCap > 64 ? 5 : 2, NXT = std::min(7, kCap - RW * RH - 1);
   top->width = RW;
   top->height = RH;
-  auto write_px = [&](int i, uint16_t d, bool ready) {  // pixel i of an RW x RH frame
+  auto write_px = [&](int i, uint32_t d, bool ready) {  // pixel i of an RW x RH frame
     const uint8_t side =
         static_cast<uint8_t>(sm::test::kReal | (i == 0 ? sm::test::kSof : 0) | (i % RW == 0 ? sm::test::kSol : 0));
     for (int guard = 0; !top->room; ++guard) {
@@ -187,16 +187,16 @@ int main(int argc, char** argv) {
   auto settle = [&](int n, bool ready) {
     for (int i = 0; i < n; ++i) step(false, 0, 0, ready, false);
   };
-  auto expect_frame = [&](const std::vector<uint16_t>& want, const std::string& what) {
+  auto expect_frame = [&](const std::vector<uint32_t>& want, const std::string& what) {
     bool ok = seen.size() == want.size();
     for (size_t i = 0; ok && i < want.size(); ++i)
       ok = seen[i].d == want[i] && seen[i].u == (i == 0) && seen[i].l == (static_cast<int>(i) % RW == RW - 1);
     t.check(ok, fmt::format("{}: {} beats out, expected {}", what, seen.size(), want.size()));
     seen.clear();
   };
-  auto pixels = [&](int n, uint16_t base) {
-    std::vector<uint16_t> v;
-    for (int i = 0; i < n; ++i) v.push_back(static_cast<uint16_t>(base + i));
+  auto pixels = [&](int n, uint32_t base) {
+    std::vector<uint32_t> v;
+    for (int i = 0; i < n; ++i) v.push_back(static_cast<uint32_t>(base + i));
     return v;
   };
   settle(3 * kCap, true);
@@ -205,14 +205,14 @@ int main(int argc, char** argv) {
     // R1: the sink is inside a frame the pipeline had delivered a row and a pixel of.
     {
       const int k = RW + 1;
-      for (int i = 0; i < k; ++i) write_px(i, static_cast<uint16_t>(0x8100 + i), true);
+      for (int i = 0; i < k; ++i) write_px(i, static_cast<uint32_t>(0x8100 + i), true);
       settle(10, true);
       step(false, 0, 0, true, true);
       for (int i = 0; i < 3 * RW * RH; ++i) {
         step(false, 0, 0, true, false);
         if (top->room && i > RW * RH) break;
       }
-      std::vector<uint16_t> want = pixels(k, 0x8100);
+      std::vector<uint32_t> want = pixels(k, 0x8100);
       want.resize(RW * RH, 0);
       expect_frame(want, "soft reset inside the sink's frame: padded to W x H");
       t.check(top->room, "room after the padded frame");
@@ -220,8 +220,8 @@ int main(int argc, char** argv) {
     // R2: the sink holds the first frame's tuser beat; the FIFO holds the rest of it and
     // part of the next frame, which is dropped.
     {
-      for (int i = 0; i < RW * RH; ++i) write_px(i, static_cast<uint16_t>(0x8200 + (i & 0xff)), false);
-      for (int i = 0; i < NXT; ++i) write_px(i, static_cast<uint16_t>(0x8300 + i), false);
+      for (int i = 0; i < RW * RH; ++i) write_px(i, static_cast<uint32_t>(0x8200 + (i & 0xff)), false);
+      for (int i = 0; i < NXT; ++i) write_px(i, static_cast<uint32_t>(0x8300 + i), false);
       settle(5, false);
       t.check(top->m_axis_tvalid && top->m_axis_tuser, "the first frame's tuser beat is offered");
       step(false, 0, 0, false, true);
@@ -229,8 +229,8 @@ int main(int argc, char** argv) {
       t.check(!top->room, "no room while the flush waits for the sink");
       int guard = 0;
       while (!top->room && ++guard < 1000) step(false, 0, 0, true, false);
-      std::vector<uint16_t> want;
-      for (int i = 0; i < RW * RH; ++i) want.push_back(static_cast<uint16_t>(0x8200 + (i & 0xff)));
+      std::vector<uint32_t> want;
+      for (int i = 0; i < RW * RH; ++i) want.push_back(static_cast<uint32_t>(0x8200 + (i & 0xff)));
       expect_frame(want, "soft reset with the sink's frame queued whole: delivered, the next frame dropped");
       settle(20, true);
       t.check(seen.empty(), "nothing after the dropped frame");
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
     }
     // After all three, a frame passes intact.
     {
-      for (int i = 0; i < RW * RH; ++i) write_px(i, static_cast<uint16_t>(0x8500 + i), true);
+      for (int i = 0; i < RW * RH; ++i) write_px(i, static_cast<uint32_t>(0x8500 + i), true);
       settle(30, true);
       expect_frame(pixels(RW * RH, 0x8500), "first frame after the soft resets");
     }

@@ -47,10 +47,10 @@ int compare(Bench& t, const sm::SimResult& res, const std::vector<std::pair<sm::
   for (size_t f = 0; f < frames.size() && f < res.frames.size(); ++f) {
     const auto m = sm::run_pipeline(frames[f].first, frames[f].second, hw, regs[f], false);
     int n = 0;
-    for (int y = 0; y < m.post.h; ++y)
-      for (int x = 0; x < m.post.w; ++x)
-        if (m.post.at(x, y) != res.frames[f].at(x, y) && n++ == 0)
-          fmt::print("first mismatch frame {} x {} y {}: expected 0x{:04x} got 0x{:04x}\n", f, x, y, m.post.at(x, y),
+    for (int y = 0; y < m.out.h; ++y)
+      for (int x = 0; x < m.out.w; ++x)
+        if (m.out.at(x, y) != res.frames[f].at(x, y) && n++ == 0)
+          fmt::print("first mismatch frame {} x {} y {}: expected 0x{:08x} got 0x{:08x}\n", f, x, y, m.out.at(x, y),
                      res.frames[f].at(x, y));
     t.check(n == 0, fmt::format("frame {} bit-exact ({} pixels differ)", f, n));
     bad += n;
