@@ -20,6 +20,7 @@
 
 #include "calib_file.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "pipeline.hpp"
 #include "sm_cmd.hpp"
@@ -200,14 +201,14 @@ TEST_CASE("register schedule: every frame bit-exact with its own registers; one 
   for (int f = 0; f < n; ++f) {
     INFO("frame " << f);
     const cv::Mat got = sm::tools::read_disparity_file((d / fmt::format("disp_{:03d}.pfm", f)).string());
-    CHECK(same_disp(got, sm::tools::disp_to_float(model[f].post)));
+    CHECK(same_disp(got, sm::tools::out_to_float(model[f].out)));
     CHECK(same_objects(fr[f].at("object_packet"), model[f].objects));
     CHECK(fr[f].at("bit_exact") == true);
     if (f > 0) {
       // Each change is visible: the frame with the previous frame's registers differs
       // (else a change applied one frame late could not be told).
       const sm::PipelineResult prev = sm::run_pipeline(L, R, hw, regs[f - 1], false);
-      CHECK((prev.post != model[f].post ||
+      CHECK((prev.out != model[f].out ||
              sm::object_packet(prev.objects, false) != sm::object_packet(model[f].objects, false)));
       CHECK(!fr[f].at("changed").empty());
     }
@@ -219,7 +220,7 @@ TEST_CASE("register schedule: every frame bit-exact with its own registers; one 
   CHECK(r.report.at("status").at("ERR_FLAGS").at("word") == 0);
   // The last frame is also the default lossless file.
   CHECK(same_disp(sm::tools::read_disparity_file((d / "disp.pfm").string()),
-                  sm::tools::disp_to_float(model.back().post)));
+                  sm::tools::out_to_float(model.back().out)));
 
   SECTION("every change one frame late: the run fails, frame 1 has frame 0's registers") {
     const Run late = sim("sched_late", args + " --debug-late-regs");
@@ -229,8 +230,8 @@ TEST_CASE("register schedule: every frame bit-exact with its own registers; one 
     CHECK(late.report.at("frame_results")[0].at("bit_exact") == true);
     CHECK(late.report.at("frame_results")[1].at("bit_exact") == false);
     const cv::Mat got1 = sm::tools::read_disparity_file((d / "disp_001.pfm").string());
-    CHECK(!same_disp(got1, sm::tools::disp_to_float(model[1].post)));
-    CHECK(same_disp(got1, sm::tools::disp_to_float(model[0].post)));
+    CHECK(!same_disp(got1, sm::tools::out_to_float(model[1].out)));
+    CHECK(same_disp(got1, sm::tools::out_to_float(model[0].out)));
   }
 }
 

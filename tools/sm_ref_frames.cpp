@@ -128,7 +128,7 @@ int run(int argc, char** argv) {
     std::vector<uint32_t> cam(left.px.size());
     for (size_t i = 0; i < cam.size(); ++i) cam[i] = static_cast<uint32_t>(right.px[i]) << 8 | left.px[i];
     j["frames"].push_back({{"camera", cam},
-                           {"disp", res.post.px},
+                           {"disp", res.out.px},  // the 32-bit output words
                            {"packet", sm::object_packet(res.objects, false)},
                            {"objects", res.objects.objects.size()}});
   }

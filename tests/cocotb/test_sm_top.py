@@ -110,7 +110,7 @@ async def frames_match_model(dut):
     # no tkeep: one "byte" per beat, as wide as TDATA (a pixel pair, a disparity, a word)
     rst = dict(reset_active_level=False)
     source = AxiStreamSource(AxiStreamBus.from_prefix(dut, "s_axis"), dut.aclk, dut.aresetn, byte_size=16, **rst)
-    disp_sink = AxiStreamSink(AxiStreamBus.from_prefix(dut, "m_axis"), dut.aclk, dut.aresetn, byte_size=16, **rst)
+    disp_sink = AxiStreamSink(AxiStreamBus.from_prefix(dut, "m_axis"), dut.aclk, dut.aresetn, byte_size=32, **rst)
     obj_sink = AxiStreamSink(AxiStreamBus.from_prefix(dut, "m_axis_obj"), dut.aclk, dut.aresetn, byte_size=32, **rst)
     axil = AxiLiteMaster(AxiLiteBus.from_prefix(dut, "s_axil"), dut.aclk, dut.aresetn, **rst)
     for ifc in (source, disp_sink, obj_sink, axil.write_if, axil.read_if):
@@ -161,7 +161,7 @@ async def frames_match_model(dut):
             bad = [i for i in range(w * h) if got[i] != f["disp"][i]]
             assert not bad, (
                 f"frame {n}: {len(bad)} disparity words differ from the model, first at "
-                f"({bad[0] % w}, {bad[0] // w}): 0x{got[bad[0]]:04x} != 0x{f['disp'][bad[0]]:04x}"
+                f"({bad[0] % w}, {bad[0] // w}): 0x{got[bad[0]]:08x} != 0x{f['disp'][bad[0]]:08x}"
             )
             dut._log.info("frame %d: %d x %d disparity words equal the model's", n, w, h)
 
