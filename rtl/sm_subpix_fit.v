@@ -12,9 +12,9 @@
 // CW+2-bit divisor and a 4-bit quotient (sm_udiv, which saturates at 15; the clamp to 8
 // is then q[3]).
 // Pipeline (one ce per stage, LATENCY = 7):
-//   1  sign = cm < cp, |cm - cp|, e0 = cm + cp - 2 c0, e1 = max(cm, cp) - c0, fit
-//   2  e = e0 or e1; e <= 0 (no fit) makes the dividend 0 and the divisor odd, so the
-//      quotient is 0 (and -0 = 0): no flag needs to travel beside the division
+//   1  sign = cm < cp, |cm - cp|, e = cm + cp - 2 c0 (fit 0) or max(cm, cp) - c0 (fit 1)
+//   2  16 |num| + e and 2 e; e <= 0 (no fit) makes the dividend 0 and the divisor odd,
+//      so the quotient is 0 (and -0 = 0): no flag needs to travel beside the division
 //   3..6  sm_udiv, one quotient bit per stage; the sign travels beside it
 //   7  m = min(8, q), f = sign ? -m : m
 // Data registers have no reset; the sideband (s_side -> m_side) is reset and delayed by
@@ -34,7 +34,7 @@ module sm_subpix_fit #(
     output reg  [4:0]            m_frac   // f, two's complement, -8..8
 );
   localparam LATENCY = 7;   // ce's from s_* to m_*
-  localparam EW = CW + 2;   // e, signed: |e0| <= 2 (2^CW - 1)
+  localparam EW = CW + 2;   // e, signed: |e| <= 2 (2^CW - 1) (fit 0)
   localparam NW = CW + 5;   // 16 |num| + e <= 18 (2^CW - 1)
   localparam DW = CW + 2;   // 2 e <= 4 (2^CW - 1)
   localparam QW = 4;        // quotient bits: 0..15, clamped to 8 after
@@ -59,20 +59,16 @@ module sm_subpix_fit #(
   wire [EW-1:0] e1   = {2'b00, hi} - {2'b00, s_c0};
   reg           neg1;
   reg  [CW-1:0] mag1;  // |num|
-  reg  [EW-1:0] e0_1, e1_1;
-  reg           fit1;
+  reg  [EW-1:0] e;     // den / 2
   always @(posedge clk) begin
     if (ce) begin
       neg1 <= lt;
       mag1 <= hi - lo;
-      e0_1 <= e0;
-      e1_1 <= e1;
-      fit1 <= s_fit;
+      e    <= s_fit ? e1 : e0;
     end
   end
 
   // ---- stage 2 -------------------------------------------------------------------
-  wire [EW-1:0] e   = fit1 ? e1_1 : e0_1;
   wire          pos = ~e[EW-1] && e != {EW{1'b0}};  // den > 0
   // e > 0 fits in EW - 1 bits
   wire [NW-1:0] num = {1'b0, mag1, 4'b0000} + {{(NW - EW + 1) {1'b0}}, e[EW-2:0]};
