@@ -11,6 +11,16 @@
 // left, or the leftmost match's d (the head) before the first match, or 0 when the
 // line had no match. The stack is double buffered (push line k+1, pop line k).
 //
+// Evidence for the output stage (docs/algorithm.md section 9, model/evidence.cpp), beside
+// the disparity and with its timing: matched (the pixel is the head's x), gap (run_gaps)
+// and fill_bg (fill_background). Each pushed word also holds rmin, the least d of the
+// matches pushed so far in the line (descending x): the least d at or right of that
+// match. For an unmatched pixel after match A (the last emitted) and before the head B:
+// gap = |d_B - d_A| (capped at 254), and fill_bg = min(d_A, every match right of A) =
+// rmin_A, taken from a register like the fill (no compare in the read-out). Before the
+// first match (no A) fill_bg is the head's rmin, after the last (no B) rmin_A = d_A; a
+// run touching either line end has gap 255; a line with no match gives gap 255, fill 0.
+//
 // Folded (PU < DISP, sm_dp g_fold): dec_word is the word of one level group g,
 // {dec of levels g*PU .. g*PU+PU-1, dec of level g*PU-1}, read on the clock after a
 // ce at the group d_grp of the level this block then holds. A backward step from level
@@ -32,20 +42,23 @@ module sm_dp_trace #(
     input  wire              rd_start,   // this ce fetches the head of the finished line
     input  wire [XW-1:0]     x_out,      // pixel emitted (registered) by this ce
     output wire [GW-1:0]     d_grp,      // group of the current level (folded)
-    output reg  [DW-1:0]     disp_q      // disparity of pixel x_out, after the ce
+    output reg  [DW-1:0]     disp_q,     // disparity of pixel x_out, after the ce
+    output reg               matched_q,  // pixel x_out is a match (with disp_q)
+    output reg  [7:0]        gap_q,      // gap of its unmatched run, 0 if matched
+    output reg  [DW-1:0]     fill_bg_q   // its background fill, its d if matched
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam AW = $clog2(MAX_WIDTH);
   localparam DW = $clog2(DISP);
-  localparam SW = AW + 2 * DW;  // stack word {x, d, fill}
+  localparam SW = AW + 3 * DW;  // stack word {x, d, fill, rmin}
   localparam F = (PU > 0) ? DISP / PU : 1;  // forward clocks per beat
   localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
   localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word (sm_dp)
   localparam LW = (PU > 1) ? $clog2(PU) : 1;  // index inside a group
 
   generate
-    `SM_BAD_PARAM(g_bad_disp, DISP < 4 || DISP % 2 != 0,
-                  ("sm_dp_trace: DISP (%0d) must be even and >= 4", DISP))
+    `SM_BAD_PARAM(g_bad_disp, DISP < 4 || DISP > 254 || DISP % 2 != 0,
+                  ("sm_dp_trace: DISP (%0d) must be even, 4..254 (8-bit gap)", DISP))
     `SM_BAD_PARAM(g_bad_pu, PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0,
                   ("sm_dp_trace: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP))
   endgenerate
@@ -158,7 +171,9 @@ module sm_dp_trace #(
   reg  [XW-1:0] m_q;      // matches of the line being popped
   reg           first_q;  // no match pushed yet in this line
   reg  [DW-1:0] last_q;   // d of the previous push (the match to the right)
+  reg  [DW-1:0] rmin_q;   // least d pushed so far in this line (matches right of d_q's)
   wire [DW-1:0] fill = (first_q || d_q < last_q) ? d_q : last_q;
+  wire [DW-1:0] rmin = (first_q || d_q < rmin_q) ? d_q : rmin_q;
 
   always @(posedge clk) begin
     if (!rst_n) begin
@@ -168,8 +183,12 @@ module sm_dp_trace #(
       m_q     <= {XW{1'b0}};
       first_q <= 1'b1;
       last_q  <= {DW{1'b0}};
+      rmin_q  <= {DW{1'b0}};
     end else if (ce) begin
-      if (match) last_q <= d_q;
+      if (match) begin
+        last_q <= d_q;
+        rmin_q <= rmin;
+      end
       if (step_last) begin
         d_q     <= {DW{1'b0}};
         wbank_q <= ~wbank_q;
@@ -197,7 +216,7 @@ module sm_dp_trace #(
       .clk  (clk),
       .we   (ce && match),
       .waddr({wbank_q, cnt_q[AW-1:0]}),
-      .wdata({mx, d_q, fill}),
+      .wdata({mx, d_q, fill, rmin}),
       .re   (ce),
       .raddr({rbank, raddr}),
       .rdata(head)
@@ -207,13 +226,25 @@ module sm_dp_trace #(
   reg  [XW-1:0] rem_q;   // matches left including the head
   reg           any_q;   // a match of this line has been emitted
   reg  [DW-1:0] fill_q;  // fill of the last emitted match
+  reg  [DW-1:0] ld_q;    // d of the last emitted match
+  reg  [DW-1:0] rm_q;    // rmin of the last emitted match
   wire [AW-1:0] hx = head[SW-1 -: AW];
-  wire [DW-1:0] hd = head[2*DW-1 -: DW];
-  wire [DW-1:0] hf = head[DW-1:0];
+  wire [DW-1:0] hd = head[3*DW-1 -: DW];
+  wire [DW-1:0] hf = head[2*DW-1 -: DW];
+  wire [DW-1:0] hr = head[DW-1:0];
   wire          have = (rem_q != {XW{1'b0}});
   wire [XW:0]   hx_w = {{(XW + 1 - AW) {1'b0}}, hx};  // XW may equal AW
   wire          consume = have && (hx_w == {1'b0, x_out});
   wire [DW-1:0] out_d = consume ? hd : any_q ? fill_q : have ? hd : {DW{1'b0}};
+  wire [DW-1:0] out_bg = consume ? hd : any_q ? rm_q : have ? hr : {DW{1'b0}};
+  // |d_B - d_A|: both differences side by side, the borrow of one picks (two short carry
+  // chains in parallel with the x compare, then a 2:1 select). 9 bits: DW may be 8.
+  wire [DW:0]   dba = {1'b0, hd} - {1'b0, ld_q};
+  wire [DW-1:0] dab = ld_q - hd;
+  wire [8:0]    adiff = {{(9 - DW) {1'b0}}, dba[DW] ? dab : dba[DW-1:0]};
+  // the cap never acts while DISP <= 254 (differences <= 253), kept for the model's rule
+  wire [7:0]    run_gap = (adiff > 9'd254) ? 8'd254 : adiff[7:0];
+  wire [7:0]    out_gap = consume ? 8'd0 : (any_q && have) ? run_gap : 8'd255;
 
   always @(*) begin
     if (rd_start) raddr = m_q[AW-1:0] - 1'b1;
@@ -223,14 +254,22 @@ module sm_dp_trace #(
 
   always @(posedge clk) begin
     if (!rst_n) begin
-      ptr_q  <= {AW{1'b0}};
-      rem_q  <= {XW{1'b0}};
-      any_q  <= 1'b0;
-      fill_q <= {DW{1'b0}};
-      disp_q <= {DW{1'b0}};
+      ptr_q     <= {AW{1'b0}};
+      rem_q     <= {XW{1'b0}};
+      any_q     <= 1'b0;
+      fill_q    <= {DW{1'b0}};
+      ld_q      <= {DW{1'b0}};
+      rm_q      <= {DW{1'b0}};
+      disp_q    <= {DW{1'b0}};
+      matched_q <= 1'b0;
+      gap_q     <= 8'd0;
+      fill_bg_q <= {DW{1'b0}};
     end else if (ce) begin
-      disp_q <= out_d;
-      ptr_q  <= raddr;
+      disp_q    <= out_d;
+      matched_q <= consume;
+      gap_q     <= out_gap;
+      fill_bg_q <= out_bg;
+      ptr_q     <= raddr;
       if (rd_start) begin
         rem_q <= m_q;
         any_q <= 1'b0;
@@ -238,6 +277,8 @@ module sm_dp_trace #(
         rem_q  <= rem_q - 1'b1;
         any_q  <= 1'b1;
         fill_q <= hf;
+        ld_q   <= hd;
+        rm_q   <= hr;
       end
     end
   end
