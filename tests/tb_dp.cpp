@@ -137,7 +137,7 @@ void jump_row(sm::CostVolume& v, int y, std::mt19937& rng) {
     }
 }
 
-// The occlusion penalty of a frame of cost kind k (see main).
+// The occlusion penalty of a frame of the given cost kind (see the header).
 uint8_t frame_occ(int kind, std::mt19937& rng) {
   const unsigned cmax = (1u << kCw) - 1;
   switch (kind) {
