@@ -73,7 +73,11 @@ module sm_dp #(
     // the next row, whose flag is 0, after a row's last beat), virtual rows included.
     input  wire               s_edge,
     output reg  [`SM_SIDE_W-1:0] m_side,
-    output wire [15:0]        m_disp   // bit 15 valid (always), low DW bits disparity
+    output wire [15:0]        m_disp,    // bit 15 valid (always), low DW bits disparity
+    // Evidence of the output stage (docs/algorithm.md section 9), with m_disp's timing:
+    output wire               m_matched, // the pixel is matched by the trellis
+    output wire [7:0]         m_gap,     // unmatched: gap of its run (model run_gaps); else 0
+    output wire [DW-1:0]      m_fill_bg  // unmatched: background fill (fill_background); else d
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam AW = $clog2(MAX_WIDTH);
@@ -528,7 +532,10 @@ module sm_dp #(
       .rd_start (rd_start),
       .x_out    (x_out),
       .d_grp    (d_grp),
-      .disp_q   (disp_q)
+      .disp_q   (disp_q),
+      .matched_q(m_matched),
+      .gap_q    (m_gap),
+      .fill_bg_q(m_fill_bg)
   );
   assign m_disp = {1'b1, {(15 - DW) {1'b0}}, disp_q};
 

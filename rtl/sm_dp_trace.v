@@ -3,13 +3,23 @@
 // Backward pass and left-occlusion fill of the trellis DP (docs/algorithm.md,
 // section 6). While the array runs the forward pass of line k+1, this block walks the
 // decision words of line k from the end node (2W, 0) back to site 0, two sites per
-// clock, and pushes every match it meets as {x, d, fill} onto a stack in block RAM;
-// the matches come out in descending x, so "fill" = min(d, d of the match to the
-// right) is known at push time. During the following line time the stack is popped
-// in ascending x while the pixels are emitted in raster order: a pixel that is the
-// head's x gets the head's d; any other pixel gets the fill of the last match to its
-// left, or the leftmost match's d (the head) before the first match, or 0 when the
-// line had no match. The stack is double buffered (push line k+1, pop line k).
+// clock, and pushes every match it meets as {x, d, rmin} onto a stack in block RAM;
+// the matches come out in descending x, so rmin, the least d of the matches pushed so
+// far in the line (the least d at or right of this match), is a running minimum.
+// During the following line time the stack is popped in ascending x while the pixels
+// are emitted in raster order: a pixel that is the head's x gets the head's d (and is
+// "matched"); any other pixel lies after the last emitted match A (if any) and before
+// the head B (if any) and gets
+//   disparity  min(d_A, d_B) (the left-occlusion fill), d_A after the last match, d_B
+//              before the first, 0 when the line had no match;
+//   gap        |d_B - d_A| capped at 254, 255 when A or B does not exist (run_gaps in
+//              model/evidence.cpp; the cap never acts while DISP <= 254);
+//   fill_bg    min(d_A, every match right of A) = rmin_A, rmin_B before the first
+//              match, 0 when the line had no match (fill_background).
+// d_A and rmin_A are remembered when A is popped; min(d_A, d_B) and |d_B - d_A| share
+// one compare of the head's d with d_A. (The fill used to be pushed as a third field;
+// rmin took its place, so the word keeps its width: one more 7-bit field would cost half
+// a RAMB36 at MAX_WIDTH 640.) The stack is double buffered (push line k+1, pop line k).
 //
 // Folded (PU < DISP, sm_dp g_fold): dec_word is the word of one level group g,
 // {dec of levels g*PU .. g*PU+PU-1, dec of level g*PU-1}, read on the clock after a
@@ -32,20 +42,23 @@ module sm_dp_trace #(
     input  wire              rd_start,   // this ce fetches the head of the finished line
     input  wire [XW-1:0]     x_out,      // pixel emitted (registered) by this ce
     output wire [GW-1:0]     d_grp,      // group of the current level (folded)
-    output reg  [DW-1:0]     disp_q      // disparity of pixel x_out, after the ce
+    output reg  [DW-1:0]     disp_q,     // disparity of pixel x_out, after the ce
+    output reg               matched_q,  // pixel x_out is a match (with disp_q)
+    output reg  [7:0]        gap_q,      // gap of its unmatched run, 0 if matched
+    output reg  [DW-1:0]     fill_bg_q   // its background fill, its d if matched
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam AW = $clog2(MAX_WIDTH);
   localparam DW = $clog2(DISP);
-  localparam SW = AW + 2 * DW;  // stack word {x, d, fill}
+  localparam SW = AW + 2 * DW;  // stack word {x, d, rmin}
   localparam F = (PU > 0) ? DISP / PU : 1;  // forward clocks per beat
   localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
   localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word (sm_dp)
   localparam LW = (PU > 1) ? $clog2(PU) : 1;  // index inside a group
 
   generate
-    `SM_BAD_PARAM(g_bad_disp, DISP < 4 || DISP % 2 != 0,
-                  ("sm_dp_trace: DISP (%0d) must be even and >= 4", DISP))
+    `SM_BAD_PARAM(g_bad_disp, DISP < 4 || DISP > 254 || DISP % 2 != 0,
+                  ("sm_dp_trace: DISP (%0d) must be even, 4..254 (8-bit gap)", DISP))
     `SM_BAD_PARAM(g_bad_pu, PU < 2 || PU > DISP || DISP % PU != 0 || PU % 2 != 0,
                   ("sm_dp_trace: PU (%0d) must be an even divisor of DISP (%0d)", PU, DISP))
   endgenerate
@@ -157,8 +170,8 @@ module sm_dp_trace #(
   reg  [XW-1:0] cnt_q;    // matches pushed so far in this line
   reg  [XW-1:0] m_q;      // matches of the line being popped
   reg           first_q;  // no match pushed yet in this line
-  reg  [DW-1:0] last_q;   // d of the previous push (the match to the right)
-  wire [DW-1:0] fill = (first_q || d_q < last_q) ? d_q : last_q;
+  reg  [DW-1:0] rmin_q;   // least d pushed so far in this line (all right of d_q's match)
+  wire [DW-1:0] rmin = (first_q || d_q < rmin_q) ? d_q : rmin_q;
 
   always @(posedge clk) begin
     if (!rst_n) begin
@@ -167,9 +180,9 @@ module sm_dp_trace #(
       cnt_q   <= {XW{1'b0}};
       m_q     <= {XW{1'b0}};
       first_q <= 1'b1;
-      last_q  <= {DW{1'b0}};
+      rmin_q  <= {DW{1'b0}};
     end else if (ce) begin
-      if (match) last_q <= d_q;
+      if (match) rmin_q <= rmin;
       if (step_last) begin
         d_q     <= {DW{1'b0}};
         wbank_q <= ~wbank_q;
@@ -197,7 +210,7 @@ module sm_dp_trace #(
       .clk  (clk),
       .we   (ce && match),
       .waddr({wbank_q, cnt_q[AW-1:0]}),
-      .wdata({mx, d_q, fill}),
+      .wdata({mx, d_q, rmin}),
       .re   (ce),
       .raddr({rbank, raddr}),
       .rdata(head)
@@ -206,14 +219,26 @@ module sm_dp_trace #(
   // ---- raster read-out with the fill -------------------------------------------
   reg  [XW-1:0] rem_q;   // matches left including the head
   reg           any_q;   // a match of this line has been emitted
-  reg  [DW-1:0] fill_q;  // fill of the last emitted match
+  reg  [DW-1:0] ld_q;    // d of the last emitted match (A)
+  reg  [DW-1:0] rm_q;    // rmin of the last emitted match
   wire [AW-1:0] hx = head[SW-1 -: AW];
   wire [DW-1:0] hd = head[2*DW-1 -: DW];
-  wire [DW-1:0] hf = head[DW-1:0];
+  wire [DW-1:0] hr = head[DW-1:0];
   wire          have = (rem_q != {XW{1'b0}});
   wire [XW:0]   hx_w = {{(XW + 1 - AW) {1'b0}}, hx};  // XW may equal AW
   wire          consume = have && (hx_w == {1'b0, x_out});
-  wire [DW-1:0] out_d = consume ? hd : any_q ? fill_q : have ? hd : {DW{1'b0}};
+  // d_B - d_A and d_A - d_B side by side (two short carry chains after the RAM, in
+  // parallel with the x compare): the borrow of the first is d_B < d_A, which picks the
+  // fill min(d_A, d_B) and the absolute difference (a 2:1 select each). 9 bits: DW may be 8.
+  wire [DW:0]   dba = {1'b0, hd} - {1'b0, ld_q};
+  wire [DW-1:0] dab = ld_q - hd;
+  wire          b_lo = dba[DW];
+  wire [DW-1:0] fill = (have && b_lo) ? hd : ld_q;  // fill after A: min(d_A, d_B), or d_A
+  wire [8:0]    adiff = {{(9 - DW) {1'b0}}, b_lo ? dab : dba[DW-1:0]};
+  wire [7:0]    run_gap = (adiff > 9'd254) ? 8'd254 : adiff[7:0];
+  wire [DW-1:0] out_d = consume ? hd : any_q ? fill : have ? hd : {DW{1'b0}};
+  wire [7:0]    out_gap = consume ? 8'd0 : (any_q && have) ? run_gap : 8'd255;
+  wire [DW-1:0] out_bg = consume ? hd : any_q ? rm_q : have ? hr : {DW{1'b0}};
 
   always @(*) begin
     if (rd_start) raddr = m_q[AW-1:0] - 1'b1;
@@ -223,21 +248,29 @@ module sm_dp_trace #(
 
   always @(posedge clk) begin
     if (!rst_n) begin
-      ptr_q  <= {AW{1'b0}};
-      rem_q  <= {XW{1'b0}};
-      any_q  <= 1'b0;
-      fill_q <= {DW{1'b0}};
-      disp_q <= {DW{1'b0}};
+      ptr_q     <= {AW{1'b0}};
+      rem_q     <= {XW{1'b0}};
+      any_q     <= 1'b0;
+      ld_q      <= {DW{1'b0}};
+      rm_q      <= {DW{1'b0}};
+      disp_q    <= {DW{1'b0}};
+      matched_q <= 1'b0;
+      gap_q     <= 8'd0;
+      fill_bg_q <= {DW{1'b0}};
     end else if (ce) begin
-      disp_q <= out_d;
-      ptr_q  <= raddr;
+      disp_q    <= out_d;
+      matched_q <= consume;
+      gap_q     <= out_gap;
+      fill_bg_q <= out_bg;
+      ptr_q     <= raddr;
       if (rd_start) begin
         rem_q <= m_q;
         any_q <= 1'b0;
       end else if (consume) begin
         rem_q  <= rem_q - 1'b1;
         any_q  <= 1'b1;
-        fill_q <= hf;
+        ld_q   <= hd;
+        rm_q   <= hr;
       end
     end
   end

@@ -59,3 +59,30 @@ sm_rtl_test(NAME tb_edge_flag_sw7 TOP sm_edge_flag SOURCES ${CMAKE_CURRENT_LIST_
             PARAMS MAX_WIDTH=50 ROWS=3 COLS=9 ARGS --width 23 --rows 9 --frames 3 --seed 5 --idle 0)
 sm_rtl_test(NAME tb_edge_flag_paper TOP sm_edge_flag SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_edge_flag.cpp
             PARAMS MAX_WIDTH=320 ROWS=2 COLS=8 ARGS --width 320 --rows 5 --frames 3 --seed 9)
+
+# Output-stage evidence (m_matched, m_gap, m_fill_bg): every test above also compares it;
+# these runs add cost kinds 3 (occ 0: lines with no match, runs at x = 0 and at the line
+# end) and 4 (the largest gaps, DISP - 3 .. DISP - 1; tb_dp.cpp) and fail unless every
+# case of the read-out was compared and the largest gap reached --min-gap
+# (--require-cases), in the parallel, odd, folded and paper configurations.
+sm_rtl_test(NAME tb_dp_runs RUN tb_dp
+            ARGS --width 37 --rows 8 --frames 4 --kinds 34 --seed 21 --require-cases --min-gap 13)
+sm_rtl_test(NAME tb_dp_runs_wmin RUN tb_dp ARGS --width 11 --rows 8 --frames 3 --kinds 30 --seed 22 --require-cases)
+sm_rtl_test(NAME tb_dp_odd_runs RUN tb_dp_odd
+            ARGS --width 50 --rows 8 --frames 4 --kinds 34 --seed 23 --require-cases --min-gap 7)
+sm_rtl_test(NAME tb_dp_pu8_runs RUN tb_dp_pu8
+            ARGS --width 64 --rows 8 --frames 4 --kinds 34 --seed 24 --require-cases --min-gap 13)
+sm_rtl_test(NAME tb_dp_pu2_runs RUN tb_dp_pu2 ARGS --width 11 --rows 8 --frames 3 --kinds 3 --seed 25 --require-cases)
+sm_rtl_test(NAME tb_dp_odd_pu2_runs RUN tb_dp_odd_pu2
+            ARGS --width 23 --rows 8 --frames 4 --kinds 34 --seed 26 --require-cases --min-gap 7)
+sm_rtl_test(NAME tb_dp_pu6_runs RUN tb_dp_pu6
+            ARGS --width 31 --rows 8 --frames 4 --kinds 34 --seed 27 --require-cases --min-gap 9)
+sm_rtl_test(NAME tb_dp_paper_runs RUN tb_dp_paper
+            ARGS --width 320 --rows 6 --frames 4 --kinds 34 --seed 28 --require-cases --min-gap 125 LABELS "rtl;slow")
+sm_rtl_test(NAME tb_dp_zynq8_runs RUN tb_dp_zynq8
+            ARGS --width 200 --rows 6 --frames 4 --kinds 34 --seed 29 --require-cases --min-gap 125 LABELS "rtl;slow")
+# The widest level count (DISP 254: 8-bit levels; kind 4 makes gaps of 251..253, the cap is
+# 254), folded to 2 lanes (F 127) so that it builds and runs in seconds.
+sm_rtl_test(NAME tb_dp_d254 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=320 DISP=254 CW=6 PU=2
+            ARGS --width 300 --rows 6 --frames 4 --kinds 3404 --seed 30 --require-cases --min-gap 251)
