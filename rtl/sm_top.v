@@ -317,12 +317,6 @@ module sm_top #(
   sm_frame_sel #(.PW(PW), .LSB(P_OCC), .W(16), .NEXT(1)) u_fsel_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(dp_side), .hist(fr_hist), .par(par_occ)
   );
-  // The DP's output-stage evidence (matched, gap, fill_bg) is not used yet (issue 39: the
-  // integrator wires it to the output stage).
-  wire        dp_matched;
-  wire [7:0]  dp_gap;
-  wire [$clog2(DISP)-1:0] dp_fill_bg;
-  wire unused_dp_ev = ^{dp_matched, dp_gap, dp_fill_bg};
   sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW), .PU(PUE)) u_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
       .occ(par_occ[7:0]), .occ_edge(par_occ[15:8]), .s_edge(dp_edge),
