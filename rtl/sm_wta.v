@@ -66,11 +66,12 @@ module sm_wta #(
   localparam DW = $clog2(DISP);
   localparam F = (PU > 0) ? DISP / PU : 1;  // clocks per beat
   localparam N0 = (F > 1) ? PU : DISP;      // leaves of the tree
-  localparam NL = $clog2(N0);               // tree levels (register stages)
-  localparam D = NL + 2;                    // folded: clocks from issue to accumulator
+  localparam NL = $clog2(N0);               // tree levels
+  localparam NS = (NL + 1) / 2;             // register stages of the tree
+  localparam D = NS + 2;                    // folded: clocks from issue to accumulator
   localparam NR = (F > 1) ? D / F + 1 : 1;  // folded: ring slots (= LATENCY)
   // ce's from s_cost sampled to m_*, counting the sampling ce (sm_side_delay's DEPTH)
-  localparam LATENCY = (F > 1) ? NR + 1 : NL;
+  localparam LATENCY = (F > 1) ? NR + 1 : NS;
 
   generate
     `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
@@ -121,7 +122,7 @@ module sm_wta #(
   endfunction
 
   // Nodes of tree level l (level 0: the leaves) and the first node of level l in the
-  // flat register vector of levels 1..NL.
+  // flat vector of levels 1..NL.
   function integer lvl_n;
     input integer l;
     lvl_n = (N0 + (1 << l) - 1) >> l;
@@ -140,7 +141,7 @@ module sm_wta #(
   // win[j*CW +: CW] = A(base + j - 2), j = 0..N0+3 (base = 0, or g*PU when folded).
   wire [(N0+4)*CW-1:0] win;
   wire [N0*NW-1:0] leaf;
-  genvar j, l;
+  genvar j, l, t;
   generate
     for (j = 0; j < N0; j = j + 1) begin : g_leaf
       /* verilator lint_off WIDTH */  // the level number, truncated to DW bits
@@ -151,14 +152,18 @@ module sm_wta #(
   endgenerate
 
   // ---- the tree: level l node n from level l-1 nodes 2n, 2n+1 -------------------------
-  wire             tree_en = (F > 1) ? 1'b1 : ce;  // folded: every clock
-  wire [TOT*NW-1:0] tn;  // next value of every node of levels 1..NL
-  reg  [TOT*NW-1:0] tq;
+  // Registered: the even levels and the root (two merges, about 6 LUT levels, per stage).
+  // A registered node takes its band not through the merges' band selects (two 2:1
+  // selects per level, each on its own compare) but from its winner's descendant at the
+  // registered level below (or the leaves): one 4:1 (2:1 at an odd root) select on the
+  // winner's level bits, a LUT6 per bit. The unregistered level's band is then unused.
+  wire          tree_en = (F > 1) ? 1'b1 : ce;  // folded: every clock
+  wire [TOT*NW-1:0] tv;  // every node of levels 1..NL as the level above reads it
   generate
     for (l = 1; l <= NL; l = l + 1) begin : g_lvl
       for (j = 0; j < lvl_n(l); j = j + 1) begin : g_node
         localparam OUT = (lvl_base(l) + j) * NW;
-        wire [NW-1:0] a, b;
+        wire [NW-1:0] a, b, mg;
         if (l == 1) begin : g_from_leaf
           assign a = leaf[(2*j)*NW +: NW];
           if (2 * j + 1 < N0) begin : g_b
@@ -166,27 +171,54 @@ module sm_wta #(
           end else begin : g_nob
             assign b = a;
           end
-        end else begin : g_from_reg
-          assign a = tq[(lvl_base(l - 1) + 2 * j) * NW +: NW];
+        end else begin : g_from_lvl
+          assign a = tv[(lvl_base(l - 1) + 2 * j) * NW +: NW];
           if (2 * j + 1 < lvl_n(l - 1)) begin : g_b
-            assign b = tq[(lvl_base(l - 1) + 2 * j + 1) * NW +: NW];
+            assign b = tv[(lvl_base(l - 1) + 2 * j + 1) * NW +: NW];
           end else begin : g_nob
             assign b = a;
           end
         end
         if (2 * j + 1 < lvl_n(l - 1)) begin : g_merge
-          assign tn[OUT +: NW] = merge(a, b);
+          assign mg = merge(a, b);
         end else begin : g_pass  // odd count: the last node passes through
-          assign tn[OUT +: NW] = a;
+          assign mg = a;
           wire unused_b = ^b;
+        end
+        if (l % 2 == 0 || l == NL) begin : g_reg
+          localparam LP = (l % 2 == 0) ? l - 2 : l - 1;  // registered level below (0: leaves)
+          localparam NT = 1 << (l - LP);                 // descendants there: 4 or 2
+          wire [NT*5*CW-1:0] cand;                       // their bands
+          for (t = 0; t < NT; t = t + 1) begin : g_cand
+            if (j * NT + t >= lvl_n(LP)) begin : g_none  // past an odd count: never wins
+              assign cand[t*5*CW +: 5*CW] = {(5 * CW) {1'b0}};
+            end else if (LP == 0) begin : g_leaf
+              assign cand[t*5*CW +: 5*CW] = win[(j*NT+t)*CW +: 5*CW];
+            end else begin : g_node
+              assign cand[t*5*CW +: 5*CW] = tv[(lvl_base(LP) + j * NT + t) * NW + O_B +: 5 * CW];
+            end
+          end
+          wire [5*CW-1:0] bs;
+          if (NT == 2) begin : g_sel2
+            assign bs = mg[O_I+LP] ? cand[5*CW +: 5*CW] : cand[0 +: 5*CW];
+          end else begin : g_sel4
+            wire [1:0] w = mg[O_I+LP +: 2];
+            assign bs = w[1] ? (w[0] ? cand[15*CW +: 5*CW] : cand[10*CW +: 5*CW])
+                             : (w[0] ? cand[5*CW +: 5*CW] : cand[0 +: 5*CW]);
+          end
+          wire unused_mb = ^mg[O_B +: 5*CW];
+          reg [NW-1:0] q;
+          always @(posedge clk) begin
+            if (tree_en) q <= {bs, mg[O_B-1:0]};
+          end
+          assign tv[OUT +: NW] = q;
+        end else begin : g_comb
+          assign tv[OUT +: NW] = mg;
         end
       end
     end
   endgenerate
-  always @(posedge clk) begin
-    if (tree_en) tq <= tn;
-  end
-  wire [NW-1:0] root = tq[(TOT-1)*NW +: NW];
+  wire [NW-1:0] root = tv[(TOT-1)*NW +: NW];
 
   // Record: {band, cmax, c2, c1, dw}
   localparam RW = 8 * CW + DW;
@@ -237,30 +269,39 @@ module sm_wta #(
 
       // Window register: the group's PU costs and two levels either side (zeros past
       // the ends), one F:1 selection from the held beat.
+      // (An AND-OR over the groups: Yosys made the indexed part-select pad[g*PU*CW +: ..]
+      // a barrel shifter over every bit of pad.)
       wire [(DISP+4)*CW-1:0] pad = {{2*CW{1'b0}}, s_cost, {2*CW{1'b0}}};
+      reg  [(N0+4)*CW-1:0] win_nx;
       reg  [(N0+4)*CW-1:0] win_q;
+      integer gi;
+      always @* begin
+        win_nx = {((N0 + 4) * CW) {1'b0}};
+        for (gi = 0; gi < F; gi = gi + 1)
+          win_nx = win_nx | ({((N0 + 4) * CW) {g_q == gi[GW-1:0]}} & pad[gi*(PU*CW) +: (PU+4)*CW]);
+      end
       always @(posedge clk) begin
-        win_q <= pad[g_q*(PU*CW) +: (PU+4)*CW];
+        win_q <= win_nx;
       end
       assign win = win_q;
 
       // Beside the window and every tree level: issued (control, reset), first group,
-      // the group's first level. Stage s = 0 (window) .. NL (root).
-      reg [NL:0]        tv_q;
-      reg [NL:0]        tf_q;
-      reg [(NL+1)*DW-1:0] tb_q;
+      // the group's first level. Stage s = 0 (window) .. NS (root).
+      reg [NS:0]          tv_q;
+      reg [NS:0]          tf_q;
+      reg [(NS+1)*DW-1:0] tb_q;
       always @(posedge clk) begin
-        if (!rst_n) tv_q <= {(NL + 1) {1'b0}};
-        else tv_q <= {tv_q[NL-1:0], run_q};
-        tf_q <= {tf_q[NL-1:0], g_q == {GW{1'b0}}};
-        tb_q <= {tb_q[NL*DW-1:0], gb_q};
+        if (!rst_n) tv_q <= {(NS + 1) {1'b0}};
+        else tv_q <= {tv_q[NS-1:0], run_q};
+        tf_q <= {tf_q[NS-1:0], g_q == {GW{1'b0}}};
+        tb_q <= {tb_q[NS*DW-1:0], gb_q};
       end
 
       // Accumulator: the groups so far, the root's local level made global.
-      wire [NW-1:0] grp = {root[NW-1:O_I+DW], root[O_I +: DW] + tb_q[NL*DW +: DW], root[O_M +: CW]};
+      wire [NW-1:0] grp = {root[NW-1:O_I+DW], root[O_I +: DW] + tb_q[NS*DW +: DW], root[O_M +: CW]};
       reg  [NW-1:0] acc_q;
       always @(posedge clk) begin
-        if (tv_q[NL]) acc_q <= tf_q[NL] ? grp : merge(acc_q, grp);
+        if (tv_q[NS]) acc_q <= tf_q[NS] ? grp : merge(acc_q, grp);
       end
       wire unused_acc = ^{acc_q[O_FL], acc_q[O_LA], acc_q[O_XF +: CW], acc_q[O_XL +: CW]};
 

@@ -42,9 +42,11 @@ constexpr int clog2(int n) {
   while ((1 << b) < n) ++b;
   return b;
 }
-// rtl/sm_wta.v's LATENCY: clog2(DISP) tree stages at PU = DISP; folded, the ring's
-// floor((clog2(PU) + 2) / F) + 1 slots and the output registers.
-constexpr int kLatency = kF == 1 ? clog2(kDisp) : (clog2(kPu) + 2) / kF + 2;
+// rtl/sm_wta.v's LATENCY: the tree's NS = ceil(clog2(DISP) / 2) register stages at
+// PU = DISP; folded, the ring's floor(D / F) + 1 slots (D = ceil(clog2(PU) / 2) + 2) and
+// the output registers.
+constexpr int kStages = (clog2(kPu) + 1) / 2;
+constexpr int kLatency = kF == 1 ? kStages : (kStages + 2) / kF + 2;
 
 // Pack DISP CW-bit costs, level d at bit d*CW.
 std::vector<uint32_t> pack(const uint8_t* c) {

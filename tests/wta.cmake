@@ -23,13 +23,19 @@ sm_rtl_test(NAME tb_wta_odd_pu2 TOP sm_wta SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_
 sm_rtl_test(NAME tb_wta_pu6 TOP sm_wta SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_wta.cpp
             PARAMS DISP=12 CW=3 PU=6 ARGS --width 31 --rows 8 --frames 3 --seed 8)
 sm_rtl_test(NAME tb_wta_pu6_noidle RUN tb_wta_pu6 ARGS --width 19 --rows 6 --frames 2 --seed 12 --idle 0)
+# The fewest levels (DISP 4, CW 2): c2 has one or two levels to choose from; folded to
+# PU 2 (F 2).
+sm_rtl_test(NAME tb_wta_d4 TOP sm_wta SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_wta.cpp
+            PARAMS DISP=4 CW=2 PU=4 ARGS --width 17 --rows 6 --frames 3 --seed 15)
+sm_rtl_test(NAME tb_wta_d4_pu2 TOP sm_wta SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_wta.cpp
+            PARAMS DISP=4 CW=2 PU=2 ARGS --width 17 --rows 6 --frames 3 --seed 16)
 # Paper (DISP 128, CW 6 = CENSUS 15 >> 2, PU 128: LATENCY 7) and zynq/vga (PU 16, 8).
 sm_rtl_test(NAME tb_wta_paper TOP sm_wta SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_wta.cpp
-            PARAMS DISP=128 CW=6 PU=128 ARGS --width 67 --rows 8 --frames 3 --seed 11
+            PARAMS DISP=128 CW=6 PU=128 ARGS --width 320 --rows 6 --frames 3 --seed 11
             LABELS "rtl;slow")
 sm_rtl_test(NAME tb_wta_zynq16 TOP sm_wta SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_wta.cpp
-            PARAMS DISP=128 CW=6 PU=16 ARGS --width 67 --rows 6 --frames 3 --seed 13
+            PARAMS DISP=128 CW=6 PU=16 ARGS --width 320 --rows 4 --frames 3 --seed 13
             LABELS "rtl;slow")
 sm_rtl_test(NAME tb_wta_zynq8 TOP sm_wta SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_wta.cpp
-            PARAMS DISP=128 CW=6 PU=8 ARGS --width 67 --rows 6 --frames 3 --seed 14
+            PARAMS DISP=128 CW=6 PU=8 ARGS --width 251 --rows 4 --frames 3 --seed 14
             LABELS "rtl;slow")
