@@ -18,30 +18,35 @@
 // other child that sit next to the winner are L.hi and R.lo only, so
 //   L wins: e = min(L.e, L.la ? R.xf : R.m)     R wins: e = min(R.e, R.fl ? L.xl : L.m)
 //   xf = min(L.xf, R.m), xl = min(L.m, R.xl), M = max(L.M, R.M)
-// and the root's (i, m, e, M, band) is (dw, c1, c2, cmax, band). A merge is three
-// compares deep at most (a select, a compare and two selects on the e path: about 5
-// LUT levels at CW 6), so every tree level is one register stage.
+// and the root's (i, m, e, M, band) is (dw, c1, c2, cmax, band). A merge is about 3 LUT
+// levels (Yosys xc7, CW 6), so a register stage holds two tree levels: the even levels
+// and the root are registered (NS = ceil(clog2(leaves) / 2) stages). A registered node
+// takes its band not through the merges' band selects (a 2:1 select per merge, each on
+// its own compare: 5*CW LUT3s per merge) but from its winner's descendant at the
+// registered level below (or from the leaves): a 4:1 select (2:1 at an odd root) on two
+// bits of the winner's level, a LUT6 per bit.
 //
 // Latency: the record of the beat that ce b samples is on m_* from ce b + LATENCY - 1
 // on (m_side is s_side through sm_side_delay of DEPTH LATENCY).
-// PU = DISP: the tree has DISP leaves (odd counts pass their last node through),
-// every level is registered on ce, the root registers are the outputs.
-//   LATENCY = clog2(DISP) (DISP 128: 7; DISP 16, 10, 12: 4).
+// PU = DISP: the tree has DISP leaves (odd counts pass their last node through), its
+// stages are registered on ce, the root registers are the outputs.
+//   LATENCY = NS = ceil(clog2(DISP) / 2)  (DISP 128: 4; DISP 16, 10, 12: 2; DISP 4: 1)
 // PU < DISP (an even divisor, F = DISP/PU clocks per beat; the input-stability rule
-// of docs/algorithm.md "Folded datapath"): the same tree over PU leaves, registered
-// on every clock, takes level group g = levels [g*PU, g*PU + PU) of the held beat on the
-// g-th clock after a ce (reset counts as a ce), through a window register of the group's
-// PU + 4 costs (its leaves' bands reach two levels into the neighbours); an accumulator
-// merges the groups' roots in level order with the same merge (the accumulated range is
-// always left of the group). Group g reaches the accumulator D = clog2(PU) + 2 clocks
-// after it is issued, so the beat sampled by ce b is complete in the accumulator on the
-// D-th clock after ce b at the latest, and exactly there the next beat's group 0
-// replaces it: that edge copies it into slot (b mod N) of an N-slot ring. The ce
-// N = floor(D / F) + 1 beats later (at least N*F > D clocks on) moves the slot into the
-// output registers; the slot's next write comes D clocks after that ce.
-//   LATENCY = N + 1 = floor((clog2(PU) + 2) / F) + 2
-//   (DISP 128 at PU 16, 8: 2; DISP 16 at PU 8: 4, PU 4: 3, PU 2: 2; DISP 10 PU 2: 2;
-//   DISP 12 PU 6: 4).
+// of docs/algorithm.md "Folded datapath"): the same tree over PU leaves, its stages
+// registered on every clock, takes level group g = levels [g*PU, g*PU + PU) of the held
+// beat on the (g+1)-th clock after a ce (reset counts as a ce), through a window
+// register of the group's PU + 4 costs (its leaves' bands reach two levels into the
+// neighbours); an accumulator merges the groups' roots in level order with the same
+// merge (the accumulated range is always left of the group). Group g is merged D - 1
+// clocks after it is issued (D = NS + 2: window, NS tree stages, accumulator), so the
+// beat that ce b samples (issued on the F clocks after ce b-1, the last on ce b at the
+// latest) is complete in the accumulator D - 1 clocks after ce b at the latest, and the
+// D-th clock after ce b brings the next beat's group 0: that edge copies it into slot
+// (b mod N) of an N-slot ring. The ce N = floor(D / F) + 1 beats later (at least
+// N*F > D clocks on) moves the slot into the output registers; the slot's next write
+// comes D clocks after that ce.
+//   LATENCY = N + 1 = floor(D / F) + 2  (DISP 128 at PU 16, 8: 2; DISP 16 at PU 8: 4,
+//   PU 4: 2, PU 2: 2; DISP 10 PU 2: 2; DISP 12 PU 6: 4; DISP 4 PU 2: 3)
 // As in sm_dp, the first beat's groups start at reset, so its ce must come at least F
 // clocks after rst_n rises.
 module sm_wta #(
@@ -158,7 +163,10 @@ module sm_wta #(
   // registered level below (or the leaves): one 4:1 (2:1 at an odd root) select on the
   // winner's level bits, a LUT6 per bit. The unregistered level's band is then unused.
   wire          tree_en = (F > 1) ? 1'b1 : ce;  // folded: every clock
-  wire [TOT*NW-1:0] tv;  // every node of levels 1..NL as the level above reads it
+  // Every node of levels 1..NL as the level above reads it, in two vectors so that no
+  // signal is both read and driven by the combinational part of the tree: tr the
+  // registered nodes (a flip-flop each), tc the others (the other vector's segment 0).
+  wire [TOT*NW-1:0] tr, tc;
   generate
     for (l = 1; l <= NL; l = l + 1) begin : g_lvl
       for (j = 0; j < lvl_n(l); j = j + 1) begin : g_node
@@ -172,9 +180,11 @@ module sm_wta #(
             assign b = a;
           end
         end else begin : g_from_lvl
-          assign a = tv[(lvl_base(l - 1) + 2 * j) * NW +: NW];
+          // level l-1 is registered when even (the root is the top level)
+          wire [TOT*NW-1:0] src = ((l - 1) % 2 == 0) ? tr : tc;
+          assign a = src[(lvl_base(l - 1) + 2 * j) * NW +: NW];
           if (2 * j + 1 < lvl_n(l - 1)) begin : g_b
-            assign b = tv[(lvl_base(l - 1) + 2 * j + 1) * NW +: NW];
+            assign b = src[(lvl_base(l - 1) + 2 * j + 1) * NW +: NW];
           end else begin : g_nob
             assign b = a;
           end
@@ -195,7 +205,7 @@ module sm_wta #(
             end else if (LP == 0) begin : g_leaf
               assign cand[t*5*CW +: 5*CW] = win[(j*NT+t)*CW +: 5*CW];
             end else begin : g_node
-              assign cand[t*5*CW +: 5*CW] = tv[(lvl_base(LP) + j * NT + t) * NW + O_B +: 5 * CW];
+              assign cand[t*5*CW +: 5*CW] = tr[(lvl_base(LP) + j * NT + t) * NW + O_B +: 5 * CW];
             end
           end
           wire [5*CW-1:0] bs;
@@ -211,14 +221,18 @@ module sm_wta #(
           always @(posedge clk) begin
             if (tree_en) q <= {bs, mg[O_B-1:0]};
           end
-          assign tv[OUT +: NW] = q;
+          assign tr[OUT +: NW] = q;
+          assign tc[OUT +: NW] = {NW{1'b0}};
+          wire unused_tc = ^tc[OUT +: NW];
         end else begin : g_comb
-          assign tv[OUT +: NW] = mg;
+          assign tc[OUT +: NW] = mg;
+          assign tr[OUT +: NW] = {NW{1'b0}};
+          wire unused_tr = ^tr[OUT +: NW];
         end
       end
     end
   endgenerate
-  wire [NW-1:0] root = tv[(TOT-1)*NW +: NW];
+  wire [NW-1:0] root = tr[(TOT-1)*NW +: NW];
 
   // Record: {band, cmax, c2, c1, dw}
   localparam RW = 8 * CW + DW;
