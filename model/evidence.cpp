@@ -71,9 +71,10 @@ struct NearMask {
 };
 const NearMask kNear;
 
-// Per pixel of a row: dw (first level of least cost), c1, c2 (least cost over the levels
-// at least 2 from dw, c1 when there is none) and cmax. The second pass ORs 255 into
-// dw - 1 .. dw + 1 (a sliding mask), which cannot lower the least of the others.
+}  // namespace
+
+// The second pass ORs 255 into dw - 1 .. dw + 1 (a sliding mask), which cannot lower the
+// least of the others.
 SM_HOT void wta_row(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1, uint8_t* c2, uint8_t* cmax) {
   if (nd < 1) return;
   for (int x = 0; x < w; ++x) {
@@ -97,8 +98,6 @@ SM_HOT void wta_row(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1,
     cmax[x] = hi;
   }
 }
-
-}  // namespace
 
 void right_wta(const uint8_t* agg, int w, int nd, std::vector<uint8_t>& out) {
   std::vector<uint16_t> key(static_cast<size_t>(w + nd), 0xffff);
@@ -150,7 +149,7 @@ void evidence_line(const uint8_t* agg, int w, int nd, const DpLine& line, int y,
     cp[x] = at(d + 1);
     lr[x] = x >= d ? rwp[x - d] : uint8_t{255};
     const int best = dw[x];
-    for (int j = 0; j < 5; ++j) band[j][x] = at(best - 2 + j);
+    for (int j = 0; j < 5; ++j) band[j][x] = wta_band(a, nd, best, j);
   }
 }
 

@@ -38,6 +38,18 @@ void evidence_line(const uint8_t* agg, int w, int nd, const DpLine& line, int y,
 Evidence evidence_frame(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
                         const HwConfig& hw);
 
+// WTA record of each pixel of a row (the RTL's sm_wta): dw[x] the lowest level of least
+// A(x, .), c1[x] = A(x, dw), c2[x] the least A(x, k) over |k - dw| >= 2 (c1 when there is
+// none), cmax[x] the greatest A(x, .).
+void wta_row(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1, uint8_t* c2, uint8_t* cmax);
+
+// Band entry j (0..4) of a pixel's WTA record: A(x, dw - 2 + j) of its costs a[0..nd-1],
+// 0 outside 0..nd-1.
+inline uint8_t wta_band(const uint8_t* a, int nd, int dw, int j) {
+  const int k = dw - 2 + j;
+  return k >= 0 && k < nd ? a[k] : uint8_t{0};
+}
+
 // Right-view WTA of one line: out[xr] = the lowest k of least A(xr + k, k) over the levels
 // with xr + k < w (a diagonal minimum the RTL keeps as one running (cost, level) per level).
 void right_wta(const uint8_t* agg, int w, int nd, std::vector<uint8_t>& out);
