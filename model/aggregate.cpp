@@ -138,7 +138,7 @@ inline void weight_masks(uint64_t b0, uint64_t b1, uint64_t* m, uint32_t& rec) {
 #if defined(SM_X86_DISPATCH)
 // Steps (2) and (3) of agg_row with AVX-512 (chosen at run time): 64 levels per vector, the
 // byte sums widened in order (vpmovzxbw of each half), the same sums as agg_block.
-#define SM_AVX512 __attribute__((target("avx512f,avx512bw")))
+#define SM_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl")))
 template <int NB>
 SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, const uint64_t* mask, int group, int d0,
                                    uint16_t* sum) {
@@ -175,6 +175,24 @@ SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, cons
   }
 }
 
+// normalise with 16-bit products, 32 levels per step: for RECIP <= 2048 (every weight sum
+// but 1), with P = A_raw * (RECIP << 4) (32 bits), (A_raw * RECIP + 2048) >> 12 = (P +
+// 32768) >> 16 = hi16(P) + (lo16(P) >> 15); RECIP = 4096 (weight sum 1) gives A_raw
+// itself. Then the minimum with 2^CW - 1 and one byte per level (masked at the tail).
+SM_AVX512 inline void normalise512(const uint16_t* su, int nd, uint32_t rec, uint32_t out_max, uint8_t* o) {
+  const bool unit = rec >= (1u << kRecipShift);
+  const __m512i r16 = _mm512_set1_epi16(static_cast<short>(unit ? 0 : rec << 4));
+  const __m512i top = _mm512_set1_epi16(static_cast<short>(out_max));
+  for (int d = 0; d < nd; d += 32) {
+    const __m512i s = _mm512_loadu_si512(su + d);
+    const __m512i v =
+        unit ? s : _mm512_add_epi16(_mm512_mulhi_epu16(s, r16), _mm512_srli_epi16(_mm512_mullo_epi16(s, r16), 15));
+    const __m256i b = _mm512_maskz_cvtepi16_epi8(~__mmask32{0}, _mm512_min_epu16(v, top));
+    const __mmask32 keep = nd - d >= 32 ? ~__mmask32{0} : (__mmask32{1} << (nd - d)) - 1;
+    _mm256_mask_storeu_epi8(o + d, keep, b);
+  }
+}
+
 SM_AVX512 void agg_pixels_avx512(const AggRow& a, const uint64_t* b0, const uint64_t* b1, const uint8_t* const* base,
                                  uint16_t* su, uint8_t* out) {
   const int nd = a.nd;
@@ -186,13 +204,14 @@ SM_AVX512 void agg_pixels_avx512(const AggRow& a, const uint64_t* b0, const uint
     int d0 = 0;
     for (; d0 + 128 <= nd; d0 += 128) agg_block512<2>(base, xoff, m, a.group, d0, su + d0);
     for (; d0 < nd; d0 += 64) agg_block512<1>(base, xoff, m, a.group, d0, su + d0);
-    normalise(su, nd, rec, a.out_max, out + xoff);
+    normalise512(su, nd, rec, a.out_max, out + xoff);
   }
 }
 #undef SM_AVX512
 
 bool agg_avx512() {
   static const bool ok = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                         __builtin_cpu_supports("avx512vl") &&
                          std::getenv("SM_NO_AVX512") == nullptr;  // (tests of the other kernels)
   return ok;
 }
