@@ -29,7 +29,7 @@ CensusPad::CensusPad(const Image8& in, int r_)
     : w(in.w),
       h(in.h),
       r(r_),
-      stride(static_cast<size_t>(in.w + 2 * r_ + kBlock)),
+      stride(static_cast<size_t>(in.w + 2 * r_ + std::max(kBlock, 64))),  // (64: census_planes_avx512)
       px(stride * static_cast<size_t>(in.h + 2 * r_)) {
   // Row y of the padded image is image row clamp(y, 0, h-1), each row extended with its
   // first pixel on the left and its last on the right (the vector tail included).
@@ -46,6 +46,31 @@ CensusPad::CensusPad(const Image8& in, int r_)
 typedef uint8_t VB __attribute__((vector_size(kBlock)));
 #endif
 
+#if defined(SM_X86_DISPATCH)
+// The byte planes of census_row with AVX-512 (BW; chosen at run time where the CPU has it
+// and SM_NO_AVX512 is not set): 64 pixels per compare, the compare an unsigned byte
+// compare into a mask and the bit set by a masked add (the plane's bits are distinct, so
+// adding is ORing). Same bits as the generic loop.
+__attribute__((target("avx512f,avx512bw"))) void census_planes_avx512(const uint8_t* c, const uint8_t* const* nrow,
+                                                                      int nb, size_t wr, uint8_t* pl) {
+  for (size_t x = 0; x < wr; x += 64) {
+    const __m512i cv = _mm512_loadu_si512(c + x);
+    __m512i p = _mm512_setzero_si512();
+    for (int b = 0; b < nb; ++b) {
+      const __mmask64 lt = _mm512_cmplt_epu8_mask(_mm512_loadu_si512(nrow[b] + x), cv);
+      p = _mm512_mask_add_epi8(p, lt, p, _mm512_set1_epi8(static_cast<char>(1u << b)));
+    }
+    _mm512_storeu_si512(pl + x, p);
+  }
+}
+
+bool census_avx512() {
+  static const bool ok =
+      __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && std::getenv("SM_NO_AVX512") == nullptr;
+  return ok;
+}
+#endif
+
 // Eight census bits at a time: bit k of byte plane g is neighbour 8g + k (raster order,
 // centre skipped), computed for a whole row with one compare per neighbour and block of
 // pixels (the compare loop vectorizes); then each pixel's four words are assembled
@@ -54,7 +79,12 @@ typedef uint8_t VB __attribute__((vector_size(kBlock)));
 SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
   const int r = in.r, w = in.w, side = 2 * r + 1;
   const int nbits = side * side - 1, ngroups = (nbits + 7) / 8;
-  const size_t wr = static_cast<size_t>((w + kBlock - 1) / kBlock * kBlock);
+  size_t wr = static_cast<size_t>((w + kBlock - 1) / kBlock * kBlock);
+#if defined(SM_X86_DISPATCH)
+  // The AVX-512 planes run over whole blocks of 64 pixels (the padded rows hold them).
+  const bool wr64 = census_avx512() && in.stride >= static_cast<size_t>(2 * r + (w + 63) / 64 * 64);
+  if (wr64) wr = static_cast<size_t>((w + 63) / 64 * 64);
+#endif
   // Scratch kept per thread (no allocation per row); the planes past the last group
   // are read as zero bits.
   // (A local pointer: stores through uint8_t pointers would otherwise make the compiler
@@ -73,6 +103,12 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
       nrow[b] = in.row(y + k / side - r) + (k % side - r);
     }
     uint8_t* pl = &planes[static_cast<size_t>(g) * wr];
+#if defined(SM_X86_DISPATCH)
+    if (wr64) {
+      census_planes_avx512(c, nrow, nb, wr, pl);
+      continue;
+    }
+#endif
 #if defined(__GNUC__)
     for (size_t x = 0; x < wr; x += kBlock) {
       VB cv, p = VB{};
