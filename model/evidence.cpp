@@ -138,8 +138,14 @@ const NearMask kNear;
 // Per pixel of a row: dw (first level of least cost), c1, c2 (least cost over the levels
 // at least 2 from dw, c1 when there is none) and cmax. The second pass ORs 255 into
 // dw - 1 .. dw + 1 (a sliding mask), which cannot lower the least of the others.
+#if defined(SM_X86_DISPATCH)
+bool wta_avx512(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1, uint8_t* c2, uint8_t* cmax);
+#endif
 SM_HOT void wta_row(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1, uint8_t* c2, uint8_t* cmax) {
   if (nd < 1) return;
+#if defined(SM_X86_DISPATCH)
+  if (wta_avx512(agg, w, nd, dw, c1, c2, cmax)) return;
+#endif
   for (int x = 0; x < w; ++x) {
     const uint8_t* a = agg + static_cast<size_t>(x) * nd;
     uint8_t m = 255, hi = 0;
@@ -163,6 +169,84 @@ SM_HOT void wta_row(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1,
 }
 
 #if defined(SM_X86_DISPATCH)
+// wta_row with AVX-512 (chosen as right_wta_regs is): a pixel's levels in NC registers of
+// 64 (the lanes past the last level hold 255 for the minima, 0 for the maximum), the
+// least, greatest and second least cost as byte minima reduced to one value, the WTA level
+// the first lane equal to the least. Same bits as the loops.
+#define SM_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl")))
+// The least byte of v.
+SM_AVX512 inline uint8_t least_byte(__m512i v) {
+  // (Zero-masked extracts with every lane kept: the plain ones start from an undefined
+  // vector that GCC 12 warns about.)
+  const __m256i y =
+      _mm256_min_epu8(_mm512_maskz_extracti64x4_epi64(0xff, v, 0), _mm512_maskz_extracti64x4_epi64(0xff, v, 1));
+  __m128i x = _mm_min_epu8(_mm256_castsi256_si128(y), _mm256_extracti128_si256(y, 1));
+  x = _mm_min_epu8(x, _mm_srli_epi16(x, 8));  // byte pairs: the least in the low byte, 0 above
+  return static_cast<uint8_t>(_mm_cvtsi128_si32(_mm_minpos_epu16(x)));
+}
+// Bits lo .. lo + 2 of a 64-bit mask (the part inside 0..63).
+inline uint64_t three_bits(int lo) {
+  if (lo >= 64 || lo < -2) return 0;
+  return lo >= 0 ? uint64_t{7} << lo : uint64_t{7} >> -lo;
+}
+template <int NC>
+SM_AVX512 void wta_regs(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1, uint8_t* c2, uint8_t* cmax) {
+  __mmask64 live[NC];
+  for (int c = 0; c < NC; ++c) {
+    const int n = std::clamp(nd - 64 * c, 0, 64);
+    live[c] = n == 64 ? ~__mmask64{0} : (__mmask64{1} << n) - 1;
+  }
+  const __m512i ones = _mm512_set1_epi8(-1);
+  for (int x = 0; x < w; ++x) {
+    const uint8_t* a = agg + static_cast<size_t>(x) * nd;
+    __m512i v[NC];
+    __m512i lo = ones, hi = _mm512_setzero_si512();
+    for (int c = 0; c < NC; ++c) {
+      v[c] = _mm512_mask_loadu_epi8(ones, live[c], a + 64 * c);
+      lo = _mm512_min_epu8(lo, v[c]);
+      hi = _mm512_max_epu8(hi, _mm512_maskz_mov_epi8(live[c], v[c]));
+    }
+    const uint8_t m = least_byte(lo);
+    const int top = 255 - least_byte(_mm512_xor_si512(hi, ones));
+    int best = 0;
+    for (int c = 0; c < NC; ++c) {
+      const uint64_t eq = _mm512_cmpeq_epu8_mask(v[c], _mm512_set1_epi8(static_cast<char>(m))) & live[c];
+      if (eq) {
+        best = 64 * c + __builtin_ctzll(eq);
+        break;
+      }
+    }
+    __m512i rest = ones;  // the levels at least 2 from best
+    for (int c = 0; c < NC; ++c)
+      rest = _mm512_min_epu8(rest, _mm512_mask_mov_epi8(ones, live[c] & ~three_bits(best - 1 - 64 * c), v[c]));
+    const bool any = best >= 2 || best + 2 < nd;
+    dw[x] = static_cast<uint8_t>(best);
+    c1[x] = m;
+    c2[x] = any ? least_byte(rest) : m;
+    cmax[x] = static_cast<uint8_t>(top);
+  }
+}
+#undef SM_AVX512
+
+// wta_regs for this nd where the CPU has the instructions (false: not run).
+bool wta_avx512(const uint8_t* agg, int w, int nd, uint8_t* dw, uint8_t* c1, uint8_t* c2, uint8_t* cmax) {
+  static const bool ok = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                         __builtin_cpu_supports("avx512vl") && std::getenv("SM_NO_AVX512") == nullptr;
+  if (!ok) return false;
+  switch ((nd + 63) / 64) {
+    case 1:
+      return wta_regs<1>(agg, w, nd, dw, c1, c2, cmax), true;
+    case 2:
+      return wta_regs<2>(agg, w, nd, dw, c1, c2, cmax), true;
+    case 3:
+      return wta_regs<3>(agg, w, nd, dw, c1, c2, cmax), true;
+    case 4:
+      return wta_regs<4>(agg, w, nd, dw, c1, c2, cmax), true;
+    default:
+      return false;
+  }
+}
+
 // right_wta_regs for this nd where the CPU has the instructions (false: not run).
 bool right_wta_avx512(const uint8_t* agg, int w, int nd, uint16_t* key) {
   static const bool ok = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
