@@ -356,6 +356,83 @@ void gather_costs(const uint8_t* agg, int n, int nd, int ne, int no, int stride,
   }
 }
 
+#if defined(SM_X86_DISPATCH)
+// gather_costs with AVX-512 for ne a multiple of 32 (even DISP): cm[t][p] = P[t + p][p],
+// P[x][p] the 16-bit pair p of pixel x, is a transpose, a shift of row p by p, and a
+// transpose back: pt[p][x] = P[x][p] (zero for x >= n), then cm[t][p] = pt[p][t + p].
+// Both transposes run on 8 x 8 blocks of pairs, four side by side in the 128-bit lanes of
+// a 512-bit vector (unpacks work within lanes). cm gets rows 0 .. n rounded up to 8.
+#define SM_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl")))
+// Transposes the 8 x 8 block in each 128-bit lane of r[0..7] (row i, 8 entries) in place.
+// (Zero-masked forms with every lane kept here and below: the plain ones start from an
+// undefined vector that GCC 12 warns about.)
+SM_AVX512 inline void transpose_lanes8x8(__m512i* r) {
+  __m512i b[8], c[8];
+  for (int i = 0; i < 4; ++i) {
+    b[2 * i] = _mm512_maskz_unpacklo_epi16(~__mmask32{0}, r[2 * i], r[2 * i + 1]);
+    b[2 * i + 1] = _mm512_maskz_unpackhi_epi16(~__mmask32{0}, r[2 * i], r[2 * i + 1]);
+  }
+  for (int i = 0; i < 2; ++i) {
+    c[4 * i] = _mm512_maskz_unpacklo_epi32(0xffff, b[4 * i], b[4 * i + 2]);
+    c[4 * i + 1] = _mm512_maskz_unpackhi_epi32(0xffff, b[4 * i], b[4 * i + 2]);
+    c[4 * i + 2] = _mm512_maskz_unpacklo_epi32(0xffff, b[4 * i + 1], b[4 * i + 3]);
+    c[4 * i + 3] = _mm512_maskz_unpackhi_epi32(0xffff, b[4 * i + 1], b[4 * i + 3]);
+  }
+  for (int i = 0; i < 4; ++i) {
+    r[2 * i] = _mm512_maskz_unpacklo_epi64(0xff, c[i], c[4 + i]);
+    r[2 * i + 1] = _mm512_maskz_unpackhi_epi64(0xff, c[i], c[4 + i]);
+  }
+}
+
+// pt[p][x] = P[x][p] for pixels x0 .. x0+7 and pairs p0 .. p0+31 (row stride ptw).
+SM_AVX512 inline void pairs_to_rows(const uint16_t* pairs, int ne, int x0, int p0, uint16_t* pt, size_t ptw) {
+  __m512i r[8];
+  for (int i = 0; i < 8; ++i) r[i] = _mm512_loadu_si512(pairs + static_cast<size_t>(x0 + i) * ne + p0);
+  transpose_lanes8x8(r);
+  for (int k = 0; k < 8; ++k)  // lane j of r[k]: pair p0 + 8j + k of the 8 pixels
+    for (int j = 0; j < 4; ++j)
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(pt + static_cast<size_t>(p0 + 8 * j + k) * ptw + x0),
+                       _mm512_maskz_extracti32x4_epi32(0xf, r[k], j));
+}
+
+// cm[t][p] = pt[p][t + p] for t0 .. t0+7 and pairs p0 .. p0+31.
+SM_AVX512 inline void rows_to_sites(const uint16_t* pt, size_t ptw, int t0, int p0, uint16_t* cm, int stride) {
+  __m512i r[8];
+  for (int i = 0; i < 8; ++i) {  // lane j of row i: pt[p0 + 8j + i][t0 + p0 + 8j + i ..]
+    auto at = [&](int j) {
+      const int p = p0 + 8 * j + i;
+      return _mm_loadu_si128(reinterpret_cast<const __m128i*>(pt + static_cast<size_t>(p) * ptw + t0 + p));
+    };
+    r[i] = _mm512_maskz_inserti32x4(
+        0xffff,
+        _mm512_maskz_inserti32x4(0xffff, _mm512_maskz_inserti32x4(0xffff, _mm512_zextsi128_si512(at(0)), at(1), 1),
+                                 at(2), 2),
+        at(3), 3);
+  }
+  transpose_lanes8x8(r);
+  for (int k = 0; k < 8; ++k) _mm512_storeu_si512(cm + static_cast<size_t>(t0 + k) * stride + p0, r[k]);
+}
+
+SM_AVX512 void gather_costs_avx512(const uint8_t* agg, int n, int ne, int stride, uint16_t* cm,
+                                   std::vector<uint16_t>& pt_buf) {
+  const size_t ptw = static_cast<size_t>(n) + stride + 16;
+  pt_buf.resize(static_cast<size_t>(ne) * ptw);
+  uint16_t* pt = pt_buf.data();
+  const auto* pairs = reinterpret_cast<const uint16_t*>(agg);  // (DISP even: pair p of x at x * ne + p)
+  int x0 = 0;
+  for (; x0 + 8 <= n; x0 += 8)
+    for (int p0 = 0; p0 < ne; p0 += 32) pairs_to_rows(pairs, ne, x0, p0, pt, ptw);
+  for (int p = 0; p < ne; ++p) {
+    uint16_t* row = pt + static_cast<size_t>(p) * ptw;
+    for (int x = x0; x < n; ++x) std::memcpy(&row[x], agg + static_cast<size_t>(x) * 2 * ne + 2 * p, 2);
+    std::fill(row + n, row + ptw, uint16_t{0});
+  }
+  for (int t0 = 0; t0 <= n; t0 += 8)
+    for (int p0 = 0; p0 < ne; p0 += 32) rows_to_sites(pt, ptw, t0, p0, cm, stride);
+}
+#undef SM_AVX512
+#endif
+
 }  // namespace
 
 // Forward pass two sites at a time, like the hardware's clock t: site 2t+1 (matched
@@ -374,8 +451,13 @@ void trellis_line_impl(const uint8_t* agg, int n, uint8_t occ, const uint8_t* pe
   const int ne = (nd + 1) / 2, no = nd / 2;  // even / odd levels
   const int stride = (ne + 15) / 16 * 16;    // entries per site, whole vectors (up to 16 lanes)
 
-  s.cm.resize(static_cast<size_t>(n + 1) * stride);
-  gather_costs(agg, n, nd, ne, no, stride, s.cm.data());
+  s.cm.resize(static_cast<size_t>(n + 8) * stride);
+#if defined(SM_X86_DISPATCH)
+  if (dp_avx512() && nd % 2 == 0 && ne % 32 == 0 && ne == stride)
+    gather_costs_avx512(agg, n, ne, stride, s.cm.data(), s.pt);
+  else
+#endif
+    gather_costs(agg, n, nd, ne, no, stride, s.cm.data());
 
   // U with one vector of room in front (index -1 is read by the first block) and
   // behind. Every decision the backward pass reads is written by the forward pass, so

@@ -29,6 +29,7 @@ struct DpScratch {
                                  // (2N+1) * S entries (0, 1, 2; the vector pass writes 3 for 2)
   std::vector<uint16_t> cm;      // matched costs in site order, (N+1) * S pairs (dp.cpp)
   std::vector<uint32_t> pen;     // per-pixel penalties, padded, 32 bits (trellis_line_pen)
+  std::vector<uint16_t> pt;      // the costs' pairs by level pair, then pixel (dp.cpp, AVX-512 gather)
 };
 
 // One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=
