@@ -18,6 +18,9 @@ Image8 brightness(const Image8& in, uint16_t gain, int16_t offset) {
   std::array<uint8_t, 256> lut;
   for (int p = 0; p < 256; ++p)
     lut[static_cast<size_t>(p)] = static_cast<uint8_t>(std::clamp(((p * g + 128) >> 8) + off, 0, 255));
+  bool same = true;  // (speed: the default gain 1.0 and offset 0 map every value to itself)
+  for (int p = 0; p < 256; ++p) same = same && lut[static_cast<size_t>(p)] == p;
+  if (same) return in;
   Image8 out(in.w, in.h);
   for (size_t i = 0; i < in.px.size(); ++i) out.px[i] = lut[in.px[i]];
   return out;
