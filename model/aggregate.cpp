@@ -136,14 +136,40 @@ inline void weight_masks(uint64_t b0, uint64_t b1, uint64_t* m, uint32_t& rec) {
 }
 
 #if defined(SM_X86_DISPATCH)
-// Steps (2) and (3) of agg_row with AVX-512 (chosen at run time): 64 levels per vector, the
-// byte sums widened in order (vpmovzxbw of each half), the same sums as agg_block.
-#define SM_AVX512 __attribute__((target("avx512f,avx512bw")))
+// Steps (2) and (3) of agg_row with AVX-512 (chosen at run time): 64 levels per vector,
+// the same sums as agg_block, normalised in registers. The byte sums are widened by
+// interleaving with zero bytes within each 128-bit lane (levels 0-7 | 16-23 | ... in
+// `lo`, 8-15 | 24-31 | ... in `hi`), and packing the normalised 16-bit values back to
+// bytes interleaves the same way, so the levels come out in order.
+#define SM_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl")))
+
+// The normalisation of one pixel: A = min((A_raw * RECIP + 2048) >> 12, 2^CW - 1) with
+// 16-bit products. For RECIP <= 2048 (every weight sum but 1), with P = A_raw * (RECIP
+// << 4), (A_raw * RECIP + 2048) >> 12 = (P + 32768) >> 16 = hi16(P) + (lo16(P) >> 15);
+// RECIP = 4096 (weight sum 1) gives A_raw itself.
+struct Norm512 {
+  bool unit;
+  __m512i r16, top;
+};
+SM_AVX512 inline Norm512 norm512(uint32_t rec, uint32_t out_max) {
+  const bool unit = rec >= (1u << kRecipShift);
+  return {unit, _mm512_set1_epi16(static_cast<short>(unit ? 0 : rec << 4)),
+          _mm512_set1_epi16(static_cast<short>(out_max))};
+}
+SM_AVX512 inline __m512i normalise512(const Norm512& n, __m512i s) {
+  const __m512i v =
+      n.unit ? s : _mm512_add_epi16(_mm512_mulhi_epu16(s, n.r16), _mm512_srli_epi16(_mm512_mullo_epi16(s, n.r16), 15));
+  return _mm512_min_epu16(v, n.top);
+}
+
+// A of the 64 * NB levels d0 .. of one pixel into o[0 .. nlev-1] (nlev <= 64 * NB: the
+// last block's lanes past the last level are computed and not stored).
 template <int NB>
 SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, const uint64_t* mask, int group, int d0,
-                                   uint16_t* sum) {
+                                   const Norm512& nrm, uint8_t* o, int nlev) {
+  const __m512i zero = _mm512_setzero_si512();
   __m512i lo[NB], hi[NB];
-  for (int v = 0; v < NB; ++v) lo[v] = hi[v] = _mm512_setzero_si512();
+  for (int v = 0; v < NB; ++v) lo[v] = hi[v] = zero;
   for (int c = 2; c >= 0; --c) {  // weights 4, 2, 1, doubled in between (as agg_block)
     if (c < 2)
       for (int v = 0; v < NB; ++v) {
@@ -153,46 +179,48 @@ SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, cons
     uint64_t bits = mask[c];
     while (bits) {
       __m512i s[NB];
-      for (int v = 0; v < NB; ++v) s[v] = _mm512_setzero_si512();
+      for (int v = 0; v < NB; ++v) s[v] = zero;
       for (int k = 0; k < group && bits; ++k) {
         const uint8_t* q = base[__builtin_ctzll(bits)] + xoff + d0;
         bits &= bits - 1;
         for (int v = 0; v < NB; ++v) s[v] = _mm512_add_epi8(s[v], _mm512_loadu_si512(q + 64 * v));
       }
       for (int v = 0; v < NB; ++v) {
-        // (Zero-masked forms with every lane kept: the plain ones start from an undefined
-        // vector that GCC 12 warns about.)
-        lo[v] = _mm512_add_epi16(
-            lo[v], _mm512_maskz_cvtepu8_epi16(~__mmask32{0}, _mm512_maskz_extracti64x4_epi64(0xff, s[v], 0)));
-        hi[v] = _mm512_add_epi16(
-            hi[v], _mm512_maskz_cvtepu8_epi16(~__mmask32{0}, _mm512_maskz_extracti64x4_epi64(0xff, s[v], 1)));
+        lo[v] = _mm512_add_epi16(lo[v], _mm512_unpacklo_epi8(s[v], zero));
+        hi[v] = _mm512_add_epi16(hi[v], _mm512_unpackhi_epi8(s[v], zero));
       }
     }
   }
   for (int v = 0; v < NB; ++v) {
-    _mm512_storeu_si512(sum + 64 * v, lo[v]);
-    _mm512_storeu_si512(sum + 64 * v + 32, hi[v]);
+    const __m512i bytes = _mm512_packus_epi16(normalise512(nrm, lo[v]), normalise512(nrm, hi[v]));
+    const int left = nlev - 64 * v;
+    if (left >= 64)
+      _mm512_storeu_si512(o + 64 * v, bytes);
+    else if (left > 0)
+      _mm512_mask_storeu_epi8(o + 64 * v, (__mmask64{1} << left) - 1, bytes);
   }
 }
 
 SM_AVX512 void agg_pixels_avx512(const AggRow& a, const uint64_t* b0, const uint64_t* b1, const uint8_t* const* base,
-                                 uint16_t* su, uint8_t* out) {
+                                 uint8_t* out) {
   const int nd = a.nd;
   for (int x = 0; x < a.w; ++x) {
     uint64_t m[3];
     uint32_t rec;
     weight_masks(b0[x], b1[x], m, rec);
+    const Norm512 nrm = norm512(rec, a.out_max);
     const size_t xoff = static_cast<size_t>(x) * nd;
+    uint8_t* o = out + xoff;
     int d0 = 0;
-    for (; d0 + 128 <= nd; d0 += 128) agg_block512<2>(base, xoff, m, a.group, d0, su + d0);
-    for (; d0 < nd; d0 += 64) agg_block512<1>(base, xoff, m, a.group, d0, su + d0);
-    normalise(su, nd, rec, a.out_max, out + xoff);
+    for (; d0 + 128 <= nd; d0 += 128) agg_block512<2>(base, xoff, m, a.group, d0, nrm, o + d0, 128);
+    for (; d0 < nd; d0 += 64) agg_block512<1>(base, xoff, m, a.group, d0, nrm, o + d0, std::min(64, nd - d0));
   }
 }
 #undef SM_AVX512
 
 bool agg_avx512() {
   static const bool ok = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                         __builtin_cpu_supports("avx512vl") &&
                          std::getenv("SM_NO_AVX512") == nullptr;  // (tests of the other kernels)
   return ok;
 }
@@ -262,7 +290,7 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
   std::vector<uint16_t> sum(static_cast<size_t>(nd) + 128);  // A_raw, whole blocks
   uint16_t* su = sum.data();
 #if defined(SM_X86_DISPATCH)
-  if (agg_avx512()) return agg_pixels_avx512(a, b0, b1, base.data(), su, out);
+  if (agg_avx512()) return agg_pixels_avx512(a, b0, b1, base.data(), out);
 #endif
   for (int x = 0; x < w; ++x) {
     // (2) Window positions of weight 1, 2, 4 (codes 1, 2, 3) and the weight sum.

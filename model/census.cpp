@@ -29,7 +29,7 @@ CensusPad::CensusPad(const Image8& in, int r_)
     : w(in.w),
       h(in.h),
       r(r_),
-      stride(static_cast<size_t>(in.w + 2 * r_ + kBlock)),
+      stride(static_cast<size_t>(in.w + 2 * r_ + std::max(kBlock, 64))),  // (64: census_planes_avx512)
       px(stride * static_cast<size_t>(in.h + 2 * r_)) {
   // Row y of the padded image is image row clamp(y, 0, h-1), each row extended with its
   // first pixel on the left and its last on the right (the vector tail included).
@@ -46,6 +46,31 @@ CensusPad::CensusPad(const Image8& in, int r_)
 typedef uint8_t VB __attribute__((vector_size(kBlock)));
 #endif
 
+#if defined(SM_X86_DISPATCH)
+// The byte planes of census_row with AVX-512 (BW; chosen at run time where the CPU has it
+// and SM_NO_AVX512 is not set): 64 pixels per compare, the compare an unsigned byte
+// compare into a mask and the bit set by a masked add (the plane's bits are distinct, so
+// adding is ORing). Same bits as the generic loop.
+__attribute__((target("avx512f,avx512bw"))) void census_planes_avx512(const uint8_t* c, const uint8_t* const* nrow,
+                                                                      int nb, size_t wr, uint8_t* pl) {
+  for (size_t x = 0; x < wr; x += 64) {
+    const __m512i cv = _mm512_loadu_si512(c + x);
+    __m512i p = _mm512_setzero_si512();
+    for (int b = 0; b < nb; ++b) {
+      const __mmask64 lt = _mm512_cmplt_epu8_mask(_mm512_loadu_si512(nrow[b] + x), cv);
+      p = _mm512_mask_add_epi8(p, lt, p, _mm512_set1_epi8(static_cast<char>(1u << b)));
+    }
+    _mm512_storeu_si512(pl + x, p);
+  }
+}
+
+bool census_avx512() {
+  static const bool ok =
+      __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && std::getenv("SM_NO_AVX512") == nullptr;
+  return ok;
+}
+#endif
+
 // Eight census bits at a time: bit k of byte plane g is neighbour 8g + k (raster order,
 // centre skipped), computed for a whole row with one compare per neighbour and block of
 // pixels (the compare loop vectorizes); then each pixel's four words are assembled
@@ -54,7 +79,12 @@ typedef uint8_t VB __attribute__((vector_size(kBlock)));
 SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
   const int r = in.r, w = in.w, side = 2 * r + 1;
   const int nbits = side * side - 1, ngroups = (nbits + 7) / 8;
-  const size_t wr = static_cast<size_t>((w + kBlock - 1) / kBlock * kBlock);
+  size_t wr = static_cast<size_t>((w + kBlock - 1) / kBlock * kBlock);
+#if defined(SM_X86_DISPATCH)
+  // The AVX-512 planes run over whole blocks of 64 pixels (the padded rows hold them).
+  const bool wr64 = census_avx512() && in.stride >= static_cast<size_t>(2 * r + (w + 63) / 64 * 64);
+  if (wr64) wr = static_cast<size_t>((w + 63) / 64 * 64);
+#endif
   // Scratch kept per thread (no allocation per row); the planes past the last group
   // are read as zero bits.
   // (A local pointer: stores through uint8_t pointers would otherwise make the compiler
@@ -73,6 +103,12 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
       nrow[b] = in.row(y + k / side - r) + (k % side - r);
     }
     uint8_t* pl = &planes[static_cast<size_t>(g) * wr];
+#if defined(SM_X86_DISPATCH)
+    if (wr64) {
+      census_planes_avx512(c, nrow, nb, wr, pl);
+      continue;
+    }
+#endif
 #if defined(__GNUC__)
     for (size_t x = 0; x < wr; x += kBlock) {
       VB cv, p = VB{};
@@ -206,14 +242,46 @@ __attribute__((target("avx2,popcnt"))) void cost_row_avx2(const CensusVec* l, co
 #endif
 
 #if defined(SM_X86_DISPATCH)
-// The same with AVX-512 (VPOPCNTDQ, VNNI, BW, VL; chosen at run time where the CPU has
-// them), eight levels per step: the right vectors of levels d .. d+7 are the 256
-// contiguous bytes from rr[x - d - 7]; four 512-bit XORs with the left vector (twice),
+// The same with AVX-512 (VPOPCNTDQ, VNNI, VBMI, BW, VL; chosen at run time where the CPU
+// has them), sixteen levels per step (costs16), then eight: the right vectors of levels
+// d .. d+7 are the 256 contiguous bytes from rr[x - d - 7]; four 512-bit XORs with the left vector (twice),
 // VPOPCNTQ per 64-bit word (<= 64), the words truncated to bytes (vpmovqb), the four of a
 // level summed by vpdpbusd with ones, and the sums truncated to bytes (vpmovdb: modulo
 // 256 like the portable sum), levels d+7 .. d reversed into order.
-__attribute__((target("avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx512vnni"))) void cost_row_avx512(
-    const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {
+#define SM_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx512vnni,avx512vbmi")))
+// Byte permutes that gather the low bytes of the 64 word counts of 16 levels into one
+// vector (VBMI): stage 1 joins the 8 + 8 counts of two vectors, stage 2 two such halves,
+// stage 3 the two quarters, group i (bytes 4i .. 4i+3, one level's four words) taken from
+// the group of level d + i (the vectors hold levels d+15, d+14 | d+13, d+12 | ...).
+struct Gather16 {
+  __m512i s1, s2, s3;
+};
+SM_AVX512 inline Gather16 gather16() {
+  alignas(64) uint8_t i1[64] = {}, i2[64] = {}, i3[64];
+  for (int k = 0; k < 16; ++k) i1[k] = static_cast<uint8_t>(k < 8 ? 8 * k : 64 + 8 * (k - 8));
+  for (int k = 0; k < 32; ++k) i2[k] = static_cast<uint8_t>(k < 16 ? k : 64 + k - 16);
+  for (int i = 0; i < 16; ++i)
+    for (int e = 0; e < 4; ++e) {
+      const int g = 15 - i;  // group g of [u0 bytes 0..31 | u1 bytes 0..31] is level d + 15 - g
+      i3[4 * i + e] = static_cast<uint8_t>(g < 8 ? 4 * g + e : 64 + 4 * (g - 8) + e);
+    }
+  return {_mm512_load_si512(i1), _mm512_load_si512(i2), _mm512_load_si512(i3)};
+}
+// The 16 costs of levels d .. d+15 (before the shift) of left vector a (broadcast), right
+// vectors from b = &rr[x - d - 15], modulo 256.
+SM_AVX512 inline __m128i costs16(__m512i a, const __m512i* b, const Gather16& g) {
+  __m512i z[8], t[4];
+  for (int j = 0; j < 8; ++j) z[j] = _mm512_popcnt_epi64(_mm512_xor_si512(a, _mm512_loadu_si512(b + j)));
+  for (int k = 0; k < 4; ++k) t[k] = _mm512_permutex2var_epi8(z[2 * k], g.s1, z[2 * k + 1]);
+  const __m512i u0 = _mm512_permutex2var_epi8(t[0], g.s2, t[1]), u1 = _mm512_permutex2var_epi8(t[2], g.s2, t[3]);
+  const __m512i v = _mm512_permutex2var_epi8(u0, g.s3, u1);
+  const __m512i sums = _mm512_dpbusd_epi32(_mm512_setzero_si512(), v, _mm512_set1_epi8(1));  // dword i: level d+i
+  return _mm512_maskz_cvtepi32_epi8(0xffff, sums);
+}
+
+SM_AVX512 void cost_row_avx512(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift,
+                               uint8_t* out) {
+  const Gather16 g = gather16();
   const __m256i ones = _mm256_set1_epi8(1);
   const __m128i rev = _mm_setr_epi8(7, 6, 5, 4, 3, 2, 1, 0, 8, 9, 10, 11, 12, 13, 14, 15);
   const __m128i sh = _mm_cvtsi32_si128(shift);
@@ -225,6 +293,10 @@ __attribute__((target("avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx512vnni"))) 
     const __m512i a = _mm512_maskz_broadcast_i64x4(0xff, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&l[x])));
     const int dn = std::min(nd, x + 1);  // levels with x - d >= 0
     int d = 0;
+    for (; d + 16 <= dn; d += 16) {
+      const __m128i s = costs16(a, reinterpret_cast<const __m512i*>(&rr[x - d - 15]), g);
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(o + d), _mm_and_si128(_mm_srl_epi16(s, sh), keep));
+    }
     for (; d + 8 <= dn; d += 8) {
       const auto* b = reinterpret_cast<const __m512i*>(&rr[x - d - 7]);  // levels d+7, d+6 | d+5, d+4 | ...
       __m128i m[4];
@@ -240,6 +312,7 @@ __attribute__((target("avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx512vnni"))) 
     cost_levels_scalar(l, rr, x, d, nd, cb, shift, o);  // the last levels one at a time
   }
 }
+#undef SM_AVX512
 #endif
 
 }  // namespace
@@ -248,7 +321,7 @@ void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb
 #if defined(SM_X86_DISPATCH)
   static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
                              __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vpopcntdq") &&
-                             __builtin_cpu_supports("avx512vnni") &&
+                             __builtin_cpu_supports("avx512vnni") && __builtin_cpu_supports("avx512vbmi") &&
                              std::getenv("SM_NO_AVX512") == nullptr;  // (tests of the AVX2 kernel)
   if (avx512) return cost_row_avx512(l, rr, w, nd, cb, shift, out);
   static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");

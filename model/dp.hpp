@@ -22,13 +22,14 @@ struct DpLine {
 
 // Reusable work buffers of trellis_line, so a frame allocates once. Levels are kept
 // split by parity (even d = 2m, odd d = 2m + 1), so that every loop of the forward pass
-// runs over consecutive entries; S = ceil(DISP/2) rounded up to a multiple of 8.
+// runs over consecutive entries; S = ceil(DISP/2) rounded up to a multiple of 16.
 struct DpScratch {
   std::vector<uint32_t> u0, u1;  // U of the even / odd levels at the current site
-  std::vector<uint32_t> dec;     // choice of occlusion node (i, d) at i * S + d / 2,
+  std::vector<uint8_t> dec;      // choice of occlusion node (i, d) at i * S + d / 2,
                                  // (2N+1) * S entries (0, 1, 2; the vector pass writes 3 for 2)
   std::vector<uint16_t> cm;      // matched costs in site order, (N+1) * S pairs (dp.cpp)
   std::vector<uint32_t> pen;     // per-pixel penalties, padded, 32 bits (trellis_line_pen)
+  std::vector<uint16_t> pt;      // the costs' pairs by level pair, then pixel (dp.cpp, AVX-512 gather)
 };
 
 // One line: agg[x * disp + d] = A(x, d) for x = 0..n-1 (CW-bit aggregated costs), n <=

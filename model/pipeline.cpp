@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -40,6 +41,8 @@ struct Rows {
   detail::AggRow ag;
 };
 
+uint8_t* align64(uint8_t* p) { return p + (64 - reinterpret_cast<uintptr_t>(p) % 64) % 64; }
+
 // Output rows y0..y1-1 of census, cost (r.raw), aggregation (r.agg) and DP (r.dp);
 // ms[0..3] += the time of each of the four stages.
 void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResult& r, double* ms) {
@@ -50,8 +53,16 @@ void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResul
   const size_t row = static_cast<size_t>(w) * nd;
   const auto cb = static_cast<uint8_t>(hw.census_bits());
   std::vector<CensusVec> cl(static_cast<size_t>(w)), cr(static_cast<size_t>(w));
-  std::vector<uint8_t> ring(static_cast<size_t>(sw) * row + detail::kCostPad);
-  std::vector<uint8_t> agg_line(keep_volumes ? 0 : row);
+  // Speed: the ring and the aggregated line start on a 64-byte boundary (the kernels read a
+  // pixel's levels as 64-byte vectors, which then do not straddle cache lines when DISP is
+  // a multiple of 64), and the ring's rows are 5 cache lines more than a row apart (a
+  // window's rows at x are then not a multiple of 4 KB apart and use different L1 sets:
+  // -7% aggregation time against aligned rows, +6% for aligned rows without the gap).
+  const size_t ring_row = row + 320;
+  std::vector<uint8_t> ring_buf(static_cast<size_t>(sw) * ring_row + detail::kCostPad + 64);
+  std::vector<uint8_t> agg_buf(keep_volumes ? 0 : row + 64);
+  uint8_t* const ring = align64(ring_buf.data());
+  uint8_t* const agg_line = align64(agg_buf.data());
   std::vector<const uint8_t*> win(static_cast<size_t>(sw));
   DpScratch scratch;
   DpLine line;
@@ -65,7 +76,7 @@ void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResul
       detail::census_row(s.pl, y, cl.data());
       detail::census_row(s.pr, y, cr.data());
       const auto t1 = clock::now();
-      uint8_t* c = &ring[static_cast<size_t>(y % sw) * row];
+      uint8_t* c = &ring[static_cast<size_t>(y % sw) * ring_row];
       if (keep_volumes && y >= y0 && y < y1) {
         uint8_t* hr = r.raw.pix(0, y);
         detail::cost_row(cl.data(), cr.data(), w, nd, cb, 0, hr);
@@ -82,8 +93,8 @@ void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResul
     const auto t0 = clock::now();
     for (int j = -ra; j <= ra; ++j)
       win[static_cast<size_t>(j + ra)] =
-          (ya + j >= 0 && ya + j < h) ? &ring[static_cast<size_t>((ya + j) % sw) * row] : nullptr;
-    uint8_t* a = keep_volumes ? r.agg.pix(0, ya) : agg_line.data();
+          (ya + j >= 0 && ya + j < h) ? &ring[static_cast<size_t>((ya + j) % sw) * ring_row] : nullptr;
+    uint8_t* a = keep_volumes ? r.agg.pix(0, ya) : agg_line;
     detail::agg_row(s.ag, win.data(), s.rl.px.data(), ya, a);
     const auto t1 = clock::now();
     edge_penalties(&s.rl.px[static_cast<size_t>(ya) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);

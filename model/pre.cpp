@@ -18,6 +18,9 @@ Image8 brightness(const Image8& in, uint16_t gain, int16_t offset) {
   std::array<uint8_t, 256> lut;
   for (int p = 0; p < 256; ++p)
     lut[static_cast<size_t>(p)] = static_cast<uint8_t>(std::clamp(((p * g + 128) >> 8) + off, 0, 255));
+  bool same = true;  // (speed: the default gain 1.0 and offset 0 map every value to itself)
+  for (int p = 0; p < 256; ++p) same = same && lut[static_cast<size_t>(p)] == p;
+  if (same) return in;
   Image8 out(in.w, in.h);
   for (size_t i = 0; i < in.px.size(); ++i) out.px[i] = lut[in.px[i]];
   return out;
@@ -52,11 +55,24 @@ void rect_source_q4(const RectGrid& g, int x, int y, int& sx, int& sy) {
   sy = interp_q4(g.sy, g.gw, x, y);
 }
 
+namespace {
+// True when g is the identity grid of a w x h image and its points fit int16 unwrapped:
+// every source position is then exactly (16 x, 16 y) in Q.4 (both fractions 0, the tap
+// at (x, y) weighted 256/256), so rectify returns its input.
+bool exact_identity(const RectGrid& g, int w, int h) {
+  const int limit = 32767 >> kMapFrac;  // the largest grid coordinate in whole pixels
+  if ((g.gw - 1) * kGridStep > limit || (g.gh - 1) * kGridStep > limit) return false;
+  const RectGrid id = RectGrid::identity(w, h);
+  return g.gw == id.gw && g.gh == id.gh && g.sx == id.sx && g.sy == id.sy;
+}
+}  // namespace
+
 Image8 rectify(const Image8& in, const RectGrid& grid, bool enable, const HwConfig& hw) {
   const int w = in.w, h = in.h;
   if (!enable) return in;
   const RectGrid g = grid.gw == 0 ? RectGrid::identity(w, h) : grid;
   check_grid(g, w, h);
+  if (exact_identity(g, w, h)) return in;  // (speed: the interpolation below gives the same bits)
   const int rr = hw.rect_radius;
   Image8 out(w, h);
   // interp_q4 with its column step (V0 / V1, Q.9) done once per grid point and row
