@@ -74,7 +74,7 @@ module sm_wta #(
   localparam NL = $clog2(N0);               // tree levels
   localparam NS = (NL + 1) / 2;             // register stages of the tree
   localparam D = NS + 2;                    // folded: clocks from issue to accumulator
-  localparam NR = (F > 1) ? D / F + 1 : 1;  // folded: ring slots (= LATENCY)
+  localparam NR = (F > 1) ? D / F + 1 : 1;  // folded: ring slots
   // ce's from s_cost sampled to m_*, counting the sampling ce (sm_side_delay's DEPTH)
   localparam LATENCY = (F > 1) ? NR + 1 : NS;
 
@@ -122,6 +122,7 @@ module sm_wta #(
       merge[O_XF +: CW] = min2(l[O_XF +: CW], r[O_M +: CW]);
       merge[O_XL +: CW] = min2(l[O_M +: CW], r[O_XL +: CW]);
       merge[O_MX +: CW] = (r[O_MX +: CW] > l[O_MX +: CW]) ? r[O_MX +: CW] : l[O_MX +: CW];
+      // (used by the folded accumulator; a registered tree node selects its own band)
       merge[O_B +: 5*CW] = rw ? r[O_B +: 5*CW] : l[O_B +: 5*CW];
     end
   endfunction
@@ -134,10 +135,10 @@ module sm_wta #(
   endfunction
   function integer lvl_base;
     input integer l;
-    integer t;
+    integer k;
     begin
       lvl_base = 0;
-      for (t = 1; t < l; t = t + 1) lvl_base = lvl_base + lvl_n(t);
+      for (k = 1; k < l; k = k + 1) lvl_base = lvl_base + lvl_n(k);
     end
   endfunction
   localparam TOT = lvl_base(NL + 1);
