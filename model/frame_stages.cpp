@@ -19,7 +19,7 @@ PipelineResult run_frame_stages(const Image8& left, const Image8& right, const H
   r.dp = trellis_dp_edge(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw, threads);
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   r.evidence = evidence_frame(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw);
-  r.out = make_output(r.evidence, r.post, hw.disp, output_regs(regs));
+  r.out = make_output(r.evidence, r.post, hw.disp, output_regs(regs), 0, threads);
   r.objects = separate_objects(object_levels(r.out), regs, hw);
   return r;
 }

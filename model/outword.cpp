@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "confidence.hpp"
+#include "parallel.hpp"
 #include "subpix.hpp"
 #include "validity.hpp"
 
@@ -41,17 +42,20 @@ uint32_t out_word(const OutFields& f, DispPix p, int x, int nd) {
   return make_out_word(valid, conf, static_cast<unsigned>(std::clamp(q4, 0, 16 * (nd - 1))));
 }
 
-OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant) {
+OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant,
+                     int threads) {
   if (post.w != ev.d.w || post.h != ev.d.h) throw std::invalid_argument("make_output: evidence and post sizes differ");
   OutImage out(post.w, post.h);
-  for (int y = 0; y < post.h; ++y)
-    for (int x = 0; x < post.w; ++x) {
-      const OutFields f = out_fields(ev, x, y, nd, r);
-      uint32_t w = out_word(f, post.at(x, y), x, nd);
-      if (conf_variant != 0 && out_valid(w))  // the study's alternatives to the specified bits
-        w = (w & ~0xff0000u) | uint32_t{confidence(ev, x, y, out_level(f, post.at(x, y)), conf_variant)} << 16;
-      out.at(x, y) = w;
-    }
+  parallel_bands(post.h, threads, [&](int y0, int y1, int) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < post.w; ++x) {
+        const OutFields f = out_fields(ev, x, y, nd, r);
+        uint32_t w = out_word(f, post.at(x, y), x, nd);
+        if (conf_variant != 0 && out_valid(w))  // the study's alternatives to the specified bits
+          w = (w & ~0xff0000u) | uint32_t{confidence(ev, x, y, out_level(f, post.at(x, y)), conf_variant)} << 16;
+        out.at(x, y) = w;
+      }
+  });
   return out;
 }
 

@@ -46,7 +46,10 @@ uint32_t out_word(const OutFields& f, DispPix p, int x, int nd);
 // (post: the filters' output, same size): level d_out = post's (or the background fill for
 // unmatched pixels when occ_en = 0 and fill_bg = 1), its Q.4 value (subpix_q4 at the DP's
 // level, subpix_after_post), the validity rules and the confidence. nd = DISP.
-OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant = 0);
+// With threads > 1 the rows are split into bands (each pixel's word depends on its own
+// evidence only: the same words for any thread count).
+OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant = 0,
+                     int threads = 1);
 
 // What the object labeller reads of each output word (section 8): its valid bit and its
 // level rounded to the nearest integer, (q4 + 8) >> 4 (invalid pixels: level 0, never

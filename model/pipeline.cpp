@@ -174,7 +174,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
-  r.out = make_output(r.evidence, r.post, nd, output_regs(regs));
+  r.out = make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads);
   lap("output");
   r.objects = separate_objects(object_levels(r.out), regs, hw);
   lap("objects");
