@@ -24,6 +24,7 @@
 #include "calib_file.hpp"
 #include "pipeline.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim.hpp"
 #include SM_VTOP_H
@@ -150,7 +151,7 @@ int main(int argc, char** argv) {
                  res.input_stall_cycles == 0 && period <= camera_period ? "yes" : "NO");
       // Independent truth: the scene's exact ground truth (bad-1.0 over non-occluded pixels).
       if (!sc.gt.empty()) {
-        const double bad = sm::tools::bad1(sm::tools::disp_to_float(res.frames[0]), sc.gt, sc.nonocc).bad_pct();
+        const double bad = sm::tools::bad1(sm::tools::out_to_float(res.frames[0]), sc.gt, sc.nonocc).bad_pct();
         fmt::print("bad-1.0 vs ground truth: {:.2f} %\n", bad);
         t.check(bad < max_bad_percent(hw), fmt::format("bad-1.0 {:.2f} % below {} %", bad, max_bad_percent(hw)));
       }
