@@ -10,7 +10,9 @@ report.json (registers, what the host changed, object packet, bit-exactness) and
 per-frame disparity file must be identical; the merged report covers all 12 frames and
 takes its timing figures from the first shard. --mode jobs also checks all-or-nothing: a
 sequence whose frame 9 cannot be read fails in the second shard with one error line, a
-non-zero exit and no merged output.
+non-zero exit and no merged output. --mode farm also kills the second shard's first
+stereo_sim (then, with --worker-processes, its worker process): the run is retried and
+equals the serial one; with --retries 0 it fails with one error line and no output.
 """
 import argparse
 import filecmp
@@ -134,6 +136,56 @@ def farm_scenes(o, tmp):
     check(not os.path.exists(bad), "sm_farm.py sweep with occ=999: no output folder")
 
 
+def killing_sim(o, tmp, target):
+    """A stereo_sim wrapper whose first run of the second shard (frames 6..11) is killed with
+    SIGKILL: itself (target "$$", as the kernel's OOM killer would) or the worker process
+    that started it (target "$PPID"); later runs are stereo_sim's. Returns (wrapper, mark):
+    `mark` exists once the kill happened."""
+    mark = os.path.join(tmp, f"killed_{'worker' if target == '$PPID' else 'sim'}")
+    path = mark + ".sh"
+    with open(path, "w") as f:
+        f.write("#!/bin/sh\n"
+                f'if [ ! -e "{mark}" ]; then\n'
+                '  prev=""\n'
+                '  for a in "$@"; do\n'
+                f'    if [ "$prev" = "--frame-range" ] && [ "$a" = "6:12" ]; then touch "{mark}"; kill -9 {target}; '
+                'kill -9 $$; fi\n'
+                '    prev="$a"\n'
+                '  done\n'
+                'fi\n'
+                f'exec "{o.stereo_sim}" "$@"\n')
+    os.chmod(path, 0o755)
+    return path, mark
+
+
+def farm_retries(o, tmp, serial, args):
+    """A shard whose stereo_sim is killed is run again (--retries), with the LocalCluster's
+    worker threads and, when the worker process itself dies, with --worker-processes; with
+    --retries 0 the killed shard fails the run: exit 2, one error line, no output."""
+    sim, mark = killing_sim(o, tmp, "$$")
+    out = os.path.join(tmp, "farm_killed")
+    run([sys.executable, o.farm, "--workers", "2", "-q", "shards", "--stereo-sim", sim, "--shards", "2", "--out", out,
+         "--", *args])
+    check(os.path.exists(mark), "sm_farm.py shards: the second shard's first stereo_sim was killed")
+    compare(serial, out, "sm_farm.py shards, a killed shard run again")
+    os.remove(mark)
+    out0 = os.path.join(tmp, "farm_killed_noretry")
+    p = subprocess.run([sys.executable, o.farm, "--workers", "2", "-q", "--retries", "0", "shards", "--stereo-sim", sim,
+                        "--shards", "2", "--out", out0, "--", *args], capture_output=True, text=True)
+    lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
+    check(p.returncode == 2 and len(lines) == 1 and lines[0].startswith("sm_farm: error: task shard1 failed:") and
+          "killed by signal 9" in lines[0], f"sm_farm.py --retries 0, a killed shard: exit 2, one error line "
+          f"({p.returncode}, {lines})")
+    check(not os.path.exists(out0), "sm_farm.py --retries 0, a killed shard: no output folder")
+    sim, mark = killing_sim(o, tmp, "$PPID")
+    out = os.path.join(tmp, "farm_worker_died")
+    # --retries 0: only Dask's rescheduling of a lost worker's task can complete the run
+    run([sys.executable, o.farm, "--workers", "2", "--worker-processes", "--retries", "0", "-q", "shards",
+         "--stereo-sim", sim, "--shards", "2", "--out", out, "--", *args])
+    check(os.path.exists(mark), "sm_farm.py --worker-processes: the worker running the second shard was killed")
+    compare(serial, out, "sm_farm.py --worker-processes --retries 0 shards, a worker killed mid-shard")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--mode", choices=["jobs", "farm"], required=True)
@@ -156,6 +208,7 @@ def main():
         run([sys.executable, o.farm, "--workers", "2", "-q", "shards", "--stereo-sim", o.stereo_sim, "--shards", "2",
              "--out", par, "--", *args])
         compare(serial, par, "sm_farm.py shards, 2 workers")
+        farm_retries(o, o.tmp, serial, args)
         farm_scenes(o, o.tmp)
         left = [n for n in os.listdir(o.tmp) if ".farm" in n]
         check(not left, f"no temporary folders left ({left})")
