@@ -41,7 +41,19 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-fs::path tmp_root() { return fs::path(SM_TEST_TMP); }
+// One folder per process: the unit, system and robust runs of this binary (tests/depth.cmake)
+// run side by side under ctest -j and must not remove each other's files.
+fs::path tmp_root() {
+  struct Root {
+    fs::path p = fs::path(SM_TEST_TMP) / std::to_string(::getpid());
+    ~Root() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  };
+  static const Root r;
+  return r.p;
+}
 
 sm::test::CmdResult run(const std::string& exe, const std::string& args) {
   fs::create_directories(tmp_root());

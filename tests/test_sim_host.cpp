@@ -219,8 +219,8 @@ TEST_CASE("register schedule: every frame bit-exact with its own registers; one 
   CHECK(r.report.at("status").at("STATUS").at("FRAME_COUNT") == n);
   CHECK(r.report.at("status").at("ERR_FLAGS").at("word") == 0);
   // The last frame is also the default lossless file.
-  CHECK(same_disp(sm::tools::read_disparity_file((d / "disp.pfm").string()),
-                  sm::tools::out_to_float(model.back().out)));
+  CHECK(
+      same_disp(sm::tools::read_disparity_file((d / "disp.pfm").string()), sm::tools::out_to_float(model.back().out)));
 
   SECTION("every change one frame late: the run fails, frame 1 has frame 0's registers") {
     const Run late = sim("sched_late", args + " --debug-late-regs");

@@ -429,8 +429,9 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
                         lr + " --mode " + mode + " --disp-file " + f.string() + " --confidence " + c.string());
       INFO(r.err);
       REQUIRE(r.rc == 0);
-      const sm::OutImage word = sm::make_output(
-          res.evidence, res.post, 16, std::string(mode) == "dense" ? sm::dense_mode(sm::OutputRegs{}) : sm::OutputRegs{});
+      const sm::OutImage word =
+          sm::make_output(res.evidence, res.post, 16,
+                          std::string(mode) == "dense" ? sm::dense_mode(sm::OutputRegs{}) : sm::OutputRegs{});
       cv::Mat want(ref.size(), CV_16UC1), conf(ref.size(), CV_8UC1);
       for (int y = 0; y < ref.rows; ++y)
         for (int x = 0; x < ref.cols; ++x) {
