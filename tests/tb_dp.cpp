@@ -47,14 +47,8 @@ constexpr int kF = SM_P_DISP / SM_P_PU;  // clocks per beat
 constexpr int kF = 1;
 #endif
 
-// Pack DISP CW-bit costs, level d at bit d*CW.
-std::vector<uint32_t> pack(const uint8_t* c) {
-  std::vector<uint32_t> w((kDisp * kCw + 31) / 32, 0);
-  for (int d = 0; d < kDisp; ++d)
-    for (int b = 0; b < kCw; ++b)
-      if ((c[d] >> b) & 1) w[(d * kCw + b) / 32] |= 1u << ((d * kCw + b) % 32);
-  return w;
-}
+// Pack DISP CW-bit costs, level k at bit k*CW.
+std::vector<uint32_t> pack(const uint8_t* c) { return sm::test::pack_values(c, kDisp, kCw); }
 
 sm::HwConfig make_hw() {
   sm::HwConfig hw;

@@ -37,13 +37,7 @@ constexpr int kF = 1;
 #endif
 
 // Pack DISP CW-bit costs, level k at bit k*CW.
-std::vector<uint32_t> pack(const uint8_t* c) {
-  std::vector<uint32_t> w((kDisp * kCw + 31) / 32, 0);
-  for (int k = 0; k < kDisp; ++k)
-    for (int b = 0; b < kCw; ++b)
-      if ((c[k] >> b) & 1) w[(k * kCw + b) / 32] |= 1u << ((k * kCw + b) % 32);
-  return w;
-}
+std::vector<uint32_t> pack(const uint8_t* c) { return sm::test::pack_values(c, kDisp, kCw); }
 
 // One line of costs, agg[x * DISP + k], of the given kind (0..4, see the file comment).
 void make_line(uint8_t* agg, int w, int kind, std::mt19937& rng) {

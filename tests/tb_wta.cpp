@@ -48,14 +48,8 @@ constexpr int clog2(int n) {
 constexpr int kStages = (clog2(kPu) + 1) / 2;
 constexpr int kLatency = kF == 1 ? kStages : (kStages + 2) / kF + 2;
 
-// Pack DISP CW-bit costs, level d at bit d*CW.
-std::vector<uint32_t> pack(const uint8_t* c) {
-  std::vector<uint32_t> w((kDisp * kCw + 31) / 32, 0);
-  for (int d = 0; d < kDisp; ++d)
-    for (int b = 0; b < kCw; ++b)
-      if ((c[d] >> b) & 1) w[(d * kCw + b) / 32] |= 1u << ((d * kCw + b) % 32);
-  return w;
-}
+// Pack DISP CW-bit costs, level k at bit k*CW.
+std::vector<uint32_t> pack(const uint8_t* c) { return sm::test::pack_values(c, kDisp, kCw); }
 
 // A level near the ends half of the time.
 int pick_level(std::mt19937& rng) {

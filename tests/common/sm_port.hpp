@@ -55,6 +55,16 @@ inline uint32_t port_word(const std::vector<uint32_t>& w, int i, int width) {
   return v;
 }
 
+// n values of `bits` bits each as 32-bit port words, value k at bit k * bits (the DISP
+// CW-bit costs of sm_dp's, sm_wta's and sm_right_wta's s_cost).
+inline std::vector<uint32_t> pack_values(const uint8_t* v, int n, int bits) {
+  std::vector<uint32_t> w(static_cast<size_t>((n * bits + 31) / 32), 0u);
+  for (int k = 0; k < n; ++k)
+    for (int b = 0; b < bits; ++b)
+      if ((v[k] >> b) & 1) w[static_cast<size_t>((k * bits + b) / 32)] |= 1u << ((k * bits + b) % 32);
+  return w;
+}
+
 // Drive a `width`-bit Verilated input port from 32-bit words (bit b at word b / 32).
 template <typename T>
 void set_port_words(T& port, const std::vector<uint32_t>& w, int width) {
