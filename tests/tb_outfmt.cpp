@@ -142,7 +142,8 @@ int main(int argc, char** argv) {
   for (int i = 0; i < 3 * kCap; ++i) {
     top->eval();
     if (top->m_axis_tvalid) {
-      t.check(top->m_axis_tdata == drained, fmt::format("overflow phase: word {} is {}", drained, top->m_axis_tdata));
+      t.check(top->m_axis_tdata == static_cast<uint32_t>(drained),
+              fmt::format("overflow phase: word {} is {}", drained, top->m_axis_tdata));
       ++drained;
     }
     tick();
