@@ -355,3 +355,36 @@ TEST_CASE("accuracy metrics and sparsification: hand-computed values", "[unit][o
   const cv::Mat rev = (cv::Mat_<uint8_t>(1, 5) << 0, 50, 200, 100, 0);
   CHECK(tools::sparsification(est, rev, gt, cv::Mat(), 4).curve[0] == Approx(100.0));
 }
+
+TEST_CASE("the output registers' reset values are the model's defaults, and map both ways", "[unit][output]") {
+  // OutputRegs{} (the studies' and dense_mode's starting point) and rtl/regmap.json's reset
+  // values (Regs::defaults) are written in two places: they must not drift apart.
+  const OutputRegs m = output_regs(Regs::defaults(HwConfig{})), d{};
+  CHECK(int{m.subpix_en} == d.subpix_en);
+  CHECK(int{m.subpix_src} == d.subpix_src);
+  CHECK(int{m.subpix_fit} == d.subpix_fit);
+  CHECK(int{m.occ_en} == d.occ_en);
+  CHECK(int{m.occ_t} == d.occ_t);
+  CHECK(int{m.fill_bg} == d.fill_bg);
+  CHECK(int{m.lr_en} == d.lr_en);
+  CHECK(int{m.lr_t} == d.lr_t);
+  CHECK(int{m.agree_en} == d.agree_en);
+  CHECK(int{m.agree_t} == d.agree_t);
+  CHECK(int{m.uniq_en} == d.uniq_en);
+  CHECK(int{m.uniq_t} == d.uniq_t);
+  CHECK(int{m.tex_en} == d.tex_en);
+  CHECK(int{m.tex_t} == d.tex_t);
+  // set_output_regs is output_regs' inverse for the register-reachable estimators
+  for (uint8_t src : {uint8_t{1}, uint8_t{2}}) {
+    OutputRegs o = dense_mode(d);
+    o.subpix_src = src;
+    o.lr_t = 7;
+    Regs r = Regs::defaults(HwConfig{});
+    set_output_regs(r, o);
+    const OutputRegs back = output_regs(r);
+    CHECK(int{back.subpix_src} == src);
+    CHECK(int{back.lr_t} == 7);
+    CHECK(int{back.occ_en} == 0);
+    CHECK(int{back.fill_bg} == 0);
+  }
+}
