@@ -32,6 +32,7 @@
 #include "dp.hpp"
 #include "evidence.hpp"
 #include "sm_block_test.hpp"
+#include "held_beats.hpp"
 #include "sm_port.hpp"
 
 namespace {
@@ -310,60 +311,42 @@ int main(int argc, char** argv) {
     tb->s_edge = d.edge;
     sm::test::set_port_words(tb->s_cost, d.cost, kDisp * kCw);
   };
-  Drive first;                     // F > 1: beat 0's input, driven from reset on
-  if (kF > 1 && !sched.empty()) {  // the first beat's sub-steps run on the F clocks after reset
-    first = beat_input(0);
-    tb->ce = 0;
-    drive(first);
-    for (int i = 0; i < kF; ++i) tb.tick();
-  }
-
+  auto idle_inputs = [&] {
+    tb->s_side = grng() & 31;
+    tb->occ = grng() & 255;
+    tb->occ_edge = grng() & 255;
+    tb->s_edge = grng() & 1;
+    sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
+  };
   bool order_error = false;
   CaseCounts cases;
-  for (size_t bi = 0; bi < sched.size(); ++bi) {
-    const Drive in = (kF > 1 && bi == 0) ? first : beat_input(bi);
-    for (;;) {
-      if (!t.next_ce()) {
-        if (kF > 1) {  // folded: the beat is held until its ce
-          drive(in);
-        } else {  // idle cycle: everything random
-          tb->s_side = grng() & 31;
-          tb->occ = grng() & 255;
-          tb->occ_edge = grng() & 255;
-          tb->s_edge = grng() & 1;
-          sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
-        }
-        tb.tick();
-        continue;
-      }
-      drive(in);
-      tb.tick();
-      const uint8_t side = tb->m_side;
-      if ((side & sm::test::kReal) && !order_error) {
-        const auto o = t.next_out(side);
-        if (!o) {  // the rest of the stream is driven, not compared
-          order_error = true;
-          break;
-        }
-        const unsigned exp = want[o->frame].at(o->x, o->y);
-        const unsigned got = tb->m_disp;
-        t.check(exp == got, [&] {
-          return fmt::format("frame {} x {} y {} expected 0x{:04x} got 0x{:04x}", o->frame, o->x, o->y, exp, got);
-        });
-        const EvidencePlanes& ev = want_ev[o->frame];
-        const unsigned em = ev.matched.at(o->x, o->y), eg = ev.gap.at(o->x, o->y), ef = ev.fill_bg.at(o->x, o->y);
-        const unsigned gm = tb->m_matched, gg = tb->m_gap, gf = tb->m_fill_bg;
-        t.check(em == gm && eg == gg && ef == gf, [&] {
-          return fmt::format("frame {} x {} y {} matched/gap/fill_bg expected {}/{}/{} got {}/{}/{}", o->frame, o->x,
-                             o->y, em, eg, ef, gm, gg, gf);
-        });
-        const auto& m = matches[o->frame][static_cast<size_t>(o->y)];
-        cases.add(m, o->x);
-        if (!em && eg < 255) cases.max_gap = std::max(cases.max_gap, static_cast<int>(eg));
-      }
-      break;
+  auto compare = [&](size_t) {
+    const uint8_t side = tb->m_side;
+    if (!(side & sm::test::kReal) || order_error) return true;
+    const auto o = t.next_out(side);
+    if (!o) {  // the rest of the stream is driven, not compared
+      order_error = true;
+      return true;
     }
-  }
+    const unsigned exp = want[o->frame].at(o->x, o->y);
+    const unsigned got = tb->m_disp;
+    t.check(exp == got, [&] {
+      return fmt::format("frame {} x {} y {} expected 0x{:04x} got 0x{:04x}", o->frame, o->x, o->y, exp, got);
+    });
+    const EvidencePlanes& ev = want_ev[o->frame];
+    const unsigned em = ev.matched.at(o->x, o->y), eg = ev.gap.at(o->x, o->y), ef = ev.fill_bg.at(o->x, o->y);
+    const unsigned gm = tb->m_matched, gg = tb->m_gap, gf = tb->m_fill_bg;
+    t.check(em == gm && eg == gg && ef == gf, [&] {
+      return fmt::format("frame {} x {} y {} matched/gap/fill_bg expected {}/{}/{} got {}/{}/{}", o->frame, o->x, o->y,
+                         em, eg, ef, gm, gg, gf);
+    });
+    const auto& m = matches[o->frame][static_cast<size_t>(o->y)];
+    cases.add(m, o->x);
+    if (!em && eg < 255) cases.max_gap = std::max(cases.max_gap, static_cast<int>(eg));
+    return true;
+  };
+  sm::test::run_held_beats(
+      t, sched.size(), kF, beat_input, drive, idle_inputs, [](size_t) {}, compare);
   t.all_out();
   fmt::print(
       "tb_dp: compared {} matched pixels; unmatched in runs at x = 0 {}, at the line end {}, between "

@@ -22,6 +22,7 @@
 #include SM_VTOP_H
 #include "evidence.hpp"
 #include "sm_block_test.hpp"
+#include "held_beats.hpp"
 #include "sm_port.hpp"
 
 namespace {
@@ -158,46 +159,24 @@ int main(int argc, char** argv) {
     tb->s_side = d.side;
     sm::test::set_port_words(tb->s_cost, d.cost, kDisp * kCw);
   };
-  Drive first;                     // F > 1: beat 0's input, driven from reset on
-  if (kF > 1 && !sched.empty()) {  // the first beat's sub-steps run on the F clocks after reset
-    first = beat_input(0);
-    tb->ce = 0;
-    drive(first);
-    for (int i = 0; i < kF; ++i) tb.tick();
-  }
-
-  bool order_error = false;
-  for (size_t bi = 0; bi < sched.size() && !order_error; ++bi) {
-    const Drive in = (kF > 1 && bi == 0) ? first : beat_input(bi);
-    for (;;) {
-      if (!t.next_ce()) {
-        if (kF > 1) {  // folded: the beat is held until its ce
-          drive(in);
-        } else {  // idle cycle: everything random
-          tb->s_side = grng() & 31;
-          sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
-        }
-        tb.tick();
-        continue;
-      }
-      drive(in);
-      tb.tick();
-      const uint8_t side = tb->m_side;
-      if (side & sm::test::kReal) {
-        const auto o = t.next_out(side);
-        if (!o) {  // out of order: the rest cannot be compared
-          order_error = true;
-          break;
-        }
-        const unsigned exp = want[o->frame][static_cast<size_t>(o->y) * width + o->x];
-        const unsigned got = tb->m_lr;
-        t.check(exp == got, [&] {
-          return fmt::format("frame {} xr {} y {} expected level {} got {}", o->frame, o->x, o->y, exp, got);
-        });
-      }
-      break;
-    }
-  }
+  auto idle_inputs = [&] {
+    tb->s_side = grng() & 31;
+    sm::test::set_port_words(tb->s_cost, random_cost(), kDisp * kCw);
+  };
+  auto compare = [&](size_t) {
+    const uint8_t side = tb->m_side;
+    if (!(side & sm::test::kReal)) return true;
+    const auto o = t.next_out(side);
+    if (!o) return false;  // out of order: the rest cannot be compared
+    const unsigned exp = want[o->frame][static_cast<size_t>(o->y) * width + o->x];
+    const unsigned got = tb->m_lr;
+    t.check(exp == got, [&] {
+      return fmt::format("frame {} xr {} y {} expected level {} got {}", o->frame, o->x, o->y, exp, got);
+    });
+    return true;
+  };
+  sm::test::run_held_beats(
+      t, sched.size(), kF, beat_input, drive, idle_inputs, [](size_t) {}, compare);
   t.all_out();
   return t.finish(
       fmt::format("tb_right_wta MAX_WIDTH={} DISP={} CW={} F={} width={}", kMaxWidth, kDisp, kCw, kF, width));

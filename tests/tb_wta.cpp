@@ -23,6 +23,7 @@
 #include SM_VTOP_H
 #include "evidence.hpp"
 #include "sm_block_test.hpp"
+#include "held_beats.hpp"
 #include "sm_port.hpp"
 
 namespace {
@@ -148,7 +149,7 @@ int main(int argc, char** argv) {
   t.ce_schedule(seed * 7919u + 1, idle, kF);
   auto& grng = t.ce_rng();
   auto& tb = t.tb();
-  std::vector<uint8_t> garbage(kDisp);
+  std::vector<uint8_t> garbage_cost(kDisp);
   auto drive = [&](size_t bi) {
     tb->s_side = sched[bi].side;
     sm::test::set_port_words(tb->s_cost, pack(&cost[bi * kDisp]), kDisp * kCw);
@@ -156,11 +157,6 @@ int main(int argc, char** argv) {
   tb->ce = 1;
   tb->s_side = 0;
   t.reset(4);
-  if (kF > 1 && !sched.empty()) {  // the first beat's groups run on the F clocks after reset
-    tb->ce = 0;
-    drive(0);
-    for (int i = 0; i < kF; ++i) tb.tick();
-  }
 
   struct Out {
     unsigned side, dw, c1, c2, cmax;
@@ -194,30 +190,25 @@ int main(int argc, char** argv) {
     tie_c2 += w.c2 == w.c1;
     flat += w.cmax == w.c1;
   };
+  auto garbage = [&] {
+    tb->s_side = grng() & 31;
+    for (auto& g : garbage_cost) g = static_cast<uint8_t>(grng() % (kCmax + 1));
+    sm::test::set_port_words(tb->s_cost, pack(garbage_cost.data()), kDisp * kCw);
+  };
+  auto check_held = [&](size_t bi) {
+    const Out o = read_out();
+    if (!same(o, last)) t.fail(fmt::format("outputs changed without a ce (beat {})", bi));
+    last = o;
+  };
   bool order_error = false;
-  for (size_t bi = 0; bi < sched.size(); ++bi) {
-    while (!t.next_ce()) {
-      if (kF > 1) {  // folded: the beat is held until its ce
-        drive(bi);
-      } else {  // idle cycle: everything random
-        tb->s_side = grng() & 31;
-        for (auto& g : garbage) g = static_cast<uint8_t>(grng() % (kCmax + 1));
-        sm::test::set_port_words(tb->s_cost, pack(garbage.data()), kDisp * kCw);
-      }
-      tb.tick();
-      const Out o = read_out();
-      if (!same(o, last)) t.fail(fmt::format("outputs changed without a ce (beat {})", bi));
-      last = o;
-    }
-    drive(bi);
-    tb.tick();  // ce number bi
+  auto on_ce = [&](size_t bi) {  // ce number bi
     last = read_out();
     const auto side = static_cast<uint8_t>(last.side);
-    if (!(side & sm::test::kReal) || order_error) continue;
+    if (!(side & sm::test::kReal) || order_error) return true;
     const auto o = t.next_out(side);
     if (!o) {  // the rest of the stream is driven, not compared
       order_error = true;
-      continue;
+      return true;
     }
     // the beat leaving on ce bi is the one the LATENCY-th ce before (counting this one) sampled
     const long src = static_cast<long>(bi) - kLatency + 1;
@@ -228,7 +219,10 @@ int main(int argc, char** argv) {
                          kLatency);
     });
     if (lat_ok) compare(*o, &cost[static_cast<size_t>(src) * kDisp]);
-  }
+    return true;
+  };
+  sm::test::run_held_beats(
+      t, sched.size(), kF, [](size_t bi) { return bi; }, drive, garbage, check_held, on_ce);
   t.all_out();
   // The stimulus itself: every corner case must have been compared at least once.
   const std::pair<const char*, long> cases[] = {{"dw = 0", at0},        {"dw = 1", at1},
