@@ -20,11 +20,16 @@
 //   xf = min(L.xf, R.m), xl = min(L.m, R.xl), M = max(L.M, R.M)
 // and the root's (i, m, e, M, band) is (dw, c1, c2, cmax, band). A merge is about 3 LUT
 // levels (Yosys xc7, CW 6), so a register stage holds two tree levels: the even levels
-// and the root are registered (NS = ceil(clog2(leaves) / 2) stages). A registered node
-// takes its band not through the merges' band selects (a 2:1 select per merge, each on
-// its own compare: 5*CW LUT3s per merge) but from its winner's descendant at the
-// registered level below (or from the leaves): a 4:1 select (2:1 at an odd root) on two
-// bits of the winner's level, a LUT6 per bit.
+// and the root are registered (NS = ceil(clog2(leaves) / 2) stages). The band:
+// - PU = DISP: no tree node holds it. The costs wait NS ce's beside the tree in a shift
+//   register without reset (SRLs: a LUT per cost bit instead of a 5*CW-bit register in
+//   each registered node, about 1,300 flip-flops at DISP 128), and a select tree on the
+//   root's level takes the five costs from there, after the root's registers.
+// - PU < DISP: the accumulator merges the groups' bands, so the registered nodes hold
+//   theirs, taken not through the merges' band selects (a 2:1 select per merge, each on
+//   its own compare: 5*CW LUT3s per merge) but from the winner's descendant at the
+//   registered level below (or from the leaves): a 4:1 select (2:1 at an odd root) on
+//   two bits of the winner's level, a LUT6 per bit.
 //
 // Latency: the record of the beat that ce b samples is on m_* from ce b + LATENCY - 1
 // on (m_side is s_side through sm_side_delay of DEPTH LATENCY).
@@ -127,6 +132,25 @@ module sm_wta #(
     end
   endfunction
 
+  // A(i - 2 .. i + 2) from pad = {0, 0, A(0..DISP-1), 0, 0}: a binary select tree on i,
+  // low bit first (pairs of candidates folded in place; Yosys makes an indexed
+  // part-select of pad a barrel shifter over every bit of it).
+  localparam NV = 1 << DW;
+  function [5*CW-1:0] band_at;
+    input [(DISP+4)*CW-1:0] pad;
+    input [DW-1:0] i;
+    reg [NV*5*CW-1:0] v;  // candidate n at [n*5*CW +: 5*CW]
+    integer n, b;
+    begin
+      v = {(NV * 5 * CW) {1'b0}};
+      for (n = 0; n < DISP; n = n + 1) v[n*5*CW +: 5*CW] = pad[n*CW +: 5*CW];
+      for (b = 0; b < DW; b = b + 1)
+        for (n = 0; n < (NV >> (b + 1)); n = n + 1)
+          v[n*5*CW +: 5*CW] = i[b] ? v[(2*n+1)*5*CW +: 5*CW] : v[(2*n)*5*CW +: 5*CW];
+      band_at = v[0 +: 5*CW];
+    end
+  endfunction
+
   // Nodes of tree level l (level 0: the leaves) and the first node of level l in the
   // flat vector of levels 1..NL.
   function integer lvl_n;
@@ -218,11 +242,20 @@ module sm_wta #(
                              : (w[0] ? cand[5*CW +: 5*CW] : cand[0 +: 5*CW]);
           end
           wire unused_mb = ^mg[O_B +: 5*CW];
-          reg [NW-1:0] q;
+          reg [O_B-1:0] q;
           always @(posedge clk) begin
-            if (tree_en) q <= {bs, mg[O_B-1:0]};
+            if (tree_en) q <= mg[O_B-1:0];
           end
-          assign tr[OUT +: NW] = q;
+          if (F > 1) begin : g_band  // folded: the accumulator merges the groups' bands
+            reg [5*CW-1:0] b_q;
+            always @(posedge clk) begin
+              b_q <= bs;
+            end
+            assign tr[OUT +: NW] = {b_q, q};
+          end else begin : g_noband  // one beat per clock: the band is taken at the root
+            wire unused_bs = ^bs;
+            assign tr[OUT +: NW] = {{(5 * CW) {1'b0}}, q};
+          end
           assign tc[OUT +: NW] = {NW{1'b0}};
           wire unused_tc = ^tc[OUT +: NW];
         end else begin : g_comb
@@ -244,8 +277,24 @@ module sm_wta #(
     if (F == 1) begin : g_par
       // ---- one beat per clock: the leaves read s_cost, the root is the output --------
       assign win = {{2*CW{1'b0}}, s_cost, {2*CW{1'b0}}};
-      assign rec = {root[O_B +: 5*CW], root[O_MX +: CW], root[O_E +: CW], root[O_M +: CW], root[O_I +: DW]};
-      wire unused_root = ^{root[O_FL], root[O_LA], root[O_XF +: CW], root[O_XL +: CW], rst_n};
+      // The band is not carried through the tree (a 5*CW register in each of its
+      // registered nodes): the costs wait NS ce's beside the tree, a shift register
+      // without reset (SRLs, LUTs instead of flip-flops), and the root's level selects
+      // its five neighbours there, after the output registers.
+      reg [NS*DISP*CW-1:0] cd_q;  // stage s at [s*DISP*CW +: DISP*CW], s = 0 the newest
+      if (NS > 1) begin : g_cd_shift
+        always @(posedge clk) begin
+          if (ce) cd_q <= {cd_q[0 +: (NS-1)*DISP*CW], s_cost};
+        end
+      end else begin : g_cd_one
+        always @(posedge clk) begin
+          if (ce) cd_q <= s_cost;
+        end
+      end
+      wire [(DISP+4)*CW-1:0] pad = {{2*CW{1'b0}}, cd_q[(NS-1)*DISP*CW +: DISP*CW], {2*CW{1'b0}}};
+      wire [5*CW-1:0] band = band_at(pad, root[O_I +: DW]);
+      assign rec = {band, root[O_MX +: CW], root[O_E +: CW], root[O_M +: CW], root[O_I +: DW]};
+      wire unused_root = ^{root[O_FL], root[O_LA], root[O_XF +: CW], root[O_XL +: CW], root[O_B +: 5*CW], rst_n};
     end else begin : g_fold
       // ---- folded: group g of the held beat on the g-th clock after a ce ---------------
       localparam GW = $clog2(F);
