@@ -308,32 +308,14 @@ module sm_dp #(
       /* verilator lint_on WIDTH */
       localparam [ACC_W-1:0] BIG = {1'b1, {(ACC_W - 1) {1'b0}}};
 
-      // Sub-step counter: run_q = sub-step g_q executes on this clock edge. A ce
-      // restarts it for the beat entering next; reset starts it for the first beat.
-      reg [GW-1:0] g_q;
-      reg          run_q;
-      always @(posedge clk) begin
-        if (!rst_n) begin
-          g_q   <= {GW{1'b0}};
-          run_q <= 1'b1;
-        end else if (ce) begin
-          g_q   <= {GW{1'b0}};
-          run_q <= 1'b1;
-        end else if (run_q) begin
-          g_q   <= g_q + 1'b1;
-          run_q <= (g_q != G_LAST);
-        end
-      end
-`ifndef SYNTHESIS
-      // ce pacing (sm_top, F > 1): a ce ends the beat's sub-steps, never cuts them short.
-      reg chk_seen_q;  // a ce since reset (the first ce may come early: garbage beat)
-      always @(posedge clk) begin
-        if (!rst_n) chk_seen_q <= 1'b0;
-        else if (ce) chk_seen_q <= 1'b1;
-        if (rst_n && ce && chk_seen_q && run_q && g_q != G_LAST)
-          $error("sm_dp: ce after %0d of the F = %0d clocks of a beat", g_q + 1'b1, F);
-      end
-`endif
+      // Sub-step counter: run_q = sub-step g_q executes on this clock edge.
+      wire [GW-1:0] g_q;
+      wire          run_q;
+      wire          fs_start, fs_step;
+      sm_fold_step #(.F(F)) u_step (
+          .clk(clk), .rst_n(rst_n), .ce(ce), .m_start(fs_start), .m_step(fs_step), .m_run(run_q), .m_g(g_q)
+      );
+      wire unused_fs = ^{fs_start, fs_step};
 
       // The held beat's costs of group g_q (one F:1 selection of PU*CW bits).
       wire [PU*CW-1:0] cost_g = s_cost[g_q*(PU*CW) +: PU*CW];

@@ -145,36 +145,24 @@ module sm_right_wta #(
       /* verilator lint_on WIDTH */
 
       // Sub-step counter: run_q = the sub-step of group g_q executes on this clock
-      // edge. A ce restarts it for the beat entering next; reset starts it for the
-      // first beat. gm_q = g_q - 1 and kb_q = g_q * PU are counted beside it, so the
-      // LUT-RAM addresses and the lanes' levels come from flip-flops.
-      reg [GW-1:0] g_q;
+      // edge (g_q = F-1 down to 0). gm_q = g_q - 1 and kb_q = g_q * PU are counted beside
+      // it, so the LUT-RAM addresses and the lanes' levels come from flip-flops.
+      wire [GW-1:0] g_q;
+      wire          run_q, fs_start, fs_step;
+      sm_fold_step #(.F(F), .DOWN(1)) u_step (
+          .clk(clk), .rst_n(rst_n), .ce(ce), .m_start(fs_start), .m_step(fs_step), .m_run(run_q), .m_g(g_q)
+      );
       reg [GW-1:0] gm_q;
       reg [DW-1:0] kb_q;
-      reg          run_q;
       always @(posedge clk) begin
-        if (!rst_n || ce) begin
-          g_q   <= G_LAST;
-          gm_q  <= GM_LAST;
-          kb_q  <= KB_LAST;
-          run_q <= 1'b1;
-        end else if (run_q) begin
-          g_q   <= g_q - 1'b1;
-          gm_q  <= gm_q - 1'b1;
-          kb_q  <= kb_q - KB_STEP;
-          run_q <= (g_q != {GW{1'b0}});
+        if (fs_start) begin
+          gm_q <= GM_LAST;
+          kb_q <= KB_LAST;
+        end else if (fs_step) begin
+          gm_q <= gm_q - 1'b1;
+          kb_q <= kb_q - KB_STEP;
         end
       end
-`ifndef SYNTHESIS
-      // ce pacing (sm_top, F > 1): a ce ends the beat's sub-steps, never cuts them short.
-      reg chk_seen_q;  // a ce since reset (the first ce may come early: garbage beat)
-      always @(posedge clk) begin
-        if (!rst_n) chk_seen_q <= 1'b0;
-        else if (ce) chk_seen_q <= 1'b1;
-        if (rst_n && ce && chk_seen_q && run_q && g_q != {GW{1'b0}})
-          $error("sm_right_wta: ce with %0d of the F = %0d sub-steps of a beat left", g_q + 1'b1, F);
-      end
-`endif
 
       wire [PU*EW-1:0] rd;      // word g_q of lane j at [j*EW +: EW] (before this edge)
       wire [EW-1:0]    top_rd;  // word g_q - 1 of lane PU-1: R[g_q*PU - 1], not yet updated

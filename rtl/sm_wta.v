@@ -300,36 +300,22 @@ module sm_wta #(
       localparam GW = $clog2(F);
       localparam AW = (NR > 1) ? $clog2(NR) : 1;
       /* verilator lint_off WIDTH */  // constants truncated to the counter widths
-      localparam [GW-1:0] G_LAST = F - 1;
       localparam [DW-1:0] PU_C = PU;
       localparam [AW-1:0] A_LAST = NR - 1;
       /* verilator lint_on WIDTH */
 
-      // Sub-step counter: run_q = group g_q is issued on this clock edge; gb_q = g_q*PU.
-      reg [GW-1:0] g_q;
+      // Sub-step counter: run_q = group g_q is issued on this clock edge; gb_q = g_q*PU
+      // is counted beside it.
+      wire [GW-1:0] g_q;
+      wire          run_q, fs_start, fs_step;
+      sm_fold_step #(.F(F)) u_step (
+          .clk(clk), .rst_n(rst_n), .ce(ce), .m_start(fs_start), .m_step(fs_step), .m_run(run_q), .m_g(g_q)
+      );
       reg [DW-1:0] gb_q;
-      reg          run_q;
       always @(posedge clk) begin
-        if (!rst_n || ce) begin
-          g_q   <= {GW{1'b0}};
-          gb_q  <= {DW{1'b0}};
-          run_q <= 1'b1;
-        end else if (run_q) begin
-          g_q   <= g_q + 1'b1;
-          gb_q  <= gb_q + PU_C;
-          run_q <= (g_q != G_LAST);
-        end
+        if (fs_start) gb_q <= {DW{1'b0}};
+        else if (fs_step) gb_q <= gb_q + PU_C;
       end
-`ifndef SYNTHESIS
-      // ce pacing (sm_top, F > 1): a ce ends the beat's groups, never cuts them short.
-      reg chk_seen_q;  // a ce since reset (the first ce may come early: garbage beat)
-      always @(posedge clk) begin
-        if (!rst_n) chk_seen_q <= 1'b0;
-        else if (ce) chk_seen_q <= 1'b1;
-        if (rst_n && ce && chk_seen_q && run_q && g_q != G_LAST)
-          $error("sm_wta: ce after %0d of the F = %0d clocks of a beat", g_q + 1'b1, F);
-      end
-`endif
 
       // Window register: the group's PU costs and two levels either side (zeros past
       // the ends), one F:1 selection from the held beat.

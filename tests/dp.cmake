@@ -86,3 +86,13 @@ sm_rtl_test(NAME tb_dp_zynq8_runs RUN tb_dp_zynq8
 sm_rtl_test(NAME tb_dp_d254 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=320 DISP=254 CW=6 PU=2
             ARGS --width 300 --rows 6 --frames 4 --kinds 3404 --seed 30 --require-cases --min-gap 251)
+
+# The folded blocks' sub-step counter (sm_fold_step): counting up (sm_dp, sm_wta) and
+# down (sm_right_wta), F a power of two or not, the smallest F and the paper's zynq F.
+sm_rtl_test(NAME tb_fold_step TOP sm_fold_step SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_fold_step.cpp PARAMS F=2)
+sm_rtl_test(NAME tb_fold_step_f5_down TOP sm_fold_step SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_fold_step.cpp
+            PARAMS F=5 DOWN=1 ARGS --seed 2)
+sm_rtl_test(NAME tb_fold_step_f16 TOP sm_fold_step SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_fold_step.cpp
+            PARAMS F=16 ARGS --seed 3)
+sm_rtl_test(NAME tb_fold_step_f16_down TOP sm_fold_step SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_fold_step.cpp
+            PARAMS F=16 DOWN=1 ARGS --seed 4)
