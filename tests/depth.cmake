@@ -5,7 +5,8 @@
 # truth), robust_depth_calib (robust: bad options, files and signals leave nothing) --
 # and depth_cloud_plyfile (unit): the PLY read back by plyfile, the independent reader
 # pinned in scripts/requirements.txt, from the project's .venv (SM_VENV, as pytools.cmake).
-if(NOT (TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_scene AND TARGET sm_calibrate AND TARGET sm_evaluate))
+if(NOT (TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_scene AND TARGET sm_calibrate AND TARGET sm_evaluate
+        AND TARGET sm_ref_frames))
   return()
 endif()
 add_executable(test_depth ${CMAKE_CURRENT_LIST_DIR}/test_depth.cpp)
@@ -14,8 +15,9 @@ target_include_directories(test_depth PRIVATE ${CMAKE_CURRENT_LIST_DIR}/common)
 target_compile_options(test_depth PRIVATE ${SM_WARNINGS})
 target_compile_definitions(test_depth PRIVATE SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/depth_tmp"
   SM_SCENE_EXE="$<TARGET_FILE:sm_scene>" SM_STEREO_MODEL_EXE="$<TARGET_FILE:stereo_model>"
-  SM_CALIBRATE_EXE="$<TARGET_FILE:sm_calibrate>" SM_EVALUATE_EXE="$<TARGET_FILE:sm_evaluate>")
-add_dependencies(test_depth sm_scene stereo_model sm_calibrate sm_evaluate)
+  SM_CALIBRATE_EXE="$<TARGET_FILE:sm_calibrate>" SM_EVALUATE_EXE="$<TARGET_FILE:sm_evaluate>"
+  SM_REF_FRAMES_EXE="$<TARGET_FILE:sm_ref_frames>")
+add_dependencies(test_depth sm_scene stereo_model sm_calibrate sm_evaluate sm_ref_frames)
 add_test(NAME test_depth COMMAND test_depth "~[system]~[robust]")
 add_test(NAME system_depth_scene COMMAND test_depth "[system]")
 add_test(NAME robust_depth_calib COMMAND test_depth "[robust]")

@@ -8,7 +8,9 @@ sm_rtl_test(NAME tb_rectify_paper TOP sm_rectify
             SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_rectify.cpp
             PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 RECT_RADIUS=15 LABELS "rtl;slow" TIMEOUT 300)
 
-sm_unit_test(test_pre_model LIBS sm_model sm_toolio ${OpenCV_LIBS} INCLUDES ${OpenCV_INCLUDE_DIRS})
+sm_unit_test(test_pre_model LIBS sm_model sm_toolio ${OpenCV_LIBS}
+             INCLUDES ${OpenCV_INCLUDE_DIRS} ${CMAKE_CURRENT_LIST_DIR}/common
+             DEFINES SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/pre_model_tmp")
 
 # Calibration tool on a real chessboard set, only when its folder is given
 # (-DSM_CHESSBOARD_DIR=../shared/datasets/chessboard): the default suite never depends on

@@ -449,6 +449,15 @@ TEST_CASE("stereo_model: depth outputs and calibration files checked before any 
                "'rect_radius_needed' = 25 exceeds the IP's RECT_RADIUS 18");
   CHECK(run(SM_STEREO_MODEL_EXE, pair + "--rect-radius 25 --depth-file " + o + " --calib " + bad).rc == 0);
   CHECK(listing(out) == std::vector<std::string>{"z.pfm"});
+  // sm_ref_frames (the cocotb bench's reference) holds a calibration to its RECT_RADIUS too
+  const nlohmann::json regs = {{"max_width", 64}, {"max_height", 48}, {"disp", 16},  {"census", 7},
+                               {"sw", 3},         {"rect_radius", 4}, {"calib", bad}};
+  const std::string regs_path = (dir / "ref_regs.json").string(), ref = (out / "ref.json").string();
+  std::ofstream(regs_path) << regs.dump();
+  expect_error(run(SM_REF_FRAMES_EXE,
+                   fmt::format("--regs {0} -o {1} {2}/left.png {2}/right.png", regs_path, ref, scene.string())),
+               "sm_ref_frames", "'rect_radius_needed' = 25 exceeds the IP's RECT_RADIUS 4");
+  CHECK(listing(out) == std::vector<std::string>{"z.pfm"});
 }
 
 namespace {

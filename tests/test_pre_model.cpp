@@ -9,6 +9,7 @@
 
 #include "calib_file.hpp"
 #include "pre.hpp"
+#include "sm_test_util.hpp"
 #include "toolio/sm_io.hpp"
 
 namespace {
@@ -289,7 +290,10 @@ TEST_CASE("calibration file round trip and errors", "[unit]") {
   c.left = shifted_identity(37, 20, 5, -7);
   c.right = sm::RectGrid::identity(37, 20);
   c.right.sx[3] = -32768;
-  const std::string path = "test_pre_model_calib.json";
+  // the calibration files of this test, in a scratch folder of the build
+  const std::filesystem::path dir = sm::test::fresh_dir(std::filesystem::path(SM_TEST_TMP) / "calib");
+  auto in_dir = [&](const std::string& name) { return (dir / name).string(); };
+  const std::string path = in_dir("test_pre_model_calib.json");
   sm::save_calib(path, c);
   const auto l = sm::load_calib(path);
   CHECK(l.width == 37);
@@ -311,31 +315,31 @@ TEST_CASE("calibration file round trip and errors", "[unit]") {
       CHECK(msg.find(what) != std::string::npos);
     }
   };
-  expect_error("does_not_exist.json", "cannot open");
+  expect_error(in_dir("does_not_exist.json"), "cannot open");
   std::string text;
   {
     std::ifstream f(path);
     text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
   }
   auto write = [](const std::string& file, const std::string& s) { std::ofstream(file) << s; };
-  write("calib_trunc.json", text.substr(0, text.size() / 2));
-  expect_error("calib_trunc.json", "malformed JSON");
-  write("calib_garbage.json", "hello");
-  expect_error("calib_garbage.json", "malformed JSON");
+  write(in_dir("calib_trunc.json"), text.substr(0, text.size() / 2));
+  expect_error(in_dir("calib_trunc.json"), "malformed JSON");
+  write(in_dir("calib_garbage.json"), "hello");
+  expect_error(in_dir("calib_garbage.json"), "malformed JSON");
   {
     auto j = text;
     const auto pos = j.find("\"width\": 37");
     REQUIRE(pos != std::string::npos);
     j.replace(pos, 11, "\"width\": 60");  // grid no longer fits the width
-    write("calib_size.json", j);
-    expect_error("calib_size.json", "grid size");
+    write(in_dir("calib_size.json"), j);
+    expect_error(in_dir("calib_size.json"), "grid size");
   }
   {
     sm::CalibFile bad = c;
     bad.left.sx.pop_back();  // a short array
-    sm::save_calib("calib_short.json", bad);
-    expect_error("calib_short.json", "left.sx");
+    sm::save_calib(in_dir("calib_short.json"), bad);
+    expect_error(in_dir("calib_short.json"), "left.sx");
   }
-  write("calib_missing.json", "{\"format\": \"sm_calib\", \"version\": 1}");
-  expect_error("calib_missing.json", "missing key 'width'");
+  write(in_dir("calib_missing.json"), "{\"format\": \"sm_calib\", \"version\": 1}");
+  expect_error(in_dir("calib_missing.json"), "missing key 'width'");
 }

@@ -72,7 +72,18 @@ int run(int argc, char** argv) {
                                 pairs[0].first.w, pairs[0].first.h));
   r.grid_l = sm::RectGrid::identity(r.width, r.height);
   r.grid_r = r.grid_l;
-  if (!rf.calib.empty()) sm::apply_calib(sm::load_calib(rf.calib), r);
+  if (!rf.calib.empty()) {
+    // a rig whose line-buffer radius this IP cannot hold is refused, as by stereo_sim
+    try {
+      const sm::CalibFile c = sm::load_calib(rf.calib);
+      sm::check_calib_fits(rf.calib, c, hw);
+      sm::apply_calib(c, r);
+    } catch (const ToolError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw ToolError(e.what());
+    }
+  }
   try {
     hw.validate();
     sm::validate_regs(r, hw);
