@@ -28,7 +28,9 @@ AggRow::AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& t
       // Byte sums of `group` costs cannot wrap: group * (255 >> COST_SHIFT) <= 255, for
       // any 8-bit input, not only legal Hamming costs (4 at COST_SHIFT 2, 1 at 0).
       group(255 / (255 >> std::clamp(hw.cost_shift, 0, 7))),
-      code{} {
+      code{},
+      recip{} {
+  for (size_t s = 0; s < recip.size(); ++s) recip[s] = static_cast<uint16_t>(sw_recip(static_cast<uint32_t>(s)));
   for (int k = 0; k < 256; ++k) {
     const uint32_t wq = sw_weight(table, k);
     code[static_cast<size_t>(k)] = static_cast<uint8_t>(wq == 4 ? 3 : wq == 2 ? 2 : wq);
@@ -126,13 +128,14 @@ inline void normalise(const uint16_t* su, int nd, uint32_t rec, uint32_t out_max
   }
 }
 
-// The weight masks of centre x: window positions of weight 1, 2, 4 (codes 1, 2, 3).
-inline void weight_masks(uint64_t b0, uint64_t b1, uint64_t* m, uint32_t& rec) {
+// The weight masks of centre x: window positions of weight 1, 2, 4 (codes 1, 2, 3), and
+// RECIP of their weight sum (from the table: a division per pixel was 7% of the stage).
+inline void weight_masks(const AggRow& a, uint64_t b0, uint64_t b1, uint64_t* m, uint32_t& rec) {
   m[0] = b0 & ~b1;
   m[1] = b1 & ~b0;
   m[2] = b0 & b1;
-  rec = sw_recip(static_cast<uint32_t>(__builtin_popcountll(m[0]) + 2 * __builtin_popcountll(m[1]) +
-                                       4 * __builtin_popcountll(m[2])));
+  rec = a.recip[static_cast<size_t>(__builtin_popcountll(m[0]) + 2 * __builtin_popcountll(m[1]) +
+                                    4 * __builtin_popcountll(m[2]))];
 }
 
 #if defined(SM_X86_DISPATCH)
@@ -207,7 +210,7 @@ SM_AVX512 void agg_pixels_avx512(const AggRow& a, const uint64_t* b0, const uint
   for (int x = 0; x < a.w; ++x) {
     uint64_t m[3];
     uint32_t rec;
-    weight_masks(b0[x], b1[x], m, rec);
+    weight_masks(a, b0[x], b1[x], m, rec);
     const Norm512 nrm = norm512(rec, a.out_max);
     const size_t xoff = static_cast<size_t>(x) * nd;
     uint8_t* o = out + xoff;
@@ -296,7 +299,7 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
     // (2) Window positions of weight 1, 2, 4 (codes 1, 2, 3) and the weight sum.
     uint64_t m[3];
     uint32_t rec;
-    weight_masks(b0[x], b1[x], m, rec);
+    weight_masks(a, b0[x], b1[x], m, rec);
     const size_t xoff = static_cast<size_t>(x) * nd;
     // (3) A_raw, widest blocks of levels first (each block is independent; the last one
     // may read past level nd - 1, into kCostPad, and those lanes are not used).

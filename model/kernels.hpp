@@ -64,9 +64,10 @@ void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb
 // rectified image.
 struct AggRow {
   int w, h, nd, r;
-  uint32_t out_max;               // 2^CW - 1
-  int group;                      // neighbours whose C sum in one byte without wrapping
-  std::array<uint8_t, 256> code;  // weight code by |dI| (0: weight 0, c: weight 1 << (c-1))
+  uint32_t out_max;                        // 2^CW - 1
+  int group;                               // neighbours whose C sum in one byte without wrapping
+  std::array<uint8_t, 256> code;           // weight code by |dI| (0: weight 0, c: weight 1 << (c-1))
+  std::array<uint16_t, 4 * 49 + 1> recip;  // sw_recip by weight sum (the ROM; no division per pixel)
   AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& table, const HwConfig& hw);
 };
 void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t* left, int y, uint8_t* out);
