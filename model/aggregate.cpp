@@ -210,15 +210,19 @@ SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, cons
 // 0, 1, 2, 4 (vpmaddubsw: w1 C1 + w2 C2 in 16 bits, at most 2 * 255 * 4), so the loop runs
 // the same steps for every centre (agg_block512's loops end where the weights say, and
 // those branches were most of its time). Same 16-bit sums, so the same bits. pos[q]: the
-// costs of window position q (padded to an even count with a position of weight 0); wpair[p]:
-// the weights of positions 2p and 2p + 1 in its low and high byte.
+// costs of window position q (padded to an even count with a position of weight 0); byte q
+// of wb: the weight of position q.
 template <int NB>
-SM_AVX512 inline void agg_pairs512(const uint8_t* const* pos, int npairs, const uint16_t* wpair, size_t off,
+SM_AVX512 inline void agg_pairs512(const uint8_t* const* pos, int npairs, const uint64_t* wb, size_t off,
                                    const Norm512& nrm, uint8_t* o, int nlev) {
   __m512i lo[NB], hi[NB];
   for (int v = 0; v < NB; ++v) lo[v] = hi[v] = _mm512_setzero_si512();
   for (int p = 0; p < npairs; ++p) {
-    const __m512i wv = _mm512_set1_epi16(static_cast<short>(wpair[p]));
+    // (Two bytes at a time from wb as stored: a whole-vector copy of it would wait for
+    // the stores to retire, no store forwarding from four 8-byte stores.)
+    uint16_t wpair;
+    std::memcpy(&wpair, reinterpret_cast<const char*>(wb) + 2 * p, sizeof wpair);
+    const __m512i wv = _mm512_set1_epi16(static_cast<short>(wpair));
     const uint8_t* q1 = pos[2 * p] + off;
     const uint8_t* q2 = pos[2 * p + 1] + off;
     for (int v = 0; v < NB; ++v) {
@@ -262,10 +266,8 @@ SM_AVX512 __attribute__((target("bmi2"))) void agg_pixels_avx512(const AggRow& a
     if (x >= r && x + r < a.w) {  // the whole window inside the row: every position readable
       alignas(64) uint64_t wb[8] = {};
       weight_bytes(m, nq, wb);
-      uint16_t wpair[32];
-      std::memcpy(wpair, wb, sizeof wpair);
-      for (; d0 + 128 <= nd; d0 += 128) agg_pairs512<2>(pos, npairs, wpair, xoff + d0, nrm, o + d0, 128);
-      for (; d0 < nd; d0 += 64) agg_pairs512<1>(pos, npairs, wpair, xoff + d0, nrm, o + d0, std::min(64, nd - d0));
+      for (; d0 + 128 <= nd; d0 += 128) agg_pairs512<2>(pos, npairs, wb, xoff + d0, nrm, o + d0, 128);
+      for (; d0 < nd; d0 += 64) agg_pairs512<1>(pos, npairs, wb, xoff + d0, nrm, o + d0, std::min(64, nd - d0));
       continue;
     }
     for (; d0 + 128 <= nd; d0 += 128) agg_block512<2>(base, xoff, m, a.group, d0, nrm, o + d0, 128);
