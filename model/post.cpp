@@ -118,6 +118,74 @@ SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, i
   }
   return x;
 }
+
+// The chain's three medians (5 x 1, 3 x 3, 5 x 3) with the network known at compile time:
+// unrolled, every index is a constant, so the window's vectors stay in registers (rank_row
+// reads and writes them in memory at every compare-exchange, its network chosen at run
+// time) and the compiler drops the exchanges that the median and the 0xffff padding do not
+// need. Batcher's network (sort_network) on the next power of two inputs; any sorting
+// network leaves the same value at each rank, so the same bits as rank_row.
+template <int N2>
+struct StaticNet {
+  int n = 0;
+  int a[N2 * N2] = {}, b[N2 * N2] = {};
+  constexpr StaticNet() {
+    for (int p = 1; p < N2; p <<= 1)
+      for (int k = p; k >= 1; k >>= 1)
+        for (int j = k % p; j + k < N2; j += 2 * k)
+          for (int i = 0; i < std::min(k, N2 - j - k); ++i)
+            if ((i + j) / (2 * p) == (i + j + k) / (2 * p)) {
+              a[n] = i + j;
+              b[n] = i + j + k;
+              ++n;
+            }
+  }
+};
+
+// As rank_row for the median of a (2 RY + 1) x (2 RX + 1) window, L = the lanes of V.
+template <class V, int RY, int RX>
+inline __attribute__((always_inline)) int median_row_t(const uint16_t* keys, int w, int h, int y, int x0,
+                                                       DispPix* out) {
+  constexpr int L = sizeof(V) / 2, n = (2 * RY + 1) * (2 * RX + 1), n2 = n <= 8 ? 8 : 16;
+  static_assert(n <= n2, "window larger than the network");
+  static constexpr StaticNet<n2> net{};
+  int x = x0;
+  for (; x + L + RX <= w; x += L) {
+    V v[n2];
+    std::memcpy(&v[n / 2], keys + static_cast<size_t>(y) * w + x, sizeof(V));  // the centre
+    for (int j = -RY; j <= RY; ++j) {
+      const bool row_in = y + j >= 0 && y + j < h;
+      for (int i = -RX; i <= RX; ++i) {
+        const int k = (j + RY) * (2 * RX + 1) + (i + RX);
+        if (row_in)
+          std::memcpy(&v[k], keys + static_cast<size_t>(y + j) * w + x + i, sizeof(V));
+        else
+          v[k] = v[n / 2];  // a row outside the frame takes the centre's key
+      }
+    }
+    for (int k = n; k < n2; ++k) v[k] = V{} + 0xffff;
+#pragma GCC unroll 128
+    for (int c = 0; c < net.n; ++c) {
+      const V a = v[net.a[c]], b = v[net.b[c]];
+      v[net.a[c]] = a < b ? a : b;
+      v[net.b[c]] = a < b ? b : a;
+    }
+    const V m = v[n / 2];
+    const V o = m == 0 ? V{} : ((m - 1) | kDispValid);
+    std::memcpy(out + x, &o, sizeof o);
+  }
+  return x;
+}
+#endif
+
+#if defined(__GNUC__)
+// median_row_t for the chain's windows; -1 for another window (rank_row then).
+SM_HOT int median_row(int ry, int rx, const uint16_t* keys, int w, int h, int y, int x0, DispPix* out) {
+  if (ry == 2 && rx == 0) return median_row_t<VK, 2, 0>(keys, w, h, y, x0, out);
+  if (ry == 1 && rx == 1) return median_row_t<VK, 1, 1>(keys, w, h, y, x0, out);
+  if (ry == 2 && rx == 1) return median_row_t<VK, 2, 1>(keys, w, h, y, x0, out);
+  return -1;
+}
 #endif
 
 }  // namespace
@@ -156,17 +224,22 @@ DispImage post_rank_rows(const DispImage& in, const HwConfig& hw, int ry, int rx
     for (size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<uint16_t>(key(in.px[i]));
     int slot = 0;
     const auto net = prune_network(sort_network(n2), n, n2, rank, slot);
+    const bool median = rank == n / 2;
     parallel_bands(h, threads, [&](int y0, int y1, int) {
       std::vector<unsigned> win;
       for (int y = y0; y < y1; ++y) {
         int x = 0;
         for (; x < std::min(rx, w); ++x) one(win, x, y);
         DispPix* o = &out.px[static_cast<size_t>(y) * w];
-        x = rank_row(keys.data(), w, h, y, x, ry, rx, slot, n2, net.data(), net.size(), o);
-        // The columns left over: one more block ending at the last centre whose window
-        // is inside (recomputing some centres, with the same result).
-        if (x < w - rx && w - rx - kKeyLanes >= rx)
-          x = rank_row(keys.data(), w, h, y, w - rx - kKeyLanes, ry, rx, slot, n2, net.data(), net.size(), o);
+        // The centres whose window lies inside the columns, then the columns left over:
+        // one more block ending at the last such centre (recomputing some centres, with the
+        // same result).
+        auto block = [&](int x0) {
+          const int e = median ? median_row(ry, rx, keys.data(), w, h, y, x0, o) : -1;
+          return e >= 0 ? e : rank_row(keys.data(), w, h, y, x0, ry, rx, slot, n2, net.data(), net.size(), o);
+        };
+        x = block(x);
+        if (x < w - rx && w - rx - kKeyLanes >= rx) x = block(w - rx - kKeyLanes);
         for (; x < w; ++x) one(win, x, y);
       }
     });
