@@ -345,6 +345,8 @@ struct LabelTable {
   explicit LabelTable(int slots) : parent(slots, 0), st(slots), busy(slots, 0), ucur(slots, 0), uprev(slots, 0) {
     busy_list.reserve(static_cast<size_t>(slots));
     freed.reserve(static_cast<size_t>(slots));
+    cand_list.reserve(static_cast<size_t>(slots));
+    in_cand.assign(static_cast<size_t>(slots), 0);
   }
   std::vector<int> parent;  // root of each busy label
   std::vector<Stats> st;
@@ -362,7 +364,23 @@ struct LabelTable {
   // free_mask chose for the pixel.
   std::vector<int> busy_list;
   std::vector<int> freed;
+  // Speed only: the busy labels that are absorbed or below min_pixels (in any order), the
+  // only ones free_mask can free; a finished large component stays busy to the end of the
+  // frame and is no longer visited at every pixel. Kept by classify.
+  std::vector<int> cand_list;
+  std::vector<uint8_t> in_cand;
 };
+
+// Puts label l in t.cand_list or takes it out after its busy flag, root or count changed.
+void classify(LabelTable& t, int l, unsigned min_pixels) {
+  const bool c = t.busy[l] && (t.parent[l] != l || t.st[l].count < min_pixels);
+  if (c == (t.in_cand[l] != 0)) return;
+  t.in_cand[l] = c;
+  if (c)
+    t.cand_list.push_back(l);
+  else
+    t.cand_list.erase(std::find(t.cand_list.begin(), t.cand_list.end(), l));
+}
 
 // Labels freed before a pixel (into t.freed): busy, not written into the row buffer on
 // this row or the previous one (so no pixel still to be labelled can name them), and
@@ -370,7 +388,7 @@ struct LabelTable {
 // min_pixels.
 void free_mask(LabelTable& t, unsigned min_pixels) {
   t.freed.clear();
-  for (const int l : t.busy_list) {
+  for (const int l : t.cand_list) {  // (the other busy labels are not absorbed nor small)
     const bool referenced = t.ucur[l] || t.uprev[l] || (t.last_near && t.last_lab == l);
     const bool absorbed = t.parent[l] != l;
     if (!referenced && (absorbed || t.st[l].count < min_pixels)) t.freed.push_back(l);
@@ -382,7 +400,7 @@ void free_mask(LabelTable& t, unsigned min_pixels) {
 // allocated or none was free: the pixel's only change to busy is the candidate's
 // allocation, which the choice skips anyway), then apply the frees and move the
 // row-buffer marks.
-void advance(LabelTable& t, bool sol, bool alloc) {
+void advance(LabelTable& t, bool sol, bool alloc, unsigned min_pixels) {
   const int n = static_cast<int>(t.busy.size());
   if (alloc || !t.cand_ok) {
     int c = -1;
@@ -395,6 +413,7 @@ void advance(LabelTable& t, bool sol, bool alloc) {
     t.busy[l] = 0;
     --t.n_busy;
     t.busy_list.erase(std::find(t.busy_list.begin(), t.busy_list.end(), l));
+    classify(t, l, min_pixels);
   }
   if (sol) {
     t.uprev = t.ucur;
@@ -437,10 +456,13 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
             if (q == a) q = s;
           fold_stats(t.st[s], t.st[a]);
           add_pixel(t.st[s], x, y, d);
+          classify(t, s, regs.obj_min_pixels);
+          classify(t, a, regs.obj_min_pixels);
           lab = s;
         } else if (uok || lok) {
           lab = uok ? ur : lr;
           add_pixel(t.st[lab], x, y, d);
+          classify(t, lab, regs.obj_min_pixels);
         } else if (t.cand_ok) {
           lab = t.cand;
           alloc = true;
@@ -451,13 +473,14 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
           ++res.labels_started;
           t.used = std::max(t.used, lab + 1);
           t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
+          classify(t, lab, regs.obj_min_pixels);
         } else {
           res.table_full = true;  // no free label: the pixel is dropped (background)
           near = false;
         }
       }
       res.labels_peak = std::max(res.labels_peak, t.n_busy);
-      advance(t, x == 0, alloc);
+      advance(t, x == 0, alloc, regs.obj_min_pixels);
       up_near[x] = near;
       up_d[x] = d;
       up_lab[x] = lab;
