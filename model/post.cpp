@@ -438,8 +438,21 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
     for (int x = 0; x < in.w; ++x) {
       const DispPix p = in.at(x, y);
       const unsigned d = p & dmask;
-      free_mask(t, regs.obj_min_pixels);
       bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
+      // Speed only: a pixel that is not near, after one that was not near either in the same
+      // row (not its first pixel), with a free candidate label changes nothing but the row
+      // buffer: the previous pixel saw the same table (no pixel changed a label since, and
+      // the row-buffer marks were as now) and freed what could be freed, and advance
+      // neither allocates, scans nor marks.
+      if (!near && x >= 2 && !t.last_near && t.cand_ok) {
+        up_near[x] = 0;
+        up_d[x] = d;
+        up_lab[x] = 0;
+        t.last_lab = 0;
+        l_d = d;
+        continue;
+      }
+      free_mask(t, regs.obj_min_pixels);
       bool alloc = false;
       int lab = 0;
       if (near) {
