@@ -163,6 +163,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   r.dp = DispImage(w, h);
   std::vector<std::array<double, 4>> band_ms(static_cast<size_t>(band_count(h, threads)));
   r.evidence = Evidence(w, h);
+  lap("setup");  // (the padded census inputs, the frames the row stream writes)
   parallel_bands(h, threads, [&](int y0, int y1, int b) {
     stream_rows(rows, y0, y1, keep_volumes, r, band_ms[static_cast<size_t>(b)].data());
   });
