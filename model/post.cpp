@@ -221,7 +221,10 @@ DispImage post_rank_rows(const DispImage& in, const HwConfig& hw, int ry, int rx
   const bool vec = n2 <= kMaxNet && dmask < 0x8000;  // keys <= 2^15 (any DISP <= 2^15)
   if (vec) {
     std::vector<uint16_t> keys(in.px.size());
-    for (size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<uint16_t>(key(in.px[i]));
+    parallel_bands(h, threads, [&](int y0, int y1, int) {
+      for (size_t i = static_cast<size_t>(y0) * w; i < static_cast<size_t>(y1) * w; ++i)
+        keys[i] = static_cast<uint16_t>(key(in.px[i]));
+    });
     int slot = 0;
     const auto net = prune_network(sort_network(n2), n, n2, rank, slot);
     const bool median = rank == n / 2;
@@ -296,20 +299,25 @@ DispImage post_band(const DispImage& in, const HwConfig& hw, int k) { return pos
 
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps,
                        int threads) {
-  DispImage cur = in;
-  if (steps) steps->clear();
+  // Each step's image is made in place in the list of steps (a copy only for a disabled
+  // filter and for the result: copies of whole frames were a serial part of a threaded run).
+  std::vector<DispImage> own;
+  std::vector<DispImage>& st = steps ? *steps : own;
+  st.clear();
+  st.reserve(4);
   // F0, the band filter (bit 3), runs first; then F1..F3 (bits 0..2).
-  if (regs.filter_enable & 8u) cur = post_band_cols(cur, hw, hw.band_k, threads);
-  if (steps) steps->push_back(cur);
+  st.push_back((regs.filter_enable & 8u) ? post_band_cols(in, hw, hw.band_k, threads) : in);
   for (int n = 0; n < 3; ++n) {
     if (regs.filter_enable & (1u << n)) {
       // F1 5 x 1, F2 3 x 3, F3 5 x 3 (post_vmedian, post_median3, post_median53)
       const int ry = n == 1 ? 1 : 2, rx = n == 0 ? 0 : 1;
-      cur = post_rank_rows(cur, hw, ry, rx, (2 * ry + 1) * (2 * rx + 1) / 2, threads);
+      DispImage next = post_rank_rows(st.back(), hw, ry, rx, (2 * ry + 1) * (2 * rx + 1) / 2, threads);
+      st.push_back(std::move(next));
+    } else {
+      st.push_back(st.back());
     }
-    if (steps) steps->push_back(cur);
   }
-  return cur;
+  return steps ? st.back() : std::move(st.back());
 }
 
 namespace {
