@@ -44,7 +44,7 @@ struct Rows {
 uint8_t* align64(uint8_t* p) { return p + (64 - reinterpret_cast<uintptr_t>(p) % 64) % 64; }
 
 // Output rows y0..y1-1 of census, cost (r.raw), aggregation (r.agg) and DP (r.dp);
-// ms[0..3] += the time of each of the four stages.
+// ms[0..4] += the time of each of the five steps (census, cost, aggregation, trellis, evidence).
 void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResult& r, double* ms) {
   using clock = std::chrono::steady_clock;
   const HwConfig& hw = s.hw;
@@ -100,10 +100,12 @@ void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResul
     edge_penalties(&s.rl.px[static_cast<size_t>(ya) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
     trellis_line_pen(a, w, pen.data(), hw, scratch, line);
     std::copy(line.disp.begin(), line.disp.end(), &r.dp.at(0, ya));
+    const auto t3 = clock::now();
     evidence_line(a, w, nd, line, ya, r.evidence);  // writes row ya only: safe across bands
     const auto t2 = clock::now();
     ms[2] += since(t0, t1);
-    ms[3] += since(t1, t2);
+    ms[3] += since(t1, t3);
+    ms[4] += since(t3, t2);
   }
 }
 
@@ -161,17 +163,17 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     r.agg = CostVolume(w, h, nd);
   }
   r.dp = DispImage(w, h);
-  std::vector<std::array<double, 4>> band_ms(static_cast<size_t>(band_count(h, threads)));
+  std::vector<std::array<double, 5>> band_ms(static_cast<size_t>(band_count(h, threads)));
   r.evidence = Evidence(w, h);
   lap("setup");  // (the padded census inputs, the frames the row stream writes)
   parallel_bands(h, threads, [&](int y0, int y1, int b) {
     stream_rows(rows, y0, y1, keep_volumes, r, band_ms[static_cast<size_t>(b)].data());
   });
-  double ms[4] = {0, 0, 0, 0};  // census, cost, aggregate, dp
+  double ms[5] = {0, 0, 0, 0, 0};  // census, cost, aggregate, dp (trellis), evidence (its record)
   for (const auto& m : band_ms)
-    for (int k = 0; k < 4; ++k) ms[k] += m[static_cast<size_t>(k)];
-  const char* names[4] = {"census", "cost", "aggregate", "dp"};
-  for (int k = 0; k < 4; ++k) r.stage_ms.emplace_back(names[k], ms[k]);
+    for (int k = 0; k < 5; ++k) ms[k] += m[static_cast<size_t>(k)];
+  const char* names[5] = {"census", "cost", "aggregate", "dp", "evidence"};
+  for (int k = 0; k < 5; ++k) r.stage_ms.emplace_back(names[k], ms[k]);
   t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
