@@ -214,10 +214,11 @@ int run(int argc, char** argv) {
     js["model_vs_sgbm_cpu"] = vc;
     fmt::print("model 1 thread / StereoSGBM time: {:.2f} wall, {:.2f} CPU (below 1: the model is faster)\n", vs, vc);
   }
-  // With N threads the row-streamed stages (census .. dp) sum their bands' times (thread
+  // With N threads the row-streamed stages (census .. evidence) sum their bands' times (thread
   // time, not wall); the others are wall times of stages that run in bands or serially.
   fmt::print(
-      "\nmodel stages (median ms; {0} threads: census .. dp summed over the bands, the others wall):\n| stage | ms "
+      "\nmodel stages (median ms; {0} threads: census .. evidence summed over the bands, the others wall):\n| stage | "
+      "ms "
       "| share | ms, {0} threads |\n|---|---|---|---|\n",
       threads);
   for (const auto& n : stage_order) {
