@@ -39,6 +39,18 @@ class BandPool {
     work_.notify_all();
     for (auto& t : workers_) t.join();
   }
+  // Makes sure there are n - 1 workers and has them poll for a job (a sleeping thread
+  // takes long to wake: its wake-up then overlaps the caller's serial work before its
+  // next run). Nothing when the caller is in a band.
+  void wake(int n) {
+    if (in_band) return;
+    {
+      std::lock_guard<std::mutex> g(m_);
+      while (static_cast<int>(workers_.size()) < n - 1) workers_.emplace_back([this] { serve(); });
+      gen_.fetch_add(1, std::memory_order_release);
+    }
+    work_.notify_all();
+  }
   // Runs job(b) for b = 0..n-1, band 0 on the calling thread, and returns when all have
   // finished; false (nothing run) when the pool is busy or the caller is in a band.
   bool run(int n, const std::function<void(int)>& job) {
@@ -79,23 +91,27 @@ class BandPool {
     const auto end = std::chrono::steady_clock::now() + std::chrono::microseconds(kSpinUs);
     while (busy() && std::chrono::steady_clock::now() < end) std::this_thread::yield();
   }
+  // Takes bands while there are any; otherwise polls, then sleeps until something is
+  // posted (a job, a wake-up, stop: each bumps gen_ under m_). A wake-up without a job
+  // starts a new poll.
   void serve() {
     std::unique_lock<std::mutex> g(m_);
     for (;;) {
-      if (!(stop_ || (job_ && next_ < count_))) {
-        const unsigned seen = gen_.load(std::memory_order_acquire);
-        g.unlock();
-        spin_while([this, seen] { return gen_.load(std::memory_order_acquire) == seen; });
-        g.lock();
-      }
-      work_.wait(g, [this] { return stop_ || (job_ && next_ < count_); });
       if (stop_) return;
-      const int b = next_++;
-      const std::function<void(int)>& job = *job_;
+      if (job_ && next_ < count_) {
+        const int b = next_++;
+        const std::function<void(int)>& job = *job_;
+        g.unlock();
+        run_band(job, b);
+        g.lock();
+        if (--pending_ == 0) done_.notify_one();
+        continue;
+      }
+      const unsigned seen = gen_.load(std::memory_order_acquire);
       g.unlock();
-      run_band(job, b);
+      spin_while([this, seen] { return gen_.load(std::memory_order_acquire) == seen; });
       g.lock();
-      if (--pending_ == 0) done_.notify_one();
+      work_.wait(g, [this, seen] { return gen_.load(std::memory_order_acquire) != seen; });
     }
   }
   std::mutex run_, m_;
@@ -114,6 +130,13 @@ inline BandPool& band_pool() {
 }
 
 }  // namespace detail
+
+// Before a frame's first parallel_bands call: wakes the pool's threads that call will use
+// (see BandPool::wake), so that the caller's serial work hides their wake-up.
+inline void prepare_bands(int n, int threads) {
+  const int t = band_count(n, threads);
+  if (t > 1) detail::band_pool().wake(t);
+}
 
 // Calls f(begin, end, band) for band = 0..band_count(n, threads)-1 on rows [begin, end),
 // which cover 0..n-1 in order; band 0 runs on the calling thread, the others on the

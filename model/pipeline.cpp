@@ -126,6 +126,16 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     r.stage_ms.emplace_back(name, std::chrono::duration<double, std::milli>(now - t).count());
     t = now;
   };
+  const int w = regs.width, h = regs.height, nd = hw.disp;
+  prepare_bands(h, threads);  // (the pool's threads wake up during the allocations below)
+  // The frames the row stream writes (below).
+  if (keep_volumes) {
+    r.raw = CostVolume(w, h, nd);
+    r.agg = CostVolume(w, h, nd);
+  }
+  r.dp = DispImage(w, h);
+  r.evidence = Evidence(w, h);
+  lap("setup");
   // The two images on two threads when there are threads (image 0 left, 1 right).
   auto each_image = [threads](auto&& f) {
     parallel_bands(2, threads, [&f](int i0, int i1, int) {
@@ -150,7 +160,6 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   // streams on its own thread with its own ring (the 2R cost rows around a band edge
   // are computed by both bands; each output row is written by its band only). Each
   // stage's time is summed over its rows and bands (stage_ms keeps the stage order).
-  const int w = regs.width, h = regs.height, nd = hw.disp;
   const Rows rows{r.rl,
                   r.rr,
                   hw,
@@ -158,14 +167,8 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
                   {r.rl, (hw.census - 1) / 2},
                   {r.rr, (hw.census - 1) / 2},
                   detail::AggRow(w, h, nd, hw.sw, regs.sw_table, hw)};
-  if (keep_volumes) {
-    r.raw = CostVolume(w, h, nd);
-    r.agg = CostVolume(w, h, nd);
-  }
-  r.dp = DispImage(w, h);
   std::vector<std::array<double, 5>> band_ms(static_cast<size_t>(band_count(h, threads)));
-  r.evidence = Evidence(w, h);
-  lap("setup");  // (the padded census inputs, the frames the row stream writes)
+  lap("pad");  // (the census inputs with their borders)
   parallel_bands(h, threads, [&](int y0, int y1, int b) {
     stream_rows(rows, y0, y1, keep_volumes, r, band_ms[static_cast<size_t>(b)].data());
   });
