@@ -174,38 +174,46 @@ OutFields out_fields(const Evidence& ev, int x, int y, int nd, const OutputRegs&
 int out_level(const OutFields& f, DispPix p) { return level_of(f, p); }
 uint32_t out_word(const OutFields& f, DispPix p, int x, int nd) { return word_of(f, p, x, nd); }
 
+void make_output_rows(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant, int y0,
+                      int y1, OutImage& out) {
+  for (int y = y0; y < y1; ++y) {
+    int x = 0;
+#if defined(SM_X86_DISPATCH)
+    int below = 0;  // output_lanes' condition: C2 >= C1 on the row
+    const uint8_t *const c1 = &ev.c1.at(0, y), *const c2 = &ev.c2.at(0, y);
+    for (int k = 0; k < post.w; ++k) below |= c2[k] < c1[k];
+    if (conf_variant == 0 && below == 0 && output_avx512())
+      for (; x + 16 <= post.w; x += 16) output_lanes(ev, &post.at(0, y), y, x, nd, r, &out.at(0, y));
+#endif
+    for (; x < post.w; ++x) {
+      const OutFields f = fields_at(ev, x, y, nd, r);
+      uint32_t w = word_of(f, post.at(x, y), x, nd);
+      if (conf_variant != 0 && out_valid(w))  // the study's alternatives to the specified bits
+        w = (w & ~0xff0000u) | uint32_t{confidence(ev, x, y, out_level(f, post.at(x, y)), conf_variant)} << 16;
+      out.at(x, y) = w;
+    }
+  }
+}
+
 OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant,
                      int threads) {
   if (post.w != ev.d.w || post.h != ev.d.h) throw std::invalid_argument("make_output: evidence and post sizes differ");
   OutImage out(post.w, post.h);
-  parallel_bands(post.h, threads, [&](int y0, int y1, int) {
-    for (int y = y0; y < y1; ++y) {
-      int x = 0;
-#if defined(SM_X86_DISPATCH)
-      int below = 0;  // output_lanes' condition: C2 >= C1 on the row
-      const uint8_t *const c1 = &ev.c1.at(0, y), *const c2 = &ev.c2.at(0, y);
-      for (int k = 0; k < post.w; ++k) below |= c2[k] < c1[k];
-      if (conf_variant == 0 && below == 0 && output_avx512())
-        for (; x + 16 <= post.w; x += 16) output_lanes(ev, &post.at(0, y), y, x, nd, r, &out.at(0, y));
-#endif
-      for (; x < post.w; ++x) {
-        const OutFields f = fields_at(ev, x, y, nd, r);
-        uint32_t w = word_of(f, post.at(x, y), x, nd);
-        if (conf_variant != 0 && out_valid(w))  // the study's alternatives to the specified bits
-          w = (w & ~0xff0000u) | uint32_t{confidence(ev, x, y, out_level(f, post.at(x, y)), conf_variant)} << 16;
-        out.at(x, y) = w;
-      }
-    }
-  });
+  parallel_bands(post.h, threads,
+                 [&](int y0, int y1, int) { make_output_rows(ev, post, nd, r, conf_variant, y0, y1, out); });
   return out;
+}
+
+void object_levels_rows(const OutImage& out, int y0, int y1, DispImage& d) {
+  for (size_t i = static_cast<size_t>(y0) * out.w; i < static_cast<size_t>(y1) * out.w; ++i) {
+    const uint32_t w = out.px[i];
+    d.px[i] = out_valid(w) ? make_disp((out_q4(w) + 8) >> 4, true) : make_disp(0, false);
+  }
 }
 
 DispImage object_levels(const OutImage& out) {
   DispImage d(out.w, out.h);
-  for (size_t i = 0; i < out.px.size(); ++i) {
-    const uint32_t w = out.px[i];
-    d.px[i] = out_valid(w) ? make_disp((out_q4(w) + 8) >> 4, true) : make_disp(0, false);
-  }
+  object_levels_rows(out, 0, out.h, d);
   return d;
 }
 

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -109,6 +112,51 @@ void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResul
   }
 }
 
+// The output words (r.out) and the object list (r.objects) of a frame with t >= 2 threads,
+// the rows in chunks of kChunk: band 0 labels the chunks in order (the labeller reads the
+// words in raster order, so it is serial) and, while the next chunk is not ready, makes a
+// chunk's words itself; the other bands make the chunks' words and object levels in
+// order. So the labelling overlaps the output words instead of following them. The same
+// words (make_output_rows) and the same list (ObjectLabeller, the rows in order) as
+// make_output and separate_objects. Returns when the last chunk's words were made.
+std::chrono::steady_clock::time_point output_and_objects(PipelineResult& r, const Regs& regs, const HwConfig& hw,
+                                                         int t) {
+  constexpr int kChunk = 8;
+  const int w = r.post.w, h = r.post.h, nd = hw.disp, nc = (h + kChunk - 1) / kChunk;
+  const OutputRegs oregs = output_regs(regs);
+  r.out = OutImage(w, h);
+  DispImage levels(w, h);
+  std::unique_ptr<std::atomic<bool>[]> ready(new std::atomic<bool>[static_cast<size_t>(nc)]);
+  for (int c = 0; c < nc; ++c) ready[c].store(false, std::memory_order_relaxed);
+  std::atomic<int> next{0}, made{0};
+  std::chrono::steady_clock::time_point last{};  // (written by the thread that makes the last chunk)
+  auto make_one = [&]() {                        // the next chunk nobody has taken; false when none is left
+    const int c = next.fetch_add(1);
+    if (c >= nc) return false;
+    const int y0 = c * kChunk, y1 = std::min(h, y0 + kChunk);
+    make_output_rows(r.evidence, r.post, nd, oregs, 0, y0, y1, r.out);
+    object_levels_rows(r.out, y0, y1, levels);
+    ready[c].store(true, std::memory_order_release);
+    if (made.fetch_add(1) + 1 == nc) last = std::chrono::steady_clock::now();
+    return true;
+  };
+  ObjectLabeller lab(w, regs, hw);
+  parallel_bands(t, t, [&](int, int, int b) {
+    if (b != 0) {
+      while (make_one()) {
+      }
+      return;
+    }
+    for (int c = 0; c < nc; ++c) {
+      while (!ready[c].load(std::memory_order_acquire))
+        if (!make_one()) std::this_thread::yield();  // (another band is making it)
+      for (int y = c * kChunk; y < std::min(h, (c + 1) * kChunk); ++y) lab.row(&levels.at(0, y), y);
+    }
+  });
+  r.objects = lab.finish();
+  return last;
+}
+
 }  // namespace
 
 PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwConfig& hw, const Regs& regs,
@@ -180,10 +228,17 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
-  r.out = make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads);
-  lap("output");
-  r.objects = separate_objects(object_levels(r.out), regs, hw);
-  lap("objects");
+  if (band_count(h, threads) == 1) {
+    r.out = make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads);
+    lap("output");
+    r.objects = separate_objects(object_levels(r.out), regs, hw);
+    lap("objects");
+  } else {
+    // (output: until the last output word; objects: the labelling left after it)
+    const auto words = output_and_objects(r, regs, hw, band_count(h, threads));
+    r.stage_ms.emplace_back("output", std::chrono::duration<double, std::milli>(words - t).count());
+    r.stage_ms.emplace_back("objects", std::chrono::duration<double, std::milli>(clock::now() - words).count());
+  }
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 
@@ -433,82 +434,107 @@ void advance(LabelTable& t, bool sol, bool alloc, unsigned min_pixels) {
 }
 }  // namespace
 
-ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw) {
-  const unsigned dmask = (1u << clog2(hw.disp)) - 1;
+// The labeller's state between rows: the label table, the row buffer (previous row) and
+// the left neighbour, as the hardware keeps them.
+struct ObjectLabeller::State {
+  const Regs& regs;
+  const HwConfig& hw;
+  unsigned dmask;
   ObjectList res;
-  LabelTable t(hw.label_slots);
-  // The row buffer (previous row) and the left neighbour, as the hardware keeps them.
-  std::vector<uint8_t> up_near(in.w, 0);
-  std::vector<unsigned> up_d(in.w, 0);
-  std::vector<int> up_lab(in.w, 0);
+  LabelTable t;
+  std::vector<uint8_t> up_near;
+  std::vector<unsigned> up_d;
+  std::vector<int> up_lab;
   unsigned l_d = 0;
-  for (int y = 0; y < in.h; ++y)
-    for (int x = 0; x < in.w; ++x) {
-      const DispPix p = in.at(x, y);
-      const unsigned d = p & dmask;
-      bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
-      // Speed only: a pixel that is not near, after one that was not near either in the same
-      // row (not its first pixel), with a free candidate label changes nothing but the row
-      // buffer: the previous pixel saw the same table (no pixel changed a label since, and
-      // the row-buffer marks were as now) and freed what could be freed, and advance
-      // neither allocates, scans nor marks.
-      if (!near && x >= 2 && !t.last_near && t.cand_ok) {
-        up_near[x] = 0;
-        up_d[x] = d;
-        up_lab[x] = 0;
-        t.last_lab = 0;
-        l_d = d;
-        continue;
-      }
-      free_mask(t, regs.obj_min_pixels);
-      bool alloc = false;
-      int lab = 0;
-      if (near) {
-        auto close = [&](unsigned e) {
-          return static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(e))) <= regs.obj_tol;
-        };
-        const bool uok = y > 0 && up_near[x] && close(up_d[x]);
-        const bool lok = x > 0 && t.last_near && close(l_d);
-        const int ur = t.parent[up_lab[x]];
-        const int lr = t.last_lab;
-        if (uok && lok && ur != lr) {
-          const int s = std::min(ur, lr), a = std::max(ur, lr);
-          for (int& q : t.parent)
-            if (q == a) q = s;
-          fold_stats(t.st[s], t.st[a]);
-          add_pixel(t.st[s], x, y, d);
-          classify(t, s, regs.obj_min_pixels);
-          classify(t, a, regs.obj_min_pixels);
-          lab = s;
-        } else if (uok || lok) {
-          lab = uok ? ur : lr;
-          add_pixel(t.st[lab], x, y, d);
-          classify(t, lab, regs.obj_min_pixels);
-        } else if (t.cand_ok) {
-          lab = t.cand;
-          alloc = true;
-          t.parent[lab] = lab;
-          t.busy[lab] = 1;
-          t.busy_list.push_back(lab);
-          ++t.n_busy;
-          ++res.labels_started;
-          t.used = std::max(t.used, lab + 1);
-          t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
-          classify(t, lab, regs.obj_min_pixels);
-        } else {
-          res.table_full = true;  // no free label: the pixel is dropped (background)
-          near = false;
-        }
-      }
-      res.labels_peak = std::max(res.labels_peak, t.n_busy);
-      advance(t, x == 0, alloc, regs.obj_min_pixels);
-      up_near[x] = near;
+  State(int w, const Regs& r, const HwConfig& h)
+      : regs(r),
+        hw(h),
+        dmask((1u << clog2(h.disp)) - 1),
+        t(h.label_slots),
+        up_near(static_cast<size_t>(w), 0),
+        up_d(static_cast<size_t>(w), 0),
+        up_lab(static_cast<size_t>(w), 0) {}
+  void row(const DispPix* in, int y);
+  ObjectList finish();
+};
+
+ObjectLabeller::ObjectLabeller(int w, const Regs& regs, const HwConfig& hw)
+    : s_(std::make_unique<State>(w, regs, hw)) {}
+ObjectLabeller::~ObjectLabeller() = default;
+void ObjectLabeller::row(const DispPix* px, int y) { s_->row(px, y); }
+ObjectList ObjectLabeller::finish() { return s_->finish(); }
+
+void ObjectLabeller::State::row(const DispPix* in, int y) {
+  const int w = static_cast<int>(up_near.size());
+  for (int x = 0; x < w; ++x) {
+    const DispPix p = in[x];
+    const unsigned d = p & dmask;
+    bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
+    // Speed only: a pixel that is not near, after one that was not near either in the same
+    // row (not its first pixel), with a free candidate label changes nothing but the row
+    // buffer: the previous pixel saw the same table (no pixel changed a label since, and
+    // the row-buffer marks were as now) and freed what could be freed, and advance
+    // neither allocates, scans nor marks.
+    if (!near && x >= 2 && !t.last_near && t.cand_ok) {
+      up_near[x] = 0;
       up_d[x] = d;
-      up_lab[x] = lab;
-      t.last_near = near;
-      t.last_lab = lab;
+      up_lab[x] = 0;
+      t.last_lab = 0;
       l_d = d;
+      continue;
     }
+    free_mask(t, regs.obj_min_pixels);
+    bool alloc = false;
+    int lab = 0;
+    if (near) {
+      auto close = [&](unsigned e) {
+        return static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(e))) <= regs.obj_tol;
+      };
+      const bool uok = y > 0 && up_near[x] && close(up_d[x]);
+      const bool lok = x > 0 && t.last_near && close(l_d);
+      const int ur = t.parent[up_lab[x]];
+      const int lr = t.last_lab;
+      if (uok && lok && ur != lr) {
+        const int s = std::min(ur, lr), a = std::max(ur, lr);
+        for (int& q : t.parent)
+          if (q == a) q = s;
+        fold_stats(t.st[s], t.st[a]);
+        add_pixel(t.st[s], x, y, d);
+        classify(t, s, regs.obj_min_pixels);
+        classify(t, a, regs.obj_min_pixels);
+        lab = s;
+      } else if (uok || lok) {
+        lab = uok ? ur : lr;
+        add_pixel(t.st[lab], x, y, d);
+        classify(t, lab, regs.obj_min_pixels);
+      } else if (t.cand_ok) {
+        lab = t.cand;
+        alloc = true;
+        t.parent[lab] = lab;
+        t.busy[lab] = 1;
+        t.busy_list.push_back(lab);
+        ++t.n_busy;
+        ++res.labels_started;
+        t.used = std::max(t.used, lab + 1);
+        t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
+        classify(t, lab, regs.obj_min_pixels);
+      } else {
+        res.table_full = true;  // no free label: the pixel is dropped (background)
+        near = false;
+      }
+    }
+    res.labels_peak = std::max(res.labels_peak, t.n_busy);
+    advance(t, x == 0, alloc, regs.obj_min_pixels);
+    up_near[x] = near;
+    up_d[x] = d;
+    up_lab[x] = lab;
+    t.last_near = near;
+    t.last_lab = lab;
+    l_d = d;
+  }
+}
+
+ObjectList ObjectLabeller::State::finish() {
   for (int i = 0; i < t.used; ++i) {
     const Stats& s = t.st[i];
     if (!s.alive || s.count < regs.obj_min_pixels) continue;
@@ -528,6 +554,12 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
     res.objects.push_back(o);
   }
   return res;
+}
+
+ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw) {
+  ObjectLabeller lab(in.w, regs, hw);
+  for (int y = 0; y < in.h; ++y) lab.row(&in.at(0, y), y);
+  return lab.finish();
 }
 
 std::vector<uint32_t> object_packet(const ObjectList& list, bool lost) {
