@@ -161,6 +161,7 @@ int run(int argc, char** argv) {
     lap.to(t, "model_mt");
     if (fnv(rn.dp.px) != h_dp || fnv(rn.post.px) != h_post)
       throw sm::tools::ToolError(fmt::format("model output with {} threads differs from 1 thread", threads));
+    for (const auto& [n, ms] : rn.stage_ms) t["model_mt." + n].push_back(ms);
     if (no_opencv) continue;
     lap = Lap{};
     sgbm->compute(l, r, d);
@@ -213,11 +214,18 @@ int run(int argc, char** argv) {
     js["model_vs_sgbm_cpu"] = vc;
     fmt::print("model 1 thread / StereoSGBM time: {:.2f} wall, {:.2f} CPU (below 1: the model is faster)\n", vs, vc);
   }
-  fmt::print("\nmodel stages (median ms):\n| stage | ms | share |\n|---|---|---|\n");
+  // With N threads the row-streamed stages (census .. evidence) sum their bands' times (thread
+  // time, not wall); the others are wall times of stages that run in bands or serially.
+  fmt::print(
+      "\nmodel stages (median ms; {0} threads: census .. evidence summed over the bands, the others wall):\n| stage | "
+      "ms "
+      "| share | ms, {0} threads |\n|---|---|---|---|\n",
+      threads);
   for (const auto& n : stage_order) {
-    const double v = median(t["model." + n]);
-    fmt::print("| {} | {:.2f} | {:.0f} % |\n", n, v, 100.0 * v / m);
+    const double v = median(t["model." + n]), vn = median(t["model_mt." + n]);
+    fmt::print("| {} | {:.2f} | {:.0f} % | {:.2f} |\n", n, v, 100.0 * v / m, vn);
     js["stage_ms"][n] = v;
+    js["stage_ms_mt"][n] = vn;
   }
   fmt::print("\nfingerprints (FNV-1a): cost {:016x} aggregate {:016x} dp {:016x} post {:016x}\n", h_raw, h_agg, h_dp,
              h_post);

@@ -28,7 +28,9 @@ AggRow::AggRow(int w_, int h_, int nd_, int sw, const std::array<uint8_t, 32>& t
       // Byte sums of `group` costs cannot wrap: group * (255 >> COST_SHIFT) <= 255, for
       // any 8-bit input, not only legal Hamming costs (4 at COST_SHIFT 2, 1 at 0).
       group(255 / (255 >> std::clamp(hw.cost_shift, 0, 7))),
-      code{} {
+      code{},
+      recip{} {
+  for (size_t s = 0; s < recip.size(); ++s) recip[s] = static_cast<uint16_t>(sw_recip(static_cast<uint32_t>(s)));
   for (int k = 0; k < 256; ++k) {
     const uint32_t wq = sw_weight(table, k);
     code[static_cast<size_t>(k)] = static_cast<uint8_t>(wq == 4 ? 3 : wq == 2 ? 2 : wq);
@@ -126,13 +128,14 @@ inline void normalise(const uint16_t* su, int nd, uint32_t rec, uint32_t out_max
   }
 }
 
-// The weight masks of centre x: window positions of weight 1, 2, 4 (codes 1, 2, 3).
-inline void weight_masks(uint64_t b0, uint64_t b1, uint64_t* m, uint32_t& rec) {
+// The weight masks of centre x: window positions of weight 1, 2, 4 (codes 1, 2, 3), and
+// RECIP of their weight sum (from the table: a division per pixel was 7% of the stage).
+inline void weight_masks(const AggRow& a, uint64_t b0, uint64_t b1, uint64_t* m, uint32_t& rec) {
   m[0] = b0 & ~b1;
   m[1] = b1 & ~b0;
   m[2] = b0 & b1;
-  rec = sw_recip(static_cast<uint32_t>(__builtin_popcountll(m[0]) + 2 * __builtin_popcountll(m[1]) +
-                                       4 * __builtin_popcountll(m[2])));
+  rec = a.recip[static_cast<size_t>(__builtin_popcountll(m[0]) + 2 * __builtin_popcountll(m[1]) +
+                                    4 * __builtin_popcountll(m[2]))];
 }
 
 #if defined(SM_X86_DISPATCH)
@@ -201,17 +204,72 @@ SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, cons
   }
 }
 
-SM_AVX512 void agg_pixels_avx512(const AggRow& a, const uint64_t* b0, const uint64_t* b1, const uint8_t* const* base,
-                                 uint8_t* out) {
-  const int nd = a.nd;
+// agg_block512 for a centre whose whole window lies in the row, without a branch that
+// depends on the weights: every window position's costs are read, two positions at a time
+// interleaved byte by byte (level k of both side by side) and multiplied by their weights
+// 0, 1, 2, 4 (vpmaddubsw: w1 C1 + w2 C2 in 16 bits, at most 2 * 255 * 4), so the loop runs
+// the same steps for every centre (agg_block512's loops end where the weights say, and
+// those branches were most of its time). Same 16-bit sums, so the same bits. pos[q]: the
+// costs of window position q (padded to an even count with a position of weight 0); byte q
+// of wb: the weight of position q.
+template <int NB>
+SM_AVX512 inline void agg_pairs512(const uint8_t* const* pos, int npairs, const uint64_t* wb, size_t off,
+                                   const Norm512& nrm, uint8_t* o, int nlev) {
+  __m512i lo[NB], hi[NB];
+  for (int v = 0; v < NB; ++v) lo[v] = hi[v] = _mm512_setzero_si512();
+  for (int p = 0; p < npairs; ++p) {
+    // (Two bytes at a time from wb as stored: a whole-vector copy of it would wait for
+    // the stores to retire, no store forwarding from four 8-byte stores.)
+    uint16_t wpair;
+    std::memcpy(&wpair, reinterpret_cast<const char*>(wb) + 2 * p, sizeof wpair);
+    const __m512i wv = _mm512_set1_epi16(static_cast<short>(wpair));
+    const uint8_t* q1 = pos[2 * p] + off;
+    const uint8_t* q2 = pos[2 * p + 1] + off;
+    for (int v = 0; v < NB; ++v) {
+      const __m512i c1 = _mm512_loadu_si512(q1 + 64 * v), c2 = _mm512_loadu_si512(q2 + 64 * v);
+      lo[v] = _mm512_add_epi16(lo[v], _mm512_maddubs_epi16(_mm512_unpacklo_epi8(c1, c2), wv));
+      hi[v] = _mm512_add_epi16(hi[v], _mm512_maddubs_epi16(_mm512_unpackhi_epi8(c1, c2), wv));
+    }
+  }
+  for (int v = 0; v < NB; ++v) {
+    const __m512i bytes = _mm512_packus_epi16(normalise512(nrm, lo[v]), normalise512(nrm, hi[v]));
+    const int left = nlev - 64 * v;
+    if (left >= 64)
+      _mm512_storeu_si512(o + 64 * v, bytes);
+    else if (left > 0)
+      _mm512_mask_storeu_epi8(o + 64 * v, (__mmask64{1} << left) - 1, bytes);
+  }
+}
+
+// The weight of every window position of one centre as a byte (position q at byte q of
+// wb, 0 past the last): the mask bits deposited into bytes (pdep), weight 1, 2 or 4.
+__attribute__((target("bmi2"))) inline void weight_bytes(const uint64_t* m, int nq, uint64_t* wb) {
+  constexpr uint64_t ones = 0x0101010101010101ull;
+  for (int k = 0; k < (nq + 7) / 8; ++k)
+    wb[k] = _pdep_u64(m[0] >> (8 * k) & 0xff, ones) | _pdep_u64(m[1] >> (8 * k) & 0xff, 2 * ones) |
+            _pdep_u64(m[2] >> (8 * k) & 0xff, 4 * ones);
+}
+
+// pos: base with rows outside the image pointing at the centre row instead (read, weight 0).
+SM_AVX512 __attribute__((target("bmi2"))) void agg_pixels_avx512(const AggRow& a, const uint64_t* b0,
+                                                                 const uint64_t* b1, const uint8_t* const* base,
+                                                                 const uint8_t* const* pos, uint8_t* out) {
+  const int nd = a.nd, r = a.r, nq = (2 * r + 1) * (2 * r + 1), npairs = (nq + 1) / 2;
   for (int x = 0; x < a.w; ++x) {
     uint64_t m[3];
     uint32_t rec;
-    weight_masks(b0[x], b1[x], m, rec);
+    weight_masks(a, b0[x], b1[x], m, rec);
     const Norm512 nrm = norm512(rec, a.out_max);
     const size_t xoff = static_cast<size_t>(x) * nd;
     uint8_t* o = out + xoff;
     int d0 = 0;
+    if (x >= r && x + r < a.w) {  // the whole window inside the row: every position readable
+      alignas(64) uint64_t wb[8] = {};
+      weight_bytes(m, nq, wb);
+      for (; d0 + 128 <= nd; d0 += 128) agg_pairs512<2>(pos, npairs, wb, xoff + d0, nrm, o + d0, 128);
+      for (; d0 < nd; d0 += 64) agg_pairs512<1>(pos, npairs, wb, xoff + d0, nrm, o + d0, std::min(64, nd - d0));
+      continue;
+    }
     for (; d0 + 128 <= nd; d0 += 128) agg_block512<2>(base, xoff, m, a.group, d0, nrm, o + d0, 128);
     for (; d0 < nd; d0 += 64) agg_block512<1>(base, xoff, m, a.group, d0, nrm, o + d0, std::min(64, nd - d0));
   }
@@ -220,7 +278,7 @@ SM_AVX512 void agg_pixels_avx512(const AggRow& a, const uint64_t* b0, const uint
 
 bool agg_avx512() {
   static const bool ok = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                         __builtin_cpu_supports("avx512vl") &&
+                         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("bmi2") &&
                          std::getenv("SM_NO_AVX512") == nullptr;  // (tests of the other kernels)
   return ok;
 }
@@ -290,13 +348,22 @@ SM_HOT void agg_row(const AggRow& a, const uint8_t* const* c_rows, const uint8_t
   std::vector<uint16_t> sum(static_cast<size_t>(nd) + 128);  // A_raw, whole blocks
   uint16_t* su = sum.data();
 #if defined(SM_X86_DISPATCH)
-  if (agg_avx512()) return agg_pixels_avx512(a, b0, b1, base.data(), out);
+  if (agg_avx512()) {
+    std::vector<const uint8_t*> pos(static_cast<size_t>(nq) + 1);
+    for (int j = -r; j <= r; ++j)
+      for (int i = -r; i <= r; ++i) {
+        const uint8_t* row = (y + j >= 0 && y + j < h) ? c_rows[j + r] : c_rows[r];
+        pos[static_cast<size_t>((j + r) * side + (i + r))] = row + static_cast<ptrdiff_t>(i) * nd;
+      }
+    pos[static_cast<size_t>(nq)] = pos[0];  // (the pad of an odd count: weight 0)
+    return agg_pixels_avx512(a, b0, b1, base.data(), pos.data(), out);
+  }
 #endif
   for (int x = 0; x < w; ++x) {
     // (2) Window positions of weight 1, 2, 4 (codes 1, 2, 3) and the weight sum.
     uint64_t m[3];
     uint32_t rec;
-    weight_masks(b0[x], b1[x], m, rec);
+    weight_masks(a, b0[x], b1[x], m, rec);
     const size_t xoff = static_cast<size_t>(x) * nd;
     // (3) A_raw, widest blocks of levels first (each block is independent; the last one
     // may read past level nd - 1, into kCostPad, and those lanes are not used).

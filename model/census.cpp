@@ -183,7 +183,7 @@ __attribute__((always_inline)) inline void cost_levels_scalar(const CensusVec* l
     for (size_t i = 0; i < 4; ++i) s += __builtin_popcountll(p[i] ^ q[i]);
     o[d] = static_cast<uint8_t>(static_cast<uint8_t>(s) >> shift);
   }
-  for (; d < nd; ++d) o[d] = static_cast<uint8_t>(cb >> shift);
+  if (d < nd) std::memset(o + d, cb >> shift, static_cast<size_t>(nd - d));  // (one byte at a time: 5% of the model)
 }
 
 void cost_row_portable(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out) {

@@ -512,8 +512,9 @@ void trellis_line_pen(const uint8_t* agg, int n, const uint8_t* pen, const HwCon
 void edge_penalties(const uint8_t* left, int n, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
                     std::vector<uint8_t>& pen) {
   pen.assign(static_cast<size_t>(n) + 1, occ);
-  for (int x = 1; x < n; ++x)
-    if (std::abs(static_cast<int>(left[x]) - static_cast<int>(left[x - 1])) > edge_t) pen[x] = occ_edge;
+  uint8_t* const p = pen.data();
+  for (int x = 1; x < n; ++x)  // (a select, not a conditional store: the loop vectorises)
+    p[x] = std::abs(static_cast<int>(left[x]) - static_cast<int>(left[x - 1])) > edge_t ? occ_edge : occ;
 }
 
 DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ, uint8_t occ_edge, uint8_t edge_t,
@@ -536,22 +537,20 @@ DispImage trellis_dp_edge(const CostVolume& agg, const Image8& left, uint8_t occ
 
 void dp_fill(const std::vector<int>& match, std::vector<DispPix>& disp) {
   const int n = static_cast<int>(match.size());
-  disp.assign(n, make_disp(0, true));
-  int first = -1;
-  for (int x = 0; x < n && first < 0; ++x)
-    if (match[x] >= 0) first = x;
-  if (first < 0) return;    // no match in the line: 0
-  int fill = match[first];  // left of the first match: disp(first)
-  int prev = -1;            // disparity of the match left of x, -1 before the first
-  for (int x = 0; x < n; ++x) {
-    if (match[x] >= 0) {
-      if (prev >= 0)  // pixels since the previous match get min(disp(a), disp(b))
-        for (int k = x - 1; k >= 0 && match[k] < 0; --k) disp[k] = make_disp(std::min(prev, match[x]), true);
-      prev = match[x];
-      disp[x] = make_disp(match[x], true);
-    } else {
-      disp[x] = make_disp(prev >= 0 ? prev : fill, true);  // right of the last: disp(last)
-    }
+  disp.resize(static_cast<size_t>(n));
+  int x = 0;
+  while (x < n && match[x] < 0) ++x;
+  // Left of the first match: disp(first) (0 when the line has no match).
+  std::fill(disp.begin(), disp.begin() + x, make_disp(x < n ? match[x] : 0, true));
+  // Each match, then the pixels up to the next one: min(disp(a), disp(b)) between two
+  // matches, disp(last) right of the last. (Every pixel written once.)
+  while (x < n) {
+    const int m = match[x];
+    disp[x] = make_disp(m, true);
+    int e = x + 1;
+    while (e < n && match[e] < 0) ++e;
+    std::fill(disp.begin() + x + 1, disp.begin() + e, make_disp(e < n ? std::min(m, match[e]) : m, true));
+    x = e;
   }
 }
 

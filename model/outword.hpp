@@ -50,11 +50,16 @@ uint32_t out_word(const OutFields& f, DispPix p, int x, int nd);
 // evidence only: the same words for any thread count).
 OutImage make_output(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant = 0,
                      int threads = 1);
+// make_output's rows y0..y1-1 into out (post's size; no size check): the same words.
+void make_output_rows(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int conf_variant, int y0,
+                      int y1, OutImage& out);
 
 // What the object labeller reads of each output word (section 8): its valid bit and its
 // level rounded to the nearest integer, (q4 + 8) >> 4 (invalid pixels: level 0, never
 // an object).
 DispImage object_levels(const OutImage& out);
+// object_levels of rows y0..y1-1 into d (out's size).
+void object_levels_rows(const OutImage& out, int y0, int y1, DispImage& d);
 
 // Q.4 disparity as float pixels (negative = invalid), as disp_to_float for DispImage.
 // (In tools: toolio's out_to_float.)

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -44,7 +47,7 @@ struct Rows {
 uint8_t* align64(uint8_t* p) { return p + (64 - reinterpret_cast<uintptr_t>(p) % 64) % 64; }
 
 // Output rows y0..y1-1 of census, cost (r.raw), aggregation (r.agg) and DP (r.dp);
-// ms[0..3] += the time of each of the four stages.
+// ms[0..4] += the time of each of the five steps (census, cost, aggregation, trellis, evidence).
 void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResult& r, double* ms) {
   using clock = std::chrono::steady_clock;
   const HwConfig& hw = s.hw;
@@ -100,11 +103,58 @@ void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResul
     edge_penalties(&s.rl.px[static_cast<size_t>(ya) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
     trellis_line_pen(a, w, pen.data(), hw, scratch, line);
     std::copy(line.disp.begin(), line.disp.end(), &r.dp.at(0, ya));
+    const auto t3 = clock::now();
     evidence_line(a, w, nd, line, ya, r.evidence);  // writes row ya only: safe across bands
     const auto t2 = clock::now();
     ms[2] += since(t0, t1);
-    ms[3] += since(t1, t2);
+    ms[3] += since(t1, t3);
+    ms[4] += since(t3, t2);
   }
+}
+
+// The output words (r.out) and the object list (r.objects) of a frame with t >= 2 threads,
+// the rows in chunks of kChunk: band 0 labels the chunks in order (the labeller reads the
+// words in raster order, so it is serial) and, while the next chunk is not ready, makes a
+// chunk's words itself; the other bands make the chunks' words and object levels in
+// order. So the labelling overlaps the output words instead of following them. The same
+// words (make_output_rows) and the same list (ObjectLabeller, the rows in order) as
+// make_output and separate_objects. Returns when the last chunk's words were made.
+std::chrono::steady_clock::time_point output_and_objects(PipelineResult& r, const Regs& regs, const HwConfig& hw,
+                                                         int t) {
+  constexpr int kChunk = 8;
+  const int w = r.post.w, h = r.post.h, nd = hw.disp, nc = (h + kChunk - 1) / kChunk;
+  const OutputRegs oregs = output_regs(regs);
+  r.out = OutImage(w, h);
+  DispImage levels(w, h);
+  std::unique_ptr<std::atomic<bool>[]> ready(new std::atomic<bool>[static_cast<size_t>(nc)]);
+  for (int c = 0; c < nc; ++c) ready[c].store(false, std::memory_order_relaxed);
+  std::atomic<int> next{0}, made{0};
+  std::chrono::steady_clock::time_point last{};  // (written by the thread that makes the last chunk)
+  auto make_one = [&]() {                        // the next chunk nobody has taken; false when none is left
+    const int c = next.fetch_add(1);
+    if (c >= nc) return false;
+    const int y0 = c * kChunk, y1 = std::min(h, y0 + kChunk);
+    make_output_rows(r.evidence, r.post, nd, oregs, 0, y0, y1, r.out);
+    object_levels_rows(r.out, y0, y1, levels);
+    ready[c].store(true, std::memory_order_release);
+    if (made.fetch_add(1) + 1 == nc) last = std::chrono::steady_clock::now();
+    return true;
+  };
+  ObjectLabeller lab(w, regs, hw);
+  parallel_bands(t, t, [&](int, int, int b) {
+    if (b != 0) {
+      while (make_one()) {
+      }
+      return;
+    }
+    for (int c = 0; c < nc; ++c) {
+      while (!ready[c].load(std::memory_order_acquire))
+        if (!make_one()) std::this_thread::yield();  // (another band is making it)
+      for (int y = c * kChunk; y < std::min(h, (c + 1) * kChunk); ++y) lab.row(&levels.at(0, y), y);
+    }
+  });
+  r.objects = lab.finish();
+  return last;
 }
 
 }  // namespace
@@ -124,6 +174,16 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     r.stage_ms.emplace_back(name, std::chrono::duration<double, std::milli>(now - t).count());
     t = now;
   };
+  const int w = regs.width, h = regs.height, nd = hw.disp;
+  prepare_bands(h, threads);  // (the pool's threads wake up during the allocations below)
+  // The frames the row stream writes (below).
+  if (keep_volumes) {
+    r.raw = CostVolume(w, h, nd);
+    r.agg = CostVolume(w, h, nd);
+  }
+  r.dp = DispImage(w, h);
+  r.evidence = Evidence(w, h);
+  lap("setup");
   // The two images on two threads when there are threads (image 0 left, 1 right).
   auto each_image = [threads](auto&& f) {
     parallel_bands(2, threads, [&f](int i0, int i1, int) {
@@ -148,7 +208,6 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   // streams on its own thread with its own ring (the 2R cost rows around a band edge
   // are computed by both bands; each output row is written by its band only). Each
   // stage's time is summed over its rows and bands (stage_ms keeps the stage order).
-  const int w = regs.width, h = regs.height, nd = hw.disp;
   const Rows rows{r.rl,
                   r.rr,
                   hw,
@@ -156,28 +215,30 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
                   {r.rl, (hw.census - 1) / 2},
                   {r.rr, (hw.census - 1) / 2},
                   detail::AggRow(w, h, nd, hw.sw, regs.sw_table, hw)};
-  if (keep_volumes) {
-    r.raw = CostVolume(w, h, nd);
-    r.agg = CostVolume(w, h, nd);
-  }
-  r.dp = DispImage(w, h);
-  std::vector<std::array<double, 4>> band_ms(static_cast<size_t>(band_count(h, threads)));
-  r.evidence = Evidence(w, h);
+  std::vector<std::array<double, 5>> band_ms(static_cast<size_t>(band_count(h, threads)));
+  lap("pad");  // (the census inputs with their borders)
   parallel_bands(h, threads, [&](int y0, int y1, int b) {
     stream_rows(rows, y0, y1, keep_volumes, r, band_ms[static_cast<size_t>(b)].data());
   });
-  double ms[4] = {0, 0, 0, 0};  // census, cost, aggregate, dp
+  double ms[5] = {0, 0, 0, 0, 0};  // census, cost, aggregate, dp (trellis), evidence (its record)
   for (const auto& m : band_ms)
-    for (int k = 0; k < 4; ++k) ms[k] += m[static_cast<size_t>(k)];
-  const char* names[4] = {"census", "cost", "aggregate", "dp"};
-  for (int k = 0; k < 4; ++k) r.stage_ms.emplace_back(names[k], ms[k]);
+    for (int k = 0; k < 5; ++k) ms[k] += m[static_cast<size_t>(k)];
+  const char* names[5] = {"census", "cost", "aggregate", "dp", "evidence"};
+  for (int k = 0; k < 5; ++k) r.stage_ms.emplace_back(names[k], ms[k]);
   t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
-  r.out = make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads);
-  lap("output");
-  r.objects = separate_objects(object_levels(r.out), regs, hw);
-  lap("objects");
+  if (band_count(h, threads) == 1) {
+    r.out = make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads);
+    lap("output");
+    r.objects = separate_objects(object_levels(r.out), regs, hw);
+    lap("objects");
+  } else {
+    // (output: until the last output word; objects: the labelling left after it)
+    const auto words = output_and_objects(r, regs, hw, band_count(h, threads));
+    r.stage_ms.emplace_back("output", std::chrono::duration<double, std::milli>(words - t).count());
+    r.stage_ms.emplace_back("objects", std::chrono::duration<double, std::milli>(clock::now() - words).count());
+  }
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 
@@ -118,6 +119,74 @@ SM_HOT int rank_row(const uint16_t* keys, int w, int h, int y, int x0, int ry, i
   }
   return x;
 }
+
+// The chain's three medians (5 x 1, 3 x 3, 5 x 3) with the network known at compile time:
+// unrolled, every index is a constant, so the window's vectors stay in registers (rank_row
+// reads and writes them in memory at every compare-exchange, its network chosen at run
+// time) and the compiler drops the exchanges that the median and the 0xffff padding do not
+// need. Batcher's network (sort_network) on the next power of two inputs; any sorting
+// network leaves the same value at each rank, so the same bits as rank_row.
+template <int N2>
+struct StaticNet {
+  int n = 0;
+  int a[N2 * N2] = {}, b[N2 * N2] = {};
+  constexpr StaticNet() {
+    for (int p = 1; p < N2; p <<= 1)
+      for (int k = p; k >= 1; k >>= 1)
+        for (int j = k % p; j + k < N2; j += 2 * k)
+          for (int i = 0; i < std::min(k, N2 - j - k); ++i)
+            if ((i + j) / (2 * p) == (i + j + k) / (2 * p)) {
+              a[n] = i + j;
+              b[n] = i + j + k;
+              ++n;
+            }
+  }
+};
+
+// As rank_row for the median of a (2 RY + 1) x (2 RX + 1) window, L = the lanes of V.
+template <class V, int RY, int RX>
+inline __attribute__((always_inline)) int median_row_t(const uint16_t* keys, int w, int h, int y, int x0,
+                                                       DispPix* out) {
+  constexpr int L = sizeof(V) / 2, n = (2 * RY + 1) * (2 * RX + 1), n2 = n <= 8 ? 8 : 16;
+  static_assert(n <= n2, "window larger than the network");
+  static constexpr StaticNet<n2> net{};
+  int x = x0;
+  for (; x + L + RX <= w; x += L) {
+    V v[n2];
+    std::memcpy(&v[n / 2], keys + static_cast<size_t>(y) * w + x, sizeof(V));  // the centre
+    for (int j = -RY; j <= RY; ++j) {
+      const bool row_in = y + j >= 0 && y + j < h;
+      for (int i = -RX; i <= RX; ++i) {
+        const int k = (j + RY) * (2 * RX + 1) + (i + RX);
+        if (row_in)
+          std::memcpy(&v[k], keys + static_cast<size_t>(y + j) * w + x + i, sizeof(V));
+        else
+          v[k] = v[n / 2];  // a row outside the frame takes the centre's key
+      }
+    }
+    for (int k = n; k < n2; ++k) v[k] = V{} + 0xffff;
+#pragma GCC unroll 128
+    for (int c = 0; c < net.n; ++c) {
+      const V a = v[net.a[c]], b = v[net.b[c]];
+      v[net.a[c]] = a < b ? a : b;
+      v[net.b[c]] = a < b ? b : a;
+    }
+    const V m = v[n / 2];
+    const V o = m == 0 ? V{} : ((m - 1) | kDispValid);
+    std::memcpy(out + x, &o, sizeof o);
+  }
+  return x;
+}
+#endif
+
+#if defined(__GNUC__)
+// median_row_t for the chain's windows; -1 for another window (rank_row then).
+SM_HOT int median_row(int ry, int rx, const uint16_t* keys, int w, int h, int y, int x0, DispPix* out) {
+  if (ry == 2 && rx == 0) return median_row_t<VK, 2, 0>(keys, w, h, y, x0, out);
+  if (ry == 1 && rx == 1) return median_row_t<VK, 1, 1>(keys, w, h, y, x0, out);
+  if (ry == 2 && rx == 1) return median_row_t<VK, 2, 1>(keys, w, h, y, x0, out);
+  return -1;
+}
 #endif
 
 }  // namespace
@@ -153,20 +222,28 @@ DispImage post_rank_rows(const DispImage& in, const HwConfig& hw, int ry, int rx
   const bool vec = n2 <= kMaxNet && dmask < 0x8000;  // keys <= 2^15 (any DISP <= 2^15)
   if (vec) {
     std::vector<uint16_t> keys(in.px.size());
-    for (size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<uint16_t>(key(in.px[i]));
+    parallel_bands(h, threads, [&](int y0, int y1, int) {
+      for (size_t i = static_cast<size_t>(y0) * w; i < static_cast<size_t>(y1) * w; ++i)
+        keys[i] = static_cast<uint16_t>(key(in.px[i]));
+    });
     int slot = 0;
     const auto net = prune_network(sort_network(n2), n, n2, rank, slot);
+    const bool median = rank == n / 2;
     parallel_bands(h, threads, [&](int y0, int y1, int) {
       std::vector<unsigned> win;
       for (int y = y0; y < y1; ++y) {
         int x = 0;
         for (; x < std::min(rx, w); ++x) one(win, x, y);
         DispPix* o = &out.px[static_cast<size_t>(y) * w];
-        x = rank_row(keys.data(), w, h, y, x, ry, rx, slot, n2, net.data(), net.size(), o);
-        // The columns left over: one more block ending at the last centre whose window
-        // is inside (recomputing some centres, with the same result).
-        if (x < w - rx && w - rx - kKeyLanes >= rx)
-          x = rank_row(keys.data(), w, h, y, w - rx - kKeyLanes, ry, rx, slot, n2, net.data(), net.size(), o);
+        // The centres whose window lies inside the columns, then the columns left over:
+        // one more block ending at the last such centre (recomputing some centres, with the
+        // same result).
+        auto block = [&](int x0) {
+          const int e = median ? median_row(ry, rx, keys.data(), w, h, y, x0, o) : -1;
+          return e >= 0 ? e : rank_row(keys.data(), w, h, y, x0, ry, rx, slot, n2, net.data(), net.size(), o);
+        };
+        x = block(x);
+        if (x < w - rx && w - rx - kKeyLanes >= rx) x = block(w - rx - kKeyLanes);
         for (; x < w; ++x) one(win, x, y);
       }
     });
@@ -223,20 +300,25 @@ DispImage post_band(const DispImage& in, const HwConfig& hw, int k) { return pos
 
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps,
                        int threads) {
-  DispImage cur = in;
-  if (steps) steps->clear();
+  // Each step's image is made in place in the list of steps (a copy only for a disabled
+  // filter and for the result: copies of whole frames were a serial part of a threaded run).
+  std::vector<DispImage> own;
+  std::vector<DispImage>& st = steps ? *steps : own;
+  st.clear();
+  st.reserve(4);
   // F0, the band filter (bit 3), runs first; then F1..F3 (bits 0..2).
-  if (regs.filter_enable & 8u) cur = post_band_cols(cur, hw, hw.band_k, threads);
-  if (steps) steps->push_back(cur);
+  st.push_back((regs.filter_enable & 8u) ? post_band_cols(in, hw, hw.band_k, threads) : in);
   for (int n = 0; n < 3; ++n) {
     if (regs.filter_enable & (1u << n)) {
       // F1 5 x 1, F2 3 x 3, F3 5 x 3 (post_vmedian, post_median3, post_median53)
       const int ry = n == 1 ? 1 : 2, rx = n == 0 ? 0 : 1;
-      cur = post_rank_rows(cur, hw, ry, rx, (2 * ry + 1) * (2 * rx + 1) / 2, threads);
+      DispImage next = post_rank_rows(st.back(), hw, ry, rx, (2 * ry + 1) * (2 * rx + 1) / 2, threads);
+      st.push_back(std::move(next));
+    } else {
+      st.push_back(st.back());
     }
-    if (steps) steps->push_back(cur);
   }
-  return cur;
+  return steps ? st.back() : std::move(st.back());
 }
 
 namespace {
@@ -272,6 +354,8 @@ struct LabelTable {
   explicit LabelTable(int slots) : parent(slots, 0), st(slots), busy(slots, 0), ucur(slots, 0), uprev(slots, 0) {
     busy_list.reserve(static_cast<size_t>(slots));
     freed.reserve(static_cast<size_t>(slots));
+    cand_list.reserve(static_cast<size_t>(slots));
+    in_cand.assign(static_cast<size_t>(slots), 0);
   }
   std::vector<int> parent;  // root of each busy label
   std::vector<Stats> st;
@@ -289,7 +373,23 @@ struct LabelTable {
   // free_mask chose for the pixel.
   std::vector<int> busy_list;
   std::vector<int> freed;
+  // Speed only: the busy labels that are absorbed or below min_pixels (in any order), the
+  // only ones free_mask can free; a finished large component stays busy to the end of the
+  // frame and is no longer visited at every pixel. Kept by classify.
+  std::vector<int> cand_list;
+  std::vector<uint8_t> in_cand;
 };
+
+// Puts label l in t.cand_list or takes it out after its busy flag, root or count changed.
+void classify(LabelTable& t, int l, unsigned min_pixels) {
+  const bool c = t.busy[l] && (t.parent[l] != l || t.st[l].count < min_pixels);
+  if (c == (t.in_cand[l] != 0)) return;
+  t.in_cand[l] = c;
+  if (c)
+    t.cand_list.push_back(l);
+  else
+    t.cand_list.erase(std::find(t.cand_list.begin(), t.cand_list.end(), l));
+}
 
 // Labels freed before a pixel (into t.freed): busy, not written into the row buffer on
 // this row or the previous one (so no pixel still to be labelled can name them), and
@@ -297,7 +397,7 @@ struct LabelTable {
 // min_pixels.
 void free_mask(LabelTable& t, unsigned min_pixels) {
   t.freed.clear();
-  for (const int l : t.busy_list) {
+  for (const int l : t.cand_list) {  // (the other busy labels are not absorbed nor small)
     const bool referenced = t.ucur[l] || t.uprev[l] || (t.last_near && t.last_lab == l);
     const bool absorbed = t.parent[l] != l;
     if (!referenced && (absorbed || t.st[l].count < min_pixels)) t.freed.push_back(l);
@@ -309,7 +409,7 @@ void free_mask(LabelTable& t, unsigned min_pixels) {
 // allocated or none was free: the pixel's only change to busy is the candidate's
 // allocation, which the choice skips anyway), then apply the frees and move the
 // row-buffer marks.
-void advance(LabelTable& t, bool sol, bool alloc) {
+void advance(LabelTable& t, bool sol, bool alloc, unsigned min_pixels) {
   const int n = static_cast<int>(t.busy.size());
   if (alloc || !t.cand_ok) {
     int c = -1;
@@ -322,6 +422,7 @@ void advance(LabelTable& t, bool sol, bool alloc) {
     t.busy[l] = 0;
     --t.n_busy;
     t.busy_list.erase(std::find(t.busy_list.begin(), t.busy_list.end(), l));
+    classify(t, l, min_pixels);
   }
   if (sol) {
     t.uprev = t.ucur;
@@ -333,65 +434,107 @@ void advance(LabelTable& t, bool sol, bool alloc) {
 }
 }  // namespace
 
-ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw) {
-  const unsigned dmask = (1u << clog2(hw.disp)) - 1;
+// The labeller's state between rows: the label table, the row buffer (previous row) and
+// the left neighbour, as the hardware keeps them.
+struct ObjectLabeller::State {
+  const Regs& regs;
+  const HwConfig& hw;
+  unsigned dmask;
   ObjectList res;
-  LabelTable t(hw.label_slots);
-  // The row buffer (previous row) and the left neighbour, as the hardware keeps them.
-  std::vector<uint8_t> up_near(in.w, 0);
-  std::vector<unsigned> up_d(in.w, 0);
-  std::vector<int> up_lab(in.w, 0);
+  LabelTable t;
+  std::vector<uint8_t> up_near;
+  std::vector<unsigned> up_d;
+  std::vector<int> up_lab;
   unsigned l_d = 0;
-  for (int y = 0; y < in.h; ++y)
-    for (int x = 0; x < in.w; ++x) {
-      const DispPix p = in.at(x, y);
-      const unsigned d = p & dmask;
-      free_mask(t, regs.obj_min_pixels);
-      bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
-      bool alloc = false;
-      int lab = 0;
-      if (near) {
-        auto close = [&](unsigned e) {
-          return static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(e))) <= regs.obj_tol;
-        };
-        const bool uok = y > 0 && up_near[x] && close(up_d[x]);
-        const bool lok = x > 0 && t.last_near && close(l_d);
-        const int ur = t.parent[up_lab[x]];
-        const int lr = t.last_lab;
-        if (uok && lok && ur != lr) {
-          const int s = std::min(ur, lr), a = std::max(ur, lr);
-          for (int& q : t.parent)
-            if (q == a) q = s;
-          fold_stats(t.st[s], t.st[a]);
-          add_pixel(t.st[s], x, y, d);
-          lab = s;
-        } else if (uok || lok) {
-          lab = uok ? ur : lr;
-          add_pixel(t.st[lab], x, y, d);
-        } else if (t.cand_ok) {
-          lab = t.cand;
-          alloc = true;
-          t.parent[lab] = lab;
-          t.busy[lab] = 1;
-          t.busy_list.push_back(lab);
-          ++t.n_busy;
-          ++res.labels_started;
-          t.used = std::max(t.used, lab + 1);
-          t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
-        } else {
-          res.table_full = true;  // no free label: the pixel is dropped (background)
-          near = false;
-        }
-      }
-      res.labels_peak = std::max(res.labels_peak, t.n_busy);
-      advance(t, x == 0, alloc);
-      up_near[x] = near;
+  State(int w, const Regs& r, const HwConfig& h)
+      : regs(r),
+        hw(h),
+        dmask((1u << clog2(h.disp)) - 1),
+        t(h.label_slots),
+        up_near(static_cast<size_t>(w), 0),
+        up_d(static_cast<size_t>(w), 0),
+        up_lab(static_cast<size_t>(w), 0) {}
+  void row(const DispPix* in, int y);
+  ObjectList finish();
+};
+
+ObjectLabeller::ObjectLabeller(int w, const Regs& regs, const HwConfig& hw)
+    : s_(std::make_unique<State>(w, regs, hw)) {}
+ObjectLabeller::~ObjectLabeller() = default;
+void ObjectLabeller::row(const DispPix* px, int y) { s_->row(px, y); }
+ObjectList ObjectLabeller::finish() { return s_->finish(); }
+
+void ObjectLabeller::State::row(const DispPix* in, int y) {
+  const int w = static_cast<int>(up_near.size());
+  for (int x = 0; x < w; ++x) {
+    const DispPix p = in[x];
+    const unsigned d = p & dmask;
+    bool near = disp_valid(p) && d >= regs.obj_near;  // an invalid pixel is never near
+    // Speed only: a pixel that is not near, after one that was not near either in the same
+    // row (not its first pixel), with a free candidate label changes nothing but the row
+    // buffer: the previous pixel saw the same table (no pixel changed a label since, and
+    // the row-buffer marks were as now) and freed what could be freed, and advance
+    // neither allocates, scans nor marks.
+    if (!near && x >= 2 && !t.last_near && t.cand_ok) {
+      up_near[x] = 0;
       up_d[x] = d;
-      up_lab[x] = lab;
-      t.last_near = near;
-      t.last_lab = lab;
+      up_lab[x] = 0;
+      t.last_lab = 0;
       l_d = d;
+      continue;
     }
+    free_mask(t, regs.obj_min_pixels);
+    bool alloc = false;
+    int lab = 0;
+    if (near) {
+      auto close = [&](unsigned e) {
+        return static_cast<unsigned>(std::abs(static_cast<int>(d) - static_cast<int>(e))) <= regs.obj_tol;
+      };
+      const bool uok = y > 0 && up_near[x] && close(up_d[x]);
+      const bool lok = x > 0 && t.last_near && close(l_d);
+      const int ur = t.parent[up_lab[x]];
+      const int lr = t.last_lab;
+      if (uok && lok && ur != lr) {
+        const int s = std::min(ur, lr), a = std::max(ur, lr);
+        for (int& q : t.parent)
+          if (q == a) q = s;
+        fold_stats(t.st[s], t.st[a]);
+        add_pixel(t.st[s], x, y, d);
+        classify(t, s, regs.obj_min_pixels);
+        classify(t, a, regs.obj_min_pixels);
+        lab = s;
+      } else if (uok || lok) {
+        lab = uok ? ur : lr;
+        add_pixel(t.st[lab], x, y, d);
+        classify(t, lab, regs.obj_min_pixels);
+      } else if (t.cand_ok) {
+        lab = t.cand;
+        alloc = true;
+        t.parent[lab] = lab;
+        t.busy[lab] = 1;
+        t.busy_list.push_back(lab);
+        ++t.n_busy;
+        ++res.labels_started;
+        t.used = std::max(t.used, lab + 1);
+        t.st[lab] = Stats{x, y, x, y, 1, d, d, true};
+        classify(t, lab, regs.obj_min_pixels);
+      } else {
+        res.table_full = true;  // no free label: the pixel is dropped (background)
+        near = false;
+      }
+    }
+    res.labels_peak = std::max(res.labels_peak, t.n_busy);
+    advance(t, x == 0, alloc, regs.obj_min_pixels);
+    up_near[x] = near;
+    up_d[x] = d;
+    up_lab[x] = lab;
+    t.last_near = near;
+    t.last_lab = lab;
+    l_d = d;
+  }
+}
+
+ObjectList ObjectLabeller::State::finish() {
   for (int i = 0; i < t.used; ++i) {
     const Stats& s = t.st[i];
     if (!s.alive || s.count < regs.obj_min_pixels) continue;
@@ -411,6 +554,12 @@ ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfi
     res.objects.push_back(o);
   }
   return res;
+}
+
+ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw) {
+  ObjectLabeller lab(in.w, regs, hw);
+  for (int y = 0; y < in.h; ++y) lab.row(&in.at(0, y), y);
+  return lab.finish();
 }
 
 std::vector<uint32_t> object_packet(const ObjectList& list, bool lost) {

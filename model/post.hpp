@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "sm_types.hpp"
@@ -71,6 +72,20 @@ struct ObjectList {
 // labels that are recycled within the frame (absorbed labels, and components that ended
 // below regs.obj_min_pixels, once no pixel still to come can name them).
 ObjectList separate_objects(const DispImage& in, const Regs& regs, const HwConfig& hw);
+
+// separate_objects one row at a time (the rows in order, each w pixels; then finish): the
+// same list. run_pipeline labels rows while other threads still make output words.
+class ObjectLabeller {
+ public:
+  ObjectLabeller(int w, const Regs& regs, const HwConfig& hw);
+  ~ObjectLabeller();
+  void row(const DispPix* px, int y);
+  ObjectList finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 // The AXI4-Stream packet of one object list (section 8): a header word, then five words
 // per object. `lost` = the packet of an earlier list was dropped since the last one sent.

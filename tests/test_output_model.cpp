@@ -388,3 +388,56 @@ TEST_CASE("the output registers' reset values are the model's defaults, and map 
     CHECK(int{back.fill_bg} == 0);
   }
 }
+
+TEST_CASE("make_output equals out_fields and out_word pixel by pixel on random evidence", "[unit][output]") {
+  // make_output takes a vector path (model/outword.cpp) where the row's C2 >= C1; every
+  // estimator, fit and rule setting, rows with and without that order, and a width that
+  // leaves a tail of pixels.
+  std::mt19937 rng(41);
+  auto u = [&rng](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
+  for (int nd : {16, 64, 128, 256}) {
+    const int w = 53, h = 6;
+    Evidence ev(w, h);
+    DispImage post(w, h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        auto near = [&](int v) { return std::clamp(v + u(5) - 2, 0, 255); };  // mostly within the band
+        const int d = u(nd), dw = u(3) == 0 ? u(nd) : std::clamp(near(d), 0, nd - 1);
+        ev.d.at(x, y) = static_cast<uint8_t>(d);
+        ev.dw.at(x, y) = static_cast<uint8_t>(dw);
+        ev.matched.at(x, y) = static_cast<uint8_t>(u(2));
+        ev.gap.at(x, y) = static_cast<uint8_t>(u(4) == 0 ? 255 : u(6));
+        ev.fill_bg.at(x, y) = static_cast<uint8_t>(u(nd));
+        for (Image8* p : {&ev.cm, &ev.c0, &ev.cp, &ev.cmax}) p->at(x, y) = static_cast<uint8_t>(u(256));
+        for (auto& b : ev.band) b.at(x, y) = static_cast<uint8_t>(u(256));
+        const int c1 = u(200);
+        ev.c1.at(x, y) = static_cast<uint8_t>(c1);
+        ev.c2.at(x, y) = static_cast<uint8_t>(y == 3 && x == 20 ? c1 / 2 : c1 + u(256 - c1));  // row 3: C2 < C1
+        ev.lr.at(x, y) = static_cast<uint8_t>(u(4) == 0 ? 255 : near(d));
+        post.at(x, y) = make_disp(static_cast<unsigned>(u(3) == 0 ? u(nd) : d), u(5) != 0);
+      }
+    for (int k = 0; k < 64; ++k) {
+      OutputRegs r;
+      r.subpix_en = static_cast<uint8_t>(k % 8 != 0);
+      r.subpix_src = static_cast<uint8_t>(k % 3);
+      r.subpix_fit = static_cast<uint8_t>(k / 3 % 2);
+      r.occ_en = static_cast<uint8_t>(u(2));
+      r.fill_bg = static_cast<uint8_t>(u(2));
+      r.occ_t = static_cast<uint8_t>(u(4));
+      r.uniq_en = static_cast<uint8_t>(u(2));
+      r.uniq_t = static_cast<uint8_t>(u(40));
+      r.agree_en = static_cast<uint8_t>(u(2));
+      r.agree_t = static_cast<uint8_t>(u(4));
+      r.tex_en = static_cast<uint8_t>(u(2));
+      r.tex_t = static_cast<uint8_t>(u(60));
+      r.lr_en = static_cast<uint8_t>(u(2));
+      r.lr_t = static_cast<uint8_t>(u(4));
+      const OutImage o = make_output(ev, post, nd, r);
+      long bad = 0;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) bad += o.at(x, y) != out_word(out_fields(ev, x, y, nd, r), post.at(x, y), x, nd);
+      INFO("DISP " << nd << ", setting " << k);
+      CHECK(bad == 0);
+    }
+  }
+}
