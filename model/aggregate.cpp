@@ -165,6 +165,21 @@ SM_AVX512 inline __m512i normalise512(const Norm512& n, __m512i s) {
   return _mm512_min_epu16(v, n.top);
 }
 
+// The NB vectors' 16-bit sums of levels 64 v .. 64 v + 63 (low and high halves of each
+// byte lane pair) normalised, packed to bytes and stored at o, levels nlev and up left
+// untouched.
+template <int NB>
+SM_AVX512 inline void store_levels512(const __m512i* lo, const __m512i* hi, const Norm512& nrm, uint8_t* o, int nlev) {
+  for (int v = 0; v < NB; ++v) {
+    const __m512i bytes = _mm512_packus_epi16(normalise512(nrm, lo[v]), normalise512(nrm, hi[v]));
+    const int left = nlev - 64 * v;
+    if (left >= 64)
+      _mm512_storeu_si512(o + 64 * v, bytes);
+    else if (left > 0)
+      _mm512_mask_storeu_epi8(o + 64 * v, (__mmask64{1} << left) - 1, bytes);
+  }
+}
+
 // A of the 64 * NB levels d0 .. of one pixel into o[0 .. nlev-1] (nlev <= 64 * NB: the
 // last block's lanes past the last level are computed and not stored).
 template <int NB>
@@ -194,14 +209,7 @@ SM_AVX512 inline void agg_block512(const uint8_t* const* base, size_t xoff, cons
       }
     }
   }
-  for (int v = 0; v < NB; ++v) {
-    const __m512i bytes = _mm512_packus_epi16(normalise512(nrm, lo[v]), normalise512(nrm, hi[v]));
-    const int left = nlev - 64 * v;
-    if (left >= 64)
-      _mm512_storeu_si512(o + 64 * v, bytes);
-    else if (left > 0)
-      _mm512_mask_storeu_epi8(o + 64 * v, (__mmask64{1} << left) - 1, bytes);
-  }
+  store_levels512<NB>(lo, hi, nrm, o, nlev);
 }
 
 // agg_block512 for a centre whose whole window lies in the row, without a branch that
@@ -231,14 +239,7 @@ SM_AVX512 inline void agg_pairs512(const uint8_t* const* pos, int npairs, const 
       hi[v] = _mm512_add_epi16(hi[v], _mm512_maddubs_epi16(_mm512_unpackhi_epi8(c1, c2), wv));
     }
   }
-  for (int v = 0; v < NB; ++v) {
-    const __m512i bytes = _mm512_packus_epi16(normalise512(nrm, lo[v]), normalise512(nrm, hi[v]));
-    const int left = nlev - 64 * v;
-    if (left >= 64)
-      _mm512_storeu_si512(o + 64 * v, bytes);
-    else if (left > 0)
-      _mm512_mask_storeu_epi8(o + 64 * v, (__mmask64{1} << left) - 1, bytes);
-  }
+  store_levels512<NB>(lo, hi, nrm, o, nlev);
 }
 
 // The weight of every window position of one centre as a byte (position q at byte q of
