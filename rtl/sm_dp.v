@@ -40,11 +40,12 @@
 // the ce before the DP clock that uses it: no select in front of the PE adders.
 // Folded: lane j of group g reads the flag of tap S-1-g*PU/2-floor(j/2), prefetched
 // into a register for the next sub-step like the lane's state.
-// Decisions: one word of 2*PU+2 bits per sub-step at {bank, t, g}: the group's 2*PU
-// bits above the 2 bits of level g*PU-1, so the backward step of any level of group g
-// finds both levels it may need in one word (written one clock late through a
-// register so that the trace's read, on the clock after a ce, never meets the write of
-// the same word). The trace reads one word per beat, group of its current level.
+// Decisions: one word of 2*PU+2 bits per sub-step at {t + bank*MAX_WIDTH, g} (dense
+// banks, see g_fold): the group's 2*PU bits above the 2 bits of level g*PU-1, so the
+// backward step of any level of group g finds both levels it may need in one word
+// (written one clock late through a register so that the trace's read, on the clock
+// after a ce, never meets the write of the same word). The trace reads one word per
+// beat, group of its current level.
 // Legal PU: DISP (today's array), or an even divisor of DISP below it (PU >= 2; an odd
 // PU would put an even level at the top of a group, breaking the group order above).
 // After reset the first beat's sub-steps start at once, so its ce must come at least
@@ -90,6 +91,8 @@ module sm_dp #(
   localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
   localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word
   localparam DEC_AW = (F > 1) ? AW + 1 + GW : AW + 1;  // decision address {bank, t[, g]}
+  // decision words: folded, dense banks of MAX_WIDTH rows (g_fold, below)
+  localparam DEC_DEPTH = (F > 1) ? 2 * MAX_WIDTH * (1 << GW) : 1 << DEC_AW;
 
   generate
     `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
@@ -464,7 +467,40 @@ module sm_dp #(
       reg [DEC_AW-1:0] dw_addr_q;
       reg [DEC_W-1:0]  dw_data_q;
       reg              rd_pend_q;  // the clock after a ce: fetch the trace's word
-      reg              rbank_q;    // bank the trace reads
+      // Dense banks: the word of (bank, t, g) is at {t + bank*MAX_WIDTH, g}, 2*MAX_WIDTH
+      // rows of GD words instead of {bank, t, g}'s 2*2^AW rows. At a MAX_WIDTH that is
+      // not a power of two the power-of-two layout wastes block RAM: vga (640, F = 16,
+      // 18-bit words) used 20480 of 32768 words (16 RAMB36), zynq (320) 10240 of 16384
+      // (8 RAMB36); Yosys maps the dense depth to ceil(depth / block depth) blocks.
+      // The row is t_f / t_rev with the bank offset folded into the constants those
+      // formulas already add to x_in, kept in registers, so the address path gains no
+      // adder: write row x_in + (x_in >= S ? wa_q : wb_q) with wa = off - S,
+      // wb = width - S + off; read row (x_in >= S ? ra_q : rb_q) - x_in with
+      // ra = width + S - 1 + roff, rb = S - 1 + roff; off / roff = MAX_WIDTH when the
+      // forward pass writes / the trace reads bank 1, else 0. The constants follow
+      // fbank_q's next value so they hold the bank of every clock (width changes only
+      // between frames, while the pipeline is flushed).
+      localparam RW = AW + 1;  // decision row {t + bank*MAX_WIDTH}
+      /* verilator lint_off WIDTH */  // constants modulo 2^RW; XW <= RW zero-extends
+      localparam [RW-1:0] R_MAX = MAX_WIDTH;
+      localparam [RW-1:0] R_S = S;
+      localparam [RW-1:0] R_SM1 = S - 1;
+      wire [RW-1:0] width_r = width;
+      wire [RW-1:0] x_r = x_in;
+      /* verilator lint_on WIDTH */
+      wire          fbank_nx = rst_n && (fbank_q ^ (ce && line_end));  // fbank_q next
+      wire [RW-1:0] w_off = fbank_nx ? R_MAX : {RW{1'b0}};
+      wire [RW-1:0] r_off = fbank_nx ? {RW{1'b0}} : R_MAX;
+      reg  [RW-1:0] wa_q, wb_q, ra_q, rb_q;
+      always @(posedge clk) begin
+        wa_q <= w_off - R_S;
+        wb_q <= width_r - R_S + w_off;
+        ra_q <= width_r + R_SM1 + r_off;
+        rb_q <= R_SM1 + r_off;
+      end
+      wire [RW-1:0] w_row = (x_in >= S_0) ? x_r + wa_q : x_r + wb_q;
+      wire [RW-1:0] r_row = (x_in >= S_0) ? ra_q - x_r : rb_q - x_r;
+      reg  [RW-1:0] r_row_q;  // row of the trace's word: t_dec_q + bank offset
       always @(posedge clk) begin
         if (!rst_n) begin
           dw_we_q   <= 1'b0;
@@ -473,21 +509,21 @@ module sm_dp #(
           dw_we_q   <= run_q;
           rd_pend_q <= ce;
         end
-        dw_addr_q <= {fbank_q, t_f[AW-1:0], g_q};
+        dw_addr_q <= {w_row, g_q};
         dw_data_q <= dec;
-        if (ce) rbank_q <= ~fbank_q;
+        if (ce) r_row_q <= r_row;
       end
       assign dec_we    = dw_we_q;
       assign dec_waddr = dw_addr_q;
       assign dec_wdata = dw_data_q;
       assign dec_re    = rd_pend_q;
-      assign dec_raddr = {rbank_q, t_dec_q, d_grp};
+      assign dec_raddr = {r_row_q, d_grp};
     end
   endgenerate
 
   sm_sdp_ram #(
       .DATA_W(DEC_W),
-      .DEPTH (1 << DEC_AW)
+      .DEPTH (DEC_DEPTH)
   ) u_dec (
       .clk  (clk),
       .we   (dec_we),
