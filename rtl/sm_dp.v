@@ -90,7 +90,8 @@ module sm_dp #(
   localparam F = (PU > 0) ? DISP / PU : 1;  // clocks per beat
   localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
   localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word
-  localparam DEC_AW = (F > 1) ? AW + 1 + GW : AW + 1;  // decision address {bank, t[, g]}
+  // decision address: {bank, t} at PU = DISP; folded {t + bank*MAX_WIDTH, g}, as wide
+  localparam DEC_AW = (F > 1) ? AW + 1 + GW : AW + 1;
   // decision words: folded, dense banks of MAX_WIDTH rows (g_fold, below)
   localparam DEC_DEPTH = (F > 1) ? 2 * MAX_WIDTH * (1 << GW) : 1 << DEC_AW;
 
