@@ -298,6 +298,13 @@ DispImage post_band_cols(const DispImage& in, const HwConfig& hw, int k, int thr
 
 DispImage post_band(const DispImage& in, const HwConfig& hw, int k) { return post_band_cols(in, hw, k, 1); }
 
+DispImage post_bypass(const DispImage& in, const HwConfig& hw) {
+  const DispPix keep = static_cast<DispPix>(kDispValid | ((1u << clog2(hw.disp)) - 1));
+  DispImage out(in.w, in.h);
+  for (size_t i = 0; i < in.px.size(); ++i) out.px[i] = in.px[i] & keep;
+  return out;
+}
+
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw, std::vector<DispImage>* steps,
                        int threads) {
   // Each step's image is made in place in the list of steps (a copy only for a disabled
@@ -307,7 +314,7 @@ DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw
   st.clear();
   st.reserve(4);
   // F0, the band filter (bit 3), runs first; then F1..F3 (bits 0..2).
-  st.push_back((regs.filter_enable & 8u) ? post_band_cols(in, hw, hw.band_k, threads) : in);
+  st.push_back((regs.filter_enable & 8u) ? post_band_cols(in, hw, hw.band_k, threads) : post_bypass(in, hw));
   for (int n = 0; n < 3; ++n) {
     if (regs.filter_enable & (1u << n)) {
       // F1 5 x 1, F2 3 x 3, F3 5 x 3 (post_vmedian, post_median3, post_median53)
@@ -315,7 +322,7 @@ DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw
       DispImage next = post_rank_rows(st.back(), hw, ry, rx, (2 * ry + 1) * (2 * rx + 1) / 2, threads);
       st.push_back(std::move(next));
     } else {
-      st.push_back(st.back());
+      st.push_back(post_bypass(st.back(), hw));
     }
   }
   return steps ? st.back() : std::move(st.back());

@@ -36,8 +36,13 @@ DispImage post_median53(const DispImage& in, const HwConfig& hw);  // filter 3: 
 // but that normalisation.
 DispImage post_band(const DispImage& in, const HwConfig& hw, int k);
 
+// A disabled filter's output: each word's valid bit and low clog2(DISP) bits, the rest
+// zero. The filters keep only these bits of a word (the core's stream has zeros between
+// them), so a disabled filter passes the core's words unchanged.
+DispImage post_bypass(const DispImage& in, const HwConfig& hw);
+
 // The chain F0 (post_band with k = hw.band_k, bit 3 of regs.filter_enable), then F1..F3
-// (bits 0..2); a disabled filter passes its input unchanged. `steps` (optional) receives
+// (bits 0..2); a disabled filter is post_bypass. `steps` (optional) receives
 // the image after each of the four steps, F0 first. threads: each filter on that many
 // bands of rows (F0: of columns), same result for any count.
 DispImage post_process(const DispImage& in, const Regs& regs, const HwConfig& hw,

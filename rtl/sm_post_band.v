@@ -7,9 +7,10 @@
 // is a, otherwise c (row 0: c). Output words as the medians': 0x8000 | d or 0x0000.
 //
 // Storage: one memory word per column, read on the ce of the entering beat (row y+K)
-// and written back on the next ce, holding the K input rows y+K-1 .. y as whole 16-bit
-// stream words (so a disabled filter passes the centre bit for bit) and, above them, the
-// filter's output of the row above the centre as {valid, d}. The decision of (x, y) is
+// and written back on the next ce, holding the K input rows y+K-1 .. y as {valid, d}
+// (the stream's bits between them are zero, docs/algorithm.md section 7: 72 bits a word
+// instead of 136 at K 8, DISP 128, i.e. 2 RAMB36 instead of 4 at 640 columns) and, above
+// them, the filter's output of the row above the centre, also {valid, d}. The decision of (x, y) is
 // taken from that read and written back into the same word, where the next row's
 // decision at column x reads it one row later: the recursion closes through the memory.
 //
@@ -33,8 +34,8 @@ module sm_post_band #(
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam DW = $clog2(DISP);
   localparam AW = $clog2(MAX_WIDTH);   // memory address; columns are below MAX_WIDTH
-  localparam LW = 16 * K;              // the K input rows of a column
-  localparam OW = DW + 1;              // output row above: {valid, d}
+  localparam OW = DW + 1;              // a pixel as kept: {valid, d}
+  localparam LW = OW * K;              // the K input rows of a column
   localparam WW = LW + OW;             // memory word
 
   generate
@@ -59,6 +60,7 @@ module sm_post_band #(
       .s_x(s_x), .c_side(c_side), .c_x(c_x), .row_ok(row_ok), .col_ok(col_ok)
   );
   wire unused_ctrl = ^{c_x, col_ok, row_ok[1]};  // one column, the centre is in its frame
+  wire unused_mid = ^s_disp[14:DW];  // zero in the stream
 
   wire [AW-1:0] addr = s_x[AW-1:0];
   generate
@@ -72,20 +74,20 @@ module sm_post_band #(
   reg [WW-1:0]  mem [0:MAX_WIDTH-1];
   reg [WW-1:0]  rd_q;     // registered read: the block RAM's output register
   reg [AW-1:0]  col_q;    // address of the word in rd_q, written back on the next ce
-  reg [15:0]    live_q;   // the entering beat: row y+K
+  reg [OW-1:0]  live_q;   // the entering beat: row y+K, {valid, d}
   reg           up_ok_q;  // row y-1 is in the centre's frame
   reg [K-1:0]   dn_ok_q;  // bit j-1: row y+j is in the centre's frame
 
   // rows of the centre's column after the read: row y+j at j = 0..K
-  wire [15:0] row_w [0:K];
+  wire [OW-1:0] row_w [0:K];
   genvar j;
   generate
     for (j = 0; j < K; j = j + 1) begin : g_rows
-      assign row_w[j] = rd_q[16*(K-1-j) +: 16];  // memory row k holds row y+K-1-k
+      assign row_w[j] = rd_q[OW*(K-1-j) +: OW];  // memory row k holds row y+K-1-k
     end
   endgenerate
   assign row_w[K] = live_q;
-  wire [15:0]   ctr   = row_w[0];
+  wire [OW-1:0] ctr   = row_w[0];
   wire [OW-1:0] above = rd_q[LW +: OW];          // {valid, d} of the output at (x, y-1)
   wire          a_v   = above[DW] & up_ok_q;
   wire [DW-1:0] a_d   = above[DW-1:0];
@@ -114,12 +116,13 @@ module sm_post_band #(
   wire [K-1:0] back;
   generate
     for (j = 1; j <= K; j = j + 1) begin : g_back
-      assign back[j-1] = dn_ok_q[j-1] & row_w[j][15] & near1(row_w[j][DW-1:0], a_d);
+      assign back[j-1] = dn_ok_q[j-1] & row_w[j][DW] & near1(row_w[j][DW-1:0], a_d);
     end
   endgenerate
-  wire          take_a = a_v & ctr[15] & ~near1(ctr[DW-1:0], a_d) & (|back);
-  wire [OW-1:0] res    = take_a ? above : {ctr[15], ctr[15] ? ctr[DW-1:0] : {DW{1'b0}}};
+  wire          take_a = a_v & ctr[DW] & ~near1(ctr[DW-1:0], a_d) & (|back);
+  wire [OW-1:0] res    = take_a ? above : {ctr[DW], ctr[DW] ? ctr[DW-1:0] : {DW{1'b0}}};
   wire [15:0]   res_w  = res[DW] ? {1'b1, {(15-DW){1'b0}}, res[DW-1:0]} : 16'd0;
+  wire [15:0]   ctr_w  = {ctr[DW], {(15-DW){1'b0}}, ctr[DW-1:0]};  // disabled: the centre
 
   // the word written back: every input row one step older, the live row in front, the
   // centre's result as the next row's row above
@@ -128,7 +131,7 @@ module sm_post_band #(
     if (K == 1) begin : g_one
       assign wr_word = {res, live_q};
     end else begin : g_shift
-      assign wr_word = {res, rd_q[LW-16-1:0], live_q};
+      assign wr_word = {res, rd_q[LW-OW-1:0], live_q};
     end
   endgenerate
 
@@ -146,10 +149,10 @@ module sm_post_band #(
       mem[col_q] <= wr_word;
       rd_q       <= mem[addr];
       col_q      <= addr;
-      live_q     <= s_disp;
+      live_q     <= {s_disp[15], s_disp[DW-1:0]};
       up_ok_q    <= row_ok[0];
       dn_ok_q    <= row_ok[K+1:2];
-      m_disp     <= en ? res_w : ctr;
+      m_disp     <= en ? res_w : ctr_w;
     end
   end
 

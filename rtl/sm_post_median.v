@@ -27,6 +27,7 @@ module sm_post_median #(
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam DW = $clog2(DISP);
   localparam KW = DW + 1;             // sort key: 0 = invalid, d + 1 otherwise
+  localparam PW = DW + 1;             // a pixel as kept: {valid, d}
   localparam NR = 2 * RY + 1;         // window rows
   localparam NC = 2 * RX + 1;         // window columns
   localparam N  = NR * NC;            // window elements
@@ -56,30 +57,34 @@ module sm_post_median #(
   wire unused_cx = &c_x;  // the masks already carry the column position
 
   // ---- stage 1: line-buffer read of the entering column ----------------------------
-  // Whole 16-bit words are kept so a disabled filter passes the centre bit for bit.
-  wire [16*NR-1:0] col_in;  // the entering column, row NR-1 = live row
-  reg  [15:0]      live_q;
+  // The stream's bits between the valid bit and the level are zero (docs/algorithm.md,
+  // section 7), so the window and the line buffer keep {valid, d}: at DISP 128 that
+  // halves the line buffer (vga: 2 -> 1 RAMB36 for four rows of 640 columns).
+  wire [PW-1:0] s_pix = {s_disp[15], s_disp[DW-1:0]};
+  wire unused_mid = ^s_disp[14:DW];
+  wire [PW*NR-1:0] col_in;  // the entering column, row NR-1 = live row
+  reg  [PW-1:0]    live_q;
   generate
     if (RY > 0) begin : g_lb
-      wire [16*(NR-1)-1:0] lb_dout;  // rows live-1 .. live-(NR-1)
-      sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(16), .ROWS(NR - 1)) u_lb (
-          .clk(clk), .ce(ce), .col(s_x), .din(s_disp), .dout(lb_dout)
+      wire [PW*(NR-1)-1:0] lb_dout;  // rows live-1 .. live-(NR-1)
+      sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(PW), .ROWS(NR - 1)) u_lb (
+          .clk(clk), .ce(ce), .col(s_x), .din(s_pix), .dout(lb_dout)
       );
       genvar a;
       for (a = 0; a < NR - 1; a = a + 1) begin : g_rows
-        assign col_in[16*(NR-2-a) +: 16] = lb_dout[16*a +: 16];
+        assign col_in[PW*(NR-2-a) +: PW] = lb_dout[PW*a +: PW];
       end
     end else begin : g_no_lb
       wire unused_sx = &s_x;  // single row: no line buffer to address
     end
   endgenerate
-  assign col_in[16*(NR-1) +: 16] = live_q;
+  assign col_in[PW*(NR-1) +: PW] = live_q;
 
   reg [NR-1:0] row_ok_q;
   reg [NC-1:0] col_ok_q;
 
   // ---- stage 2: the window, win[r*NC + j] = row (centre + r - RY), column (centre + j - RX)
-  reg [15:0] win [0:N-1];
+  reg [PW-1:0] win [0:N-1];
 
   // Sort keys: {valid, valid ? d : 0} orders like the specification's key (valid ? d + 1
   // : 0) and maps one to one onto it, so ranks and the median are the same, and the
@@ -90,7 +95,7 @@ module sm_post_median #(
   function [KW-1:0] key_of(input [DW:0] vd);  // {valid, d}
     key_of = {vd[DW], vd[DW] ? vd[DW-1:0] : {DW{1'b0}}};
   endfunction
-  wire [15:0]   nwin [0:N-1];  // the window after this ce's shift
+  wire [PW-1:0] nwin [0:N-1];  // the window after this ce's shift
   wire [KW-1:0] nkey [0:N-1];  // its keys, border rule applied with the masks it will have
   genvar r, j, i;
   generate
@@ -99,11 +104,11 @@ module sm_post_median #(
         if (j < NC - 1) begin : g_shift
           assign nwin[r*NC + j] = win[r*NC + j + 1];
         end else begin : g_enter
-          assign nwin[r*NC + j] = col_in[16*r +: 16];
+          assign nwin[r*NC + j] = col_in[PW*r +: PW];
         end
         assign nkey[r*NC + j] = (row_ok_q[r] & col_ok_q[j])
-                              ? key_of({nwin[r*NC + j][15], nwin[r*NC + j][DW-1:0]})
-                              : key_of({nwin[RY*NC + RX][15], nwin[RY*NC + RX][DW-1:0]});
+                              ? key_of(nwin[r*NC + j])
+                              : key_of(nwin[RY*NC + RX]);
       end
     end
   endgenerate
@@ -178,7 +183,8 @@ module sm_post_median #(
     for (f2 = 0; f2 < CW; f2 = f2 + 1)
       is_mid = is_mid & (MIDV[f2] ? rank_p[f2*N +: N] : ~rank_p[f2*N +: N]);
   end
-  wire [15:0] ctr = win[RY*NC + RX];
+  wire [PW-1:0] ctr_p = win[RY*NC + RX];
+  wire [15:0]   ctr = {ctr_p[DW], {(15-DW){1'b0}}, ctr_p[DW-1:0]};
 
   reg [KW-1:0] med;
   integer e;
@@ -200,7 +206,7 @@ module sm_post_median #(
   integer a2;
   always @(posedge clk) begin
     if (ce) begin
-      live_q    <= s_disp;
+      live_q    <= s_pix;
       row_ok_q  <= row_ok;
       col_ok_q  <= col_ok;
       // shift the window one column left; the entering column lands at j = NC-1

@@ -21,7 +21,10 @@ DispImage random_map(std::mt19937& rng, int w, int h, int dlo, int dhi, int inva
   DispImage m(w, h);
   for (auto& p : m.px) {
     const bool valid = static_cast<int>(rng() % 100) >= invalid_pct;
-    const unsigned d = valid ? dlo + rng() % (dhi - dlo + 1) : rng() & 0x7fff;
+    // a quarter of the valid words carry junk above every level (bits 9..14; DISP <= 254),
+    // which the filters ignore and drop
+    const unsigned junk = (rng() % 4 == 0) ? (rng() & 0x7e00) : 0;
+    const unsigned d = valid ? (dlo + rng() % (dhi - dlo + 1)) | junk : rng() & 0x7fff;
     p = make_disp(d, valid);
   }
   return m;
@@ -64,7 +67,7 @@ int main(int argc, char** argv) {
     DispImage m =
         (f % 2 == 0) ? random_map(rng, w, heights[f], 0, hw.disp - 1, 10) : structured_map(rng, w, heights[f], hw.disp);
     if (f == 2) m = random_map(rng, w, heights[f], 3, 6, 20);  // many ties
-    DispImage out = m;
+    DispImage out = post_bypass(m, hw);                        // disabled: the valid bit and the disparity
     if (enable[f]) {
       if (filter == 1) out = post_vmedian(m, hw);
       if (filter == 2) out = post_median3(m, hw);
