@@ -40,8 +40,8 @@
 // the ce before the DP clock that uses it: no select in front of the PE adders.
 // Folded: lane j of group g reads the flag of tap S-1-g*PU/2-floor(j/2), prefetched
 // into a register for the next sub-step like the lane's state.
-// Decisions: one word of 2*PU+2 bits per sub-step at {t + bank*MAX_WIDTH, g} (dense
-// banks, see g_fold): the group's 2*PU bits above the 2 bits of level g*PU-1, so the
+// Decisions: one word of 2*PU+2 bits per sub-step at {row, g} of one bank rewritten in
+// place (g_fold): the group's 2*PU bits above the 2 bits of level g*PU-1, so the
 // backward step of any level of group g finds both levels it may need in one word
 // (written one clock late through a register so that the trace's read, on the clock
 // after a ce, never meets the write of the same word). The trace reads one word per
@@ -90,10 +90,10 @@ module sm_dp #(
   localparam F = (PU > 0) ? DISP / PU : 1;  // clocks per beat
   localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
   localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word
-  // decision address: {bank, t} at PU = DISP; folded {t + bank*MAX_WIDTH, g}, as wide
-  localparam DEC_AW = (F > 1) ? AW + 1 + GW : AW + 1;
-  // decision words: folded, dense banks of MAX_WIDTH rows (g_fold, below)
-  localparam DEC_DEPTH = (F > 1) ? 2 * MAX_WIDTH * (1 << GW) : 1 << DEC_AW;
+  // decision address: {bank, t} at PU = DISP; folded {row, g}, one bank rewritten in place
+  localparam DEC_AW = (F > 1) ? AW + GW : AW + 1;
+  // decision words: folded, MAX_WIDTH rows of 2^GW words (g_fold, below)
+  localparam DEC_DEPTH = (F > 1) ? MAX_WIDTH * (1 << GW) : 1 << DEC_AW;
 
   generate
     `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
@@ -140,7 +140,8 @@ module sm_dp #(
   localparam [XW-1:0] S_P2 = S + 2;
   /* verilator lint_on WIDTH */
   // forward DP clock of this ce, and the pixel the read-out emits on it
-  wire [XW-1:0] t_f = (x_in >= S_0) ? x_in - S_0 : x_in + width - S_0;
+  wire          x_ge_s = (x_in >= S_0);  // the entering column is in this row's line
+  wire [XW-1:0] t_f = x_ge_s ? x_in - S_0 : x_in + width - S_0;
   wire [XW-1:0] t_rev = width - 1'b1 - t_f;
   // Pixel the read-out emits: (x_in - S - 2) mod W. Counted instead of computed from
   // x_in: the modulo (compare, subtract, add) in front of the read-out's equality
@@ -163,7 +164,7 @@ module sm_dp #(
   wire unused_win = &{c_x, row_ok, col_ok, t_rev};
 
   // ---- control: decision bank, per-frame occ and occ_edge -----------------------
-  reg       fbank_q;     // decision bank the forward pass writes
+  reg       fbank_q;     // decision bank the forward pass writes (folded: its direction)
   reg       rowfirst_q;  // the row entering is the first of a frame
   reg [7:0] occ_q;
   reg [7:0] occ_edge_q;
@@ -462,46 +463,57 @@ module sm_dp #(
 
       // ---- decisions: {group, level g*PU-1} per sub-step, written a clock late ----
       // The trace reads its word on the clock after a ce; after the line-end ce that is
-      // word (t = 0) of the bank the next line starts writing on the same clock.
+      // word (t = 0) of the line before, in row 0.
       assign dec = {f_dec, top_dec_q};
       reg              dw_we_q;
       reg [DEC_AW-1:0] dw_addr_q;
       reg [DEC_W-1:0]  dw_data_q;
       reg              rd_pend_q;  // the clock after a ce: fetch the trace's word
-      // Dense banks: the word of (bank, t, g) is at {t + bank*MAX_WIDTH, g}, 2*MAX_WIDTH
-      // rows of GD words instead of {bank, t, g}'s 2*2^AW rows. At a MAX_WIDTH that is
-      // not a power of two the power-of-two layout wastes block RAM: vga (640, F = 16,
-      // 18-bit words) used 20480 of 32768 words (16 RAMB36), zynq (320) 10240 of 16384
-      // (8 RAMB36); Yosys maps the dense depth to ceil(depth / block depth) blocks.
-      // The row is t_f / t_rev with the bank offset folded into the constants those
-      // formulas already add to x_in, kept in registers, so the address path gains no
-      // adder: write row x_in + (x_in >= S ? wa_q : wb_q) with wa = off - S,
-      // wb = width - S + off; read row (x_in >= S ? ra_q : rb_q) - x_in with
-      // ra = width + S - 1 + roff, rb = S - 1 + roff; off / roff = MAX_WIDTH when the
-      // forward pass writes / the trace reads bank 1, else 0. The constants follow
-      // fbank_q's next value so they hold the bank of every clock (width changes only
-      // between frames, while the pipeline is flushed).
-      localparam RW = AW + 1;  // decision row {t + bank*MAX_WIDTH}
-      /* verilator lint_off WIDTH */  // constants modulo 2^RW; XW <= RW zero-extends
-      localparam [RW-1:0] R_MAX = MAX_WIDTH;
-      localparam [RW-1:0] R_S = S;
-      localparam [RW-1:0] R_SM1 = S - 1;
-      wire [RW-1:0] width_r = width;
-      wire [RW-1:0] x_r = x_in;
+      // One bank, rewritten in place (MAX_WIDTH rows of GD words; two banks cost vga 10
+      // RAMB36 instead of 5). The trace of line L-1 reads its word W-1-t on the clock
+      // after the ce of line L's clock t, and the sub-steps of line L's clock t run after
+      // the ce of its clock t-1, so line L's word t (t >= 1) goes where line L-1's word
+      // W-t was, read one beat earlier: lines alternate direction. With p the line's
+      // parity (fbank_q), word t >= 1 of a line sits in row t (p = 0) or W - t (p = 1),
+      // and word 0 in row 0. Row 0 still holds the previous line's word 0 while a line
+      // computes its own (read last, after the line-end ce), so word 0 waits in a side
+      // store of GD words and is copied into row 0 while the next line computes its word
+      // 0 (into the side store): the read of row 0 comes on the clock after the line-end
+      // ce, the copy's writes from the clock after that.
+      // Rows from x_in with the direction folded into an XOR and the constants (c - x =
+      // ~x + c + 1), kept in registers that follow fbank_q's next value (width changes
+      // only between frames, while the pipeline is flushed):
+      //   write (t >= 1): p = 0: t = x - S | x + W - S;  p = 1: W - t = W + S - x | S - x
+      //   read W-1-t of line L-1 (parity ~p): p = 0: t + 1 (row 0 at t = W-1, the
+      //   line-end ce); p = 1: W - 1 - t = W + S - 1 - x | S - 1 - x   (x >= S | x < S)
+      /* verilator lint_off WIDTH */  // constants modulo 2^AW; rows are below MAX_WIDTH
+      localparam [AW-1:0] R_S = S;
+      localparam [AW-1:0] R_SP1 = S + 1;
+      localparam [AW-1:0] R_1MS = 1 - S;
+      wire [AW-1:0] width_r = width;
       /* verilator lint_on WIDTH */
-      wire          fbank_nx = rst_n && (fbank_q ^ (ce && line_end));  // fbank_q next
-      wire [RW-1:0] w_off = fbank_nx ? R_MAX : {RW{1'b0}};
-      wire [RW-1:0] r_off = fbank_nx ? {RW{1'b0}} : R_MAX;
-      reg  [RW-1:0] wa_q, wb_q, ra_q, rb_q;
-      always @(posedge clk) begin
-        wa_q <= w_off - R_S;
-        wb_q <= width_r - R_S + w_off;
-        ra_q <= width_r + R_SM1 + r_off;
-        rb_q <= R_SM1 + r_off;
+      wire [AW-1:0] x_r = x_in[AW-1:0];
+      if (XW > AW) begin : g_unused_msb
+        wire unused_x_msb = x_in[XW-1];  // a column never reaches MAX_WIDTH
       end
-      wire [RW-1:0] w_row = (x_in >= S_0) ? x_r + wa_q : x_r + wb_q;
-      wire [RW-1:0] r_row = (x_in >= S_0) ? ra_q - x_r : rb_q - x_r;
-      reg  [RW-1:0] r_row_q;  // row of the trace's word: t_dec_q + bank offset
+      wire          fbank_nx = rst_n && (fbank_q ^ (ce && line_end));  // fbank_q next
+      reg  [AW-1:0] wa_q, wb_q, ra_q, rb_q;  // write / read constants for x >= S, x < S
+      always @(posedge clk) begin
+        wa_q <= fbank_nx ? width_r + R_SP1 : -R_S;
+        wb_q <= fbank_nx ? R_SP1 : width_r - R_S;
+        ra_q <= fbank_nx ? width_r + R_S : R_1MS;
+        rb_q <= fbank_nx ? R_S : width_r + R_1MS;
+      end
+      wire [AW-1:0] x_dir = x_r ^ {AW{fbank_q}};
+      wire [AW-1:0] w_row = x_dir + (x_ge_s ? wa_q : wb_q);
+      wire [AW-1:0] r_row = x_dir + (x_ge_s ? ra_q : rb_q);
+      reg  [AW-1:0] r_row_q;  // row of the trace's word
+      // word 0 of the line: into the side store, its predecessor out of it into row 0
+      (* ram_style = "distributed" *)
+      reg  [DEC_W-1:0] side [0:GD-1];
+      always @(posedge clk) begin
+        if (run_q && step_last) side[g_q] <= dec;
+      end
       always @(posedge clk) begin
         if (!rst_n) begin
           dw_we_q   <= 1'b0;
@@ -510,9 +522,9 @@ module sm_dp #(
           dw_we_q   <= run_q;
           rd_pend_q <= ce;
         end
-        dw_addr_q <= {w_row, g_q};
-        dw_data_q <= dec;
-        if (ce) r_row_q <= r_row;
+        dw_addr_q <= {step_last ? {AW{1'b0}} : w_row, g_q};
+        dw_data_q <= step_last ? side[g_q] : dec;
+        if (ce) r_row_q <= line_end ? {AW{1'b0}} : r_row;
       end
       assign dec_we    = dw_we_q;
       assign dec_waddr = dw_addr_q;
