@@ -158,4 +158,10 @@ void check_calib_fits(const std::string& path, const CalibFile& c, const HwConfi
                                          c.rect_radius_needed, hw.rect_radius));
 }
 
+CalibFile load_fitting_calib(const std::string& path, const HwConfig& hw) {
+  CalibFile c = load_calib(path);
+  check_calib_fits(path, c, hw);
+  return c;
+}
+
 }  // namespace sm

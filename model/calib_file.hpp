@@ -36,6 +36,8 @@ void save_calib(const std::string& path, const CalibFile& c);
 // Throws std::runtime_error "<path>: 'rect_radius_needed' = N exceeds the IP's RECT_RADIUS R"
 // when the rig needs more line-buffer rows than an IP built with `hw` holds.
 void check_calib_fits(const std::string& path, const CalibFile& c, const HwConfig& hw);
+// load_calib, then check_calib_fits: a calibration file an IP built with `hw` can hold.
+CalibFile load_fitting_calib(const std::string& path, const HwConfig& hw);
 
 // Grid memory of sm_rectify: points per grid row in the address space, the smallest power
 // of two >= max(4, ceil(max_width / 16) + 1), so that a point index is {gy, gx}.

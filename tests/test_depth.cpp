@@ -78,6 +78,17 @@ std::vector<std::string> listing(const fs::path& dir) {
 
 const RectCamera kCam{500.0, 159.5, 119.5, 0.12};
 
+// A 40x20 calibration at the identity whose rig needs `radius` line-buffer rows.
+sm::CalibFile identity_calib_40x20(int radius) {
+  sm::CalibFile c;
+  c.width = 40;
+  c.height = 20;
+  c.rect_radius_needed = radius;
+  c.left = sm::RectGrid::identity(40, 20);
+  c.right = c.left;
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("disparity_to_depth: Z = f B / d, invalid for d <= 0 or not finite", "[unit][depth]") {
@@ -156,12 +167,7 @@ TEST_CASE("write_ply: header and 13-byte little-endian records", "[unit][depth]"
 
 TEST_CASE("calibration file: the camera round trips; unknown keys and bad values are named", "[unit][depth]") {
   const fs::path dir = sm::test::fresh_dir(tmp_root() / "calib_file");
-  sm::CalibFile c;
-  c.width = 40;
-  c.height = 20;
-  c.rect_radius_needed = 4;
-  c.left = sm::RectGrid::identity(40, 20);
-  c.right = c.left;
+  sm::CalibFile c = identity_calib_40x20(4);
   const std::string plain = (dir / "plain.json").string(), cam = (dir / "cam.json").string();
   sm::save_calib(plain, c);
   CHECK_FALSE(sm::load_calib(plain).camera.has_value());
@@ -217,6 +223,37 @@ TEST_CASE("calibration file: the camera round trips; unknown keys and bad values
                                                                Catch::Contains("RECT_RADIUS 3"));
   hw.rect_radius = 4;
   CHECK_NOTHROW(sm::check_calib_fits("f.json", l, hw));
+}
+
+TEST_CASE("load_fitting_calib: loads a file the IP holds, refuses a larger radius naming the file", "[unit][depth]") {
+  const fs::path dir = sm::test::fresh_dir(tmp_root() / "fitting_calib");
+  sm::CalibFile c = identity_calib_40x20(4);
+  c.right.sx[3] = 77;  // not the identity: the file's grids come back, not the defaults
+  c.camera = RectCamera{321.5, 19.5, 9.25, 0.0625};
+  const std::string fits = (dir / "fits.json").string(), wide = (dir / "wide.json").string();
+  sm::save_calib(fits, c);
+  c.rect_radius_needed = 5;
+  sm::save_calib(wide, c);
+
+  sm::HwConfig hw;
+  hw.rect_radius = 4;
+  const sm::CalibFile l = sm::load_fitting_calib(fits, hw);
+  CHECK(l.width == 40);
+  CHECK(l.height == 20);
+  CHECK(l.rect_radius_needed == 4);
+  CHECK(l.right.sx == c.right.sx);
+  CHECK(l.left.sy == c.left.sy);
+  REQUIRE(l.camera.has_value());
+  CHECK(l.camera->f_px == 321.5);
+  CHECK_THROWS_WITH(sm::load_fitting_calib(wide, hw), Catch::Contains(wide) &&
+                                                          Catch::Contains("'rect_radius_needed' = 5") &&
+                                                          Catch::Contains("RECT_RADIUS 4"));
+  hw.rect_radius = 5;
+  CHECK(sm::load_fitting_calib(wide, hw).rect_radius_needed == 5);
+  // the loader's own errors come through unchanged
+  const std::string missing = (dir / "missing.json").string();
+  CHECK_THROWS_WITH(sm::load_fitting_calib(missing, hw),
+                    Catch::Contains(missing) && Catch::Contains("cannot open calibration file"));
 }
 
 TEST_CASE("pictures: data range, invalid colour, colour bar, legends, object labels, cloud view", "[unit][pictures]") {

@@ -75,9 +75,7 @@ int run(int argc, char** argv) {
   if (!rf.calib.empty()) {
     // a rig whose line-buffer radius this IP cannot hold is refused, as by stereo_sim
     try {
-      const sm::CalibFile c = sm::load_calib(rf.calib);
-      sm::check_calib_fits(rf.calib, c, hw);
-      sm::apply_calib(c, r);
+      sm::apply_calib(sm::load_fitting_calib(rf.calib, hw), r);
     } catch (const ToolError&) {
       throw;
     } catch (const std::runtime_error& e) {

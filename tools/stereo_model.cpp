@@ -211,8 +211,7 @@ int run(int argc, char** argv) {
   if (!calib.empty()) {
     sm::CalibFile c;
     try {
-      c = sm::load_calib(calib);
-      sm::check_calib_fits(calib, c, hw);
+      c = sm::load_fitting_calib(calib, hw);
     } catch (const std::exception& e) {
       throw ToolError(e.what());
     }
