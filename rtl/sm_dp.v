@@ -467,7 +467,8 @@ module sm_dp #(
       assign dec = {f_dec, top_dec_q};
       reg              dw_we_q;
       reg [DEC_AW-1:0] dw_addr_q;
-      reg [DEC_W-1:0]  dw_data_q;
+      reg [DEC_W-1:0]  dw_dec_q, dw_side_q;  // the sub-step's word; the side store's
+      reg              dw_side_sel_q;        // word 0: the write takes the side store's
       reg              rd_pend_q;  // the clock after a ce: fetch the trace's word
       // One bank, rewritten in place (MAX_WIDTH rows of GD words; two banks cost vga 10
       // RAMB36 instead of 5). The trace of line L-1 reads its word W-1-t on the clock
@@ -523,12 +524,16 @@ module sm_dp #(
           rd_pend_q <= ce;
         end
         dw_addr_q <= {step_last ? {AW{1'b0}} : w_row, g_q};
-        dw_data_q <= step_last ? side[g_q] : dec;
+        // both registered and selected behind the registers: a select in front of them
+        // lengthened the lanes' longest path (7 -> 8 LUT levels at vga)
+        dw_dec_q      <= dec;
+        dw_side_q     <= side[g_q];
+        dw_side_sel_q <= step_last;
         if (ce) r_row_q <= line_end ? {AW{1'b0}} : r_row;
       end
       assign dec_we    = dw_we_q;
       assign dec_waddr = dw_addr_q;
-      assign dec_wdata = dw_data_q;
+      assign dec_wdata = dw_side_sel_q ? dw_side_q : dw_dec_q;
       assign dec_re    = rd_pend_q;
       assign dec_raddr = {r_row_q, d_grp};
     end
