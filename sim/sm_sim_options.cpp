@@ -6,11 +6,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
-#include <type_traits>
 #include <filesystem>
 #include <memory>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "sm_sim_shards.hpp"
 #include "sm_wave_names.hpp"
@@ -26,23 +25,6 @@ std::string full_scope(const std::string& s) {
   if (s == "TOP" || s.rfind("TOP.", 0) == 0) return s;
   if (s == "sm_top" || s.rfind("sm_top.", 0) == 0) return "TOP." + s;
   return "TOP.sm_top." + s;
-}
-
-// A number in lo..hi. CLI11's Range says "not in range" for a word and lets NaN through.
-template <class T>
-CLI::Validator in_range(T lo, T hi) {
-  return CLI::Validator(
-      [lo, hi](std::string& s) -> std::string {
-        T v{};
-        if (!CLI::detail::lexical_cast(s, v))
-          return fmt::format("'{}' is not {}", s, std::is_integral<T>::value ? "an integer" : "a number");
-        if constexpr (std::is_floating_point<T>::value)
-          if (!std::isfinite(v)) return fmt::format("'{}' is not a finite number", s);
-        if (v < lo || v > hi) return fmt::format("{} is outside {}..{}", s, lo, hi);
-        return {};
-      },
-      // as CLI::Range describes itself in --help
-      fmt::format("{} in [{} - {}]", std::is_integral<T>::value ? "INT" : "FLOAT", lo, hi));
 }
 
 struct SizeOptions {
@@ -68,14 +50,15 @@ SizeOptions add_input_options(CLI::App& app, const HwConfig& hw, SimOptions& o) 
   app.add_option("--frames", o.frames,
                  "frames to stream: at most this many of a sequence or video (default: all of them); a pair or "
                  "scene is repeated (default 2)")
-      ->check(in_range(1, 100000));
+      ->check(tools::int_in(1, 100000));
   // The active size's real limits: MIN_WIDTH..MAX_WIDTH and 16..MAX_HEIGHT (docs/registers.md).
   SizeOptions s;
   s.width = app.add_option("--width", o.width, "active width")
-                ->check(in_range(hw.min_width(), hw.max_width))
+                ->check(tools::int_in(hw.min_width(), hw.max_width))
                 ->capture_default_str();
-  s.height =
-      app.add_option("--height", o.height, "active height")->check(in_range(16, hw.max_height))->capture_default_str();
+  s.height = app.add_option("--height", o.height, "active height")
+                 ->check(tools::int_in(16, hw.max_height))
+                 ->capture_default_str();
   return s;
 }
 
@@ -98,17 +81,17 @@ void add_camera_options(CLI::App& app, const HwConfig& hw, SimOptions& o) {
   auto* continuous = app.add_flag("--continuous", o.continuous, "no blanking: one pixel every clock");
   // The blanking does not apply to a continuous stream: refused with --continuous.
   app.add_option("--hblank", o.hblank, "camera horizontal blanking (cycles)")
-      ->check(in_range(0, 65535))
+      ->check(tools::int_in(0, 65535))
       ->capture_default_str()
       ->excludes(continuous);
   app.add_option("--vblank", o.vblank, "camera vertical blanking (lines)")
-      ->check(in_range(0, 4095))
+      ->check(tools::int_in(0, 4095))
       ->capture_default_str()
       ->excludes(continuous);
   app.add_option("--pixel-clock", o.pixel_clock, "camera pixel clock in Hz (default: 30 frames/s)")
-      ->check(in_range(1.0e3, 1.0e10));
+      ->check(tools::finite_in(1.0e3, 1.0e10));
   app.add_option("--clock-mhz", o.clock_mhz, "clock for the frames/s figure")
-      ->check(in_range(1.0e-3, 1.0e5))
+      ->check(tools::finite_in(1.0e-3, 1.0e5))
       ->capture_default_str();
   app.add_option("--core-mhz", o.core_mhz,
                  fmt::format("core clock (aclk) in MHz; camera pixels arrive on it at the camera's cadence "
@@ -116,7 +99,7 @@ void add_camera_options(CLI::App& app, const HwConfig& hw, SimOptions& o) {
                              "pixel aclk is the pixel clock itself); given, it asks for the 30 frames/s "
                              "check: exit 3 when the verdict is NO",
                              hw.clocks_per_beat()))
-      ->check(in_range(1.0e-3, 1.0e5));
+      ->check(tools::finite_in(1.0e-3, 1.0e5));
 }
 
 void add_wave_options(CLI::App& app, const ModelInfo& info, SimOptions& o) {
@@ -128,25 +111,25 @@ void add_wave_options(CLI::App& app, const ModelInfo& info, SimOptions& o) {
       ->needs(o_wave);
   app.add_option("--wave-depth", o.wave_depth,
                  "levels below each --wave-scope: 1 = its own signals, 2 = and its children's, 0 = all")
-      ->check(in_range(0, 1000))
+      ->check(tools::int_in(0, 1000))
       ->capture_default_str();
   app.add_flag("--wave-scopes", o.wave_list_scopes, "list the scopes this simulator traces and exit");
   app.add_option("--wave-list", o.wave_list, "list the signals of a .vcd/.fst file (GTKWave's names) and exit");
   app.add_option("--vcd-frame", o.vcd_frame, "VCD window: input frame")
       ->needs(o_wave)
-      ->check(in_range(0, 100000))
+      ->check(tools::int_in(0, 100000))
       ->capture_default_str();
   app.add_option("--vcd-line", o.vcd_line, "VCD window: input line")
       ->needs(o_wave)
-      ->check(in_range(0, info.hw.max_height - 1))
+      ->check(tools::int_in(0, info.hw.max_height - 1))
       ->capture_default_str();
   app.add_option("--vcd-lines", o.vcd_lines, "VCD window: line periods to dump")
       ->needs(o_wave)
-      ->check(in_range(1, 1000000))
+      ->check(tools::int_in(1, 1000000))
       ->capture_default_str();
   app.add_option("--vcd-cycles", o.vcd_cycles, "VCD window: cycles to dump (overrides lines)")
       ->needs(o_wave)
-      ->check(in_range<uint64_t>(0, 1000000000000ULL));
+      ->check(tools::int_in(0, 1000000000000LL));
 }
 
 void add_output_options(CLI::App& app, SimOptions& o) {

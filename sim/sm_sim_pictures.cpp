@@ -109,21 +109,9 @@ tools::ColourRange picture_range(const SimInput& in, const cv::Mat& disp) {
   return tools::data_range(in.gt.empty() ? disp : gt_disparity(in.gt));
 }
 
-cv::Mat disparity_preview(const cv::Mat& disp_f, int levels) {
-  CV_Assert(disp_f.type() == CV_32F);
-  cv::Mat g(disp_f.size(), CV_8UC1);
-  const double k = levels > 1 ? 254.0 / (levels - 1) : 0.0;
-  for (int y = 0; y < disp_f.rows; ++y)
-    for (int x = 0; x < disp_f.cols; ++x) {
-      const float d = disp_f.at<float>(y, x);
-      g.at<uint8_t>(y, x) = !(d >= 0) ? 0 : cv::saturate_cast<uint8_t>(1 + std::lround(d * k));
-    }
-  return g;
-}
-
 void write_disparity_pictures(tools::OutputSet& outs, const std::string& dir, const cv::Mat& disp, const HwConfig& hw,
                               tools::ColourRange r, const RectCamera* cam) {
-  stage_image(outs, dir + "/disparity.png", disparity_preview(disp, hw.disp));
+  stage_image(outs, dir + "/disparity.png", tools::disp_to_grey(disp, hw.disp));
   stage_image(outs, dir + "/disparity_color.png", tools::disparity_picture(disp, r, cam));
 }
 

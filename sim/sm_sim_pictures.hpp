@@ -21,13 +21,10 @@ namespace sm::simapp {
 // the input has one (the scene's known disparities), else the data's.
 tools::ColourRange picture_range(const SimInput& in, const cv::Mat& disp);
 
-// The 8-bit preview: 0 = invalid (no estimate), a valid disparity d = 1 + round(d * 254 /
-// (levels - 1)), so disparity 0 (grey 1) and invalid (grey 0) differ.
-cv::Mat disparity_preview(const cv::Mat& disp_f, int levels);
-
 // The pictures are staged in `outs` (written when it is committed).
-// <dir>/disparity.png (disparity_preview) and <dir>/disparity_color.png (colour over `r`
-// with the colour bar; depth ticks when `cam`) of `disp` (float disparity).
+// <dir>/disparity.png (the 8-bit preview, tools::disp_to_grey: 0 = invalid, disparity 0 =
+// grey 1) and <dir>/disparity_color.png (colour over `r` with the colour bar; depth ticks
+// when `cam`) of `disp` (float disparity).
 void write_disparity_pictures(tools::OutputSet& outs, const std::string& dir, const cv::Mat& disp, const HwConfig& hw,
                               tools::ColourRange r, const RectCamera* cam);
 

@@ -14,6 +14,7 @@
 #include <map>
 
 #include "sm_sim_outputs.hpp"
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 
 namespace fs = std::filesystem;
@@ -25,7 +26,7 @@ void add_shard_options(CLI::App& app, ShardOptions& o) {
   app.add_option("--jobs", o.jobs,
                  "simulate the frames in N contiguous shards, each in its own process from reset, and merge them "
                  "(per-frame results as a serial run; timing figures from the first shard)")
-      ->check(CLI::Range(1, 256))
+      ->check(tools::int_in(1, 256))
       ->capture_default_str();
   app.add_option("--frame-range", o.range,
                  "A:B: simulate frames A..B-1 of the run only (a shard), from reset with the registers in force at "
@@ -33,7 +34,7 @@ void add_shard_options(CLI::App& app, ShardOptions& o) {
   app.add_option("--list-shards", o.list_shards,
                  "print the frame ranges (A:B) of N shards of this run, one a line, after checking its inputs and "
                  "registers, and exit (for tools/sm_farm.py)")
-      ->check(CLI::Range(1, 100000));
+      ->check(tools::int_in(1, 100000));
   app.add_option("--merge-shards", o.merge, "merge these shard folders (--frame-range runs of one input) into --out")
       ->expected(1, -1);
 }

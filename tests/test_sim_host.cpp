@@ -344,7 +344,7 @@ TEST_CASE("stereo_sim options: real ranges, one-line errors for bad camera timin
   const Run help = sim("help", "--help");
   REQUIRE(help.rc == 0);
   std::smatch m;
-  REQUIRE(std::regex_search(help.out, m, std::regex(R"(--width INT:INT in \[(\d+) - (\d+)\])")));
+  REQUIRE(std::regex_search(help.out, m, std::regex(R"(--width INT:INT in (\d+)\.\.(\d+))")));
   const int lo = std::stoi(m[1]), hi = std::stoi(m[2]);
   const std::vector<std::string> bads = {"--hblank -5",
                                          "--vblank -1",

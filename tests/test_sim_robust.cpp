@@ -157,8 +157,11 @@ TEST_CASE("numbers: finite, in range, and the real reason for a word", "[numbers
     expect_refused(sim("num_nan", std::string(o) + " nan"), {o, "nan", "not a finite number"});
     expect_refused(sim("num_inf", std::string(o) + " inf"), {o, "not a finite number"});
   }
-  expect_refused(sim("num_word", "--frames abc"), {"--frames", "'abc' is not an integer"});
-  expect_refused(sim("num_range", "--frames 0"), {"--frames", "outside 1..100000"});
+  // the project's wording (sm::tools::int_in), as every tool's
+  expect_refused(sim("num_word", "--frames abc"), {"--frames: 'abc': not an integer in 1..100000"});
+  expect_refused(sim("num_range", "--frames 0"), {"--frames: 0: outside 1..100000"});
+  expect_refused(sim("num_jobs", "--jobs 0"), {"--jobs: 0: outside 1..256"});
+  expect_refused(sim("num_shards", "--list-shards 2x"), {"--list-shards: '2x': not an integer in 1..100000"});
   expect_refused(sim("num_clock", "--clock-mhz -5"), {"--clock-mhz", "outside"});
 }
 

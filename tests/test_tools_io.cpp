@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
@@ -128,16 +129,31 @@ TEST_CASE("disparity renderings", "[unit][tools]") {
   CHECK(f.at<float>(0, 0) == 0.0f);
   CHECK(f.at<float>(0, 1) == 15.0f);
   CHECK(f.at<float>(0, 2) < 0.0f);
+  // grey = 1 + round(d * 254 / (levels - 1)), invalid = 0: disparity 0 is grey 1
   const cv::Mat g = disp_to_grey(f, 16);
-  CHECK(g.at<uint8_t>(0, 0) == 0);
-  CHECK(g.at<uint8_t>(0, 1) == 255);
-  CHECK(g.at<uint8_t>(0, 2) == 0);
-  const cv::Mat half = disp_to_grey((cv::Mat_<float>(1, 1) << 5.0f), 11);  // 5 * 255 / 10
+  CHECK(g.at<uint8_t>(0, 0) == 1);                                         // 1 + 0
+  CHECK(g.at<uint8_t>(0, 1) == 255);                                       // 1 + 15 * 254 / 15
+  CHECK(g.at<uint8_t>(0, 2) == 0);                                         // invalid
+  const cv::Mat half = disp_to_grey((cv::Mat_<float>(1, 1) << 5.0f), 11);  // 1 + 5 * 254 / 10 = 1 + 127
   CHECK(half.at<uint8_t>(0, 0) == 128);
-  const cv::Mat c = disp_to_colour(f, 16);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const cv::Mat m = disp_to_grey((cv::Mat_<float>(1, 6) << 1.0f, 7.0f, 20.0f, nan, inf, -inf), 16);
+  CHECK(m.at<uint8_t>(0, 0) == 18);   // 1 + round(16.93)
+  CHECK(m.at<uint8_t>(0, 1) == 120);  // 1 + round(7 * 254 / 15 = 118.53)
+  CHECK(m.at<uint8_t>(0, 2) == 255);  // above levels - 1: clamped
+  CHECK(m.at<uint8_t>(0, 3) == 0);    // NaN and infinities are invalid
+  CHECK(m.at<uint8_t>(0, 4) == 0);
+  CHECK(m.at<uint8_t>(0, 5) == 0);
+  // colour: OpenCV's turbo map of grey 1 (disparity 0) and 255 (15), invalid and NaN black
+  const cv::Mat c = disp_to_colour((cv::Mat_<float>(1, 4) << 0.0f, 15.0f, -1.0f, nan), 16);
+  cv::Mat turbo;
+  cv::applyColorMap(cv::Mat((cv::Mat_<uint8_t>(1, 2) << 1, 255)), turbo, cv::COLORMAP_TURBO);
   CHECK(c.type() == CV_8UC3);
+  CHECK(c.at<cv::Vec3b>(0, 0) == turbo.at<cv::Vec3b>(0, 0));
+  CHECK(c.at<cv::Vec3b>(0, 0) != cv::Vec3b(0, 0, 0));
+  CHECK(c.at<cv::Vec3b>(0, 1) == turbo.at<cv::Vec3b>(0, 1));
   CHECK(c.at<cv::Vec3b>(0, 2) == cv::Vec3b(0, 0, 0));
-  CHECK(c.at<cv::Vec3b>(0, 1) != cv::Vec3b(0, 0, 0));
+  CHECK(c.at<cv::Vec3b>(0, 3) == cv::Vec3b(0, 0, 0));
 }
 
 TEST_CASE("image loading: colour to grey, errors name the file", "[unit][tools]") {

@@ -197,19 +197,22 @@ cv::Mat disp_to_float(const DispImage& d) {
 cv::Mat disp_to_grey(const cv::Mat& disp_f, int levels) {
   CV_Assert(disp_f.type() == CV_32F);
   cv::Mat g(disp_f.size(), CV_8UC1);
-  const double k = levels > 1 ? 255.0 / (levels - 1) : 0.0;
+  const double k = levels > 1 ? 254.0 / (levels - 1) : 0.0;
   for (int y = 0; y < disp_f.rows; ++y)
     for (int x = 0; x < disp_f.cols; ++x) {
       const float d = disp_f.at<float>(y, x);
-      g.at<uint8_t>(y, x) = d < 0 ? 0 : cv::saturate_cast<uint8_t>(std::lround(d * k));
+      // clamped before rounding, so a disparity above levels - 1 is 255 (never an overflow)
+      g.at<uint8_t>(y, x) =
+          std::isfinite(d) && d >= 0 ? static_cast<uint8_t>(1 + std::lround(std::min(d * k, 254.0))) : 0;
     }
   return g;
 }
 
 cv::Mat disp_to_colour(const cv::Mat& disp_f, int levels) {
+  const cv::Mat g = disp_to_grey(disp_f, levels);
   cv::Mat c;
-  cv::applyColorMap(disp_to_grey(disp_f, levels), c, cv::COLORMAP_TURBO);
-  c.setTo(cv::Scalar::all(0), disp_f < 0);
+  cv::applyColorMap(g, c, cv::COLORMAP_TURBO);
+  c.setTo(cv::Scalar::all(0), g == 0);  // grey 0 is exactly the invalid pixels (NaN included)
   return c;
 }
 

@@ -80,9 +80,12 @@ void write_json_atomic(const std::string& path, const nlohmann::json& j);
 
 // Disparity as float pixels, negative = invalid (no output).
 cv::Mat disp_to_float(const DispImage& d);
-// Grey rendering: d * 255 / (levels - 1), invalid = 0.
+// The 8-bit grey preview (stereo_model -o, stereo_sim's disparity.png): invalid (negative,
+// NaN or infinite) = 0, a valid disparity d = 1 + round(min(d, levels - 1) * 254 /
+// (levels - 1)), so disparity 0 (grey 1) and invalid (grey 0) differ.
 cv::Mat disp_to_grey(const cv::Mat& disp_f, int levels);
-// Colour rendering (turbo colour map over 0..levels-1), invalid = black.
+// Colour rendering: the turbo colour map of disp_to_grey (disparity 0..levels-1 over grey
+// 1..255), invalid = black.
 cv::Mat disp_to_colour(const cv::Mat& disp_f, int levels);
 
 // Lossless disparity files, the format chosen by the extension of `path`:

@@ -35,7 +35,9 @@ ColourRange data_range(const cv::Mat& disp_f);
 
 // Turbo colour map over r (lo = dark blue, hi = dark red, clamped), invalid (negative or
 // non-finite) = kInvalidColour. Replaces disp_to_colour(d, levels) when the range should
-// follow the data: disp_to_colour(d, L) == colourise(d, {0, L - 1}) except the invalid colour.
+// follow the data: disp_to_colour(d, L) is colourise(d, {0, L - 1}) within one step of the
+// colour map (it maps disparity 0..L-1 over grey 1..255, disp_to_grey) except the invalid
+// colour (black there).
 cv::Mat colourise(const cv::Mat& disp_f, ColourRange r);
 
 // A vertical colour bar `height` rows tall for r (hi at the top): disparity ticks on its

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_metrics.hpp"
 #include "confidence.hpp"
@@ -209,7 +210,7 @@ int run(int argc, char** argv) {
   std::string dump_dir;
   int levels = HwConfig{}.disp;
   app.add_option("--levels", levels, "disparity levels (0: per scene, as sm_evaluate --levels 0)")
-      ->check(CLI::Range(0, 254))
+      ->check(int_in(0, 254))
       ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
   app.add_option("--study", studies, "comma-separated subset of subpix,valid,conf")->delimiter(',');
