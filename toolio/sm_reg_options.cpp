@@ -27,9 +27,9 @@ RegOptions::RegOptions(CLI::App& app, const Regs& defaults, const HwConfig& hw, 
     std::string names = option_name(v.name);
     if (const auto a = aliases.find(v.name); a != aliases.end()) names += "," + a->second;
     const auto [lo, hi] = register_limits(v.name, hw);
-    // the range shown as CLI::Range shows it; the check is apply()'s (the configuration
-    // may still change with other options)
-    const CLI::Validator range([](std::string&) { return std::string(); }, fmt::format("INT in [{} - {}]", lo, hi));
+    // the range shown as int_in shows it; the check is apply()'s (the configuration may
+    // still change with other options)
+    const CLI::Validator range([](std::string&) { return std::string(); }, fmt::format("INT in {}..{}", lo, hi));
     o->opt = app.add_option(names, o->value, fmt::format("{} (register {})", v.desc, v.name))
                  ->check(range)
                  ->default_str(std::to_string(register_value(v.name, defaults)));

@@ -21,7 +21,7 @@ class RegOptions {
  public:
   // Options for every value register but those in `skip` (map names; SW_TABLE0/1 have
   // none: the tools take --sw-table codes), defaults shown from `defaults`, ranges in the
-  // help ("INT in [lo - hi]") from the map at `hw` (apply() checks them at the run's
+  // help ("INT in lo..hi") from the map at `hw` (apply() checks them at the run's
   // configuration); `aliases` adds names to a register's option (e.g. {"FILTER_ENABLE", "--filters"}).
   RegOptions(CLI::App& app, const Regs& defaults, const HwConfig& hw, const std::set<std::string>& skip = {},
              const std::map<std::string, std::string>& aliases = {});
