@@ -97,16 +97,19 @@ module sm_post_band #(
   // all 0 in p, and the bits above are equal.
   function near1(input [DW-1:0] p, input [DW-1:0] q);
     integer t;
-    reg [DW-1:0] lo;  // the bits below t
     reg hi_eq, up, dn;
+    // hm = {DW{1'b1}} << t marks bit t and above: "the bits below t are all 0 in v" is
+    // (v & ~hm) == 0, "all 1" is (v | hm) == all ones. Written without a vector temporary,
+    // which Verilator made a static shared by the K + 1 calls (MULTIDRIVEN).
     begin
       up = 1'b0;
       dn = 1'b0;
       for (t = 0; t < DW; t = t + 1) begin
-        lo    = ~({DW{1'b1}} << t);
         hi_eq = (((p ^ q) >> t) >> 1) == {DW{1'b0}};
-        up    = up | (hi_eq & p[t] & ~q[t] & ((p & lo) == {DW{1'b0}}) & ((q & lo) == lo));
-        dn    = dn | (hi_eq & q[t] & ~p[t] & ((q & lo) == {DW{1'b0}}) & ((p & lo) == lo));
+        up    = up | (hi_eq & p[t] & ~q[t] & ((p & ~({DW{1'b1}} << t)) == {DW{1'b0}})
+                     & ((q | ({DW{1'b1}} << t)) == {DW{1'b1}}));
+        dn    = dn | (hi_eq & q[t] & ~p[t] & ((q & ~({DW{1'b1}} << t)) == {DW{1'b0}})
+                     & ((p | ({DW{1'b1}} << t)) == {DW{1'b1}}));
       end
       near1 = (p == q) | up | dn;
     end
