@@ -21,6 +21,8 @@ int clog2(long v) {  // as Verilog's $clog2
   while ((1L << n) < v) ++n;
   return n;
 }
+// the level bits of a stream word: the low clog2(DISP)
+unsigned level_mask(const HwConfig& hw) { return (1u << clog2(hw.disp)) - 1; }
 }  // namespace
 
 DispImage post_median(const DispImage& in, const HwConfig& hw, int ry, int rx) {
@@ -193,7 +195,7 @@ SM_HOT int median_row(int ry, int rx, const uint16_t* keys, int w, int h, int y,
 
 namespace {
 DispImage post_rank_rows(const DispImage& in, const HwConfig& hw, int ry, int rx, int rank, int threads) {
-  const unsigned dmask = (1u << clog2(hw.disp)) - 1;
+  const unsigned dmask = level_mask(hw);
   auto key = [&](DispPix p) -> unsigned { return disp_valid(p) ? (p & dmask) + 1 : 0; };
   const int n = (2 * ry + 1) * (2 * rx + 1);
   if (rank < 0 || rank >= n) throw std::invalid_argument("post_rank: rank outside the window");
@@ -271,7 +273,7 @@ namespace {
 // post_band on bands of columns (each column is a recursion of its own, top to bottom).
 DispImage post_band_cols(const DispImage& in, const HwConfig& hw, int k, int threads) {
   if (k < 0) throw std::invalid_argument("post_band: negative look-ahead");
-  const int dmask = (1 << clog2(hw.disp)) - 1;
+  const int dmask = static_cast<int>(level_mask(hw));
   auto d = [dmask](DispPix p) { return static_cast<int>(p) & dmask; };
   // Output words as the medians': valid -> 0x8000 | d, invalid -> 0x0000.
   auto norm = [&](DispPix p) { return disp_valid(p) ? make_disp(static_cast<unsigned>(d(p)), true) : DispPix{0}; };
@@ -299,7 +301,7 @@ DispImage post_band_cols(const DispImage& in, const HwConfig& hw, int k, int thr
 DispImage post_band(const DispImage& in, const HwConfig& hw, int k) { return post_band_cols(in, hw, k, 1); }
 
 DispImage post_bypass(const DispImage& in, const HwConfig& hw) {
-  const DispPix keep = static_cast<DispPix>(kDispValid | ((1u << clog2(hw.disp)) - 1));
+  const DispPix keep = static_cast<DispPix>(kDispValid | level_mask(hw));
   DispImage out(in.w, in.h);
   for (size_t i = 0; i < in.px.size(); ++i) out.px[i] = in.px[i] & keep;
   return out;
