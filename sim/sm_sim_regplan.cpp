@@ -33,6 +33,13 @@ void check_hw_keys(const std::string& path, const HwConfig& got, const HwConfig&
     if (g != want) fail(fmt::format("{}: '{}' = {}, but this simulator is built with {}", path, k, g, want));
 }
 
+// A calibration file this IP can hold; a folder named as the file gets
+// "<path>: is a directory", not a stream error.
+CalibFile load_sim_calib(const std::string& path, const HwConfig& hw) {
+  check_readable_file("", path);
+  return load_fitting_calib(path, hw);
+}
+
 // A register file on top of `r` (frame `what`): the compile-time keys must be this
 // simulator's, the active size may only be set where `size_ok`, a calibration is applied.
 // Returns whether the file had a calibration.
@@ -46,8 +53,7 @@ bool apply_regs_file(const std::string& path, const HwConfig& hw, Regs& r, bool 
                      r.width != w0 ? "width" : "height", r.width != w0 ? r.width : r.height, w0, h0));
   if (!rf.calib.empty()) {
     try {
-      check_readable_file("", rf.calib);  // "<path>: is a directory", not a stream error
-      apply_calib(load_fitting_calib(rf.calib, hw), r);
+      apply_calib(load_sim_calib(rf.calib, hw), r);
     } catch (const std::exception& e) {
       fail(fmt::format("{}: 'calib' {}: {}", path, rf.calib, e.what()));
     }
@@ -78,10 +84,7 @@ Regs base_registers(const SimOptions& opt, const HwConfig& hw) {
   base.grid_l = RectGrid::identity(opt.width, opt.height);
   base.grid_r = base.grid_l;
   if (!opt.regs_file.empty()) apply_base_file(opt, hw, base);
-  if (!opt.calib.empty()) {
-    check_readable_file("", opt.calib);  // as in apply_regs_file
-    apply_calib(load_fitting_calib(opt.calib, hw), base);
-  }
+  if (!opt.calib.empty()) apply_calib(load_sim_calib(opt.calib, hw), base);
   opt.apply_reg_options(hw, base);  // a value out of range: a ToolError, one line like fail()
   return base;
 }
