@@ -13,7 +13,8 @@
 //   the ce on which column S + t enters (mod W, running into the next row); the ce at
 //   x_in = S - 1 ends a line and loads U(0, .).
 //   On forward clock t of line k+1, decision word W-1-t of line k (the other bank;
-//   folded: the row line k+1 rewrites a beat later, see g_fold) is read; the backward step uses it on the next ce, so the last backward step of
+//   folded: the row line k+1 rewrites a beat later, see g_fold) is read; the backward
+//   step uses it on the next ce, so the last backward step of
 //   line k is at x_in = S, the read-out head is fetched at x_in = S + 1, and pixel x
 //   of line k is registered on the ce at x_in = S + 2 + x (mod W), two rows later.
 //   Latency: 2*W + S + P beats (sm_win_ctrl with D_ROWS = 2, D_COLS = S + P).

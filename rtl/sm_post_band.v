@@ -10,8 +10,8 @@
 // and written back on the next ce, holding the K input rows y+K-1 .. y as {valid, d}
 // (the stream's bits between them are zero, docs/algorithm.md section 7: 72 bits a word
 // instead of 136 at K 8, DISP 128, i.e. 2 RAMB36 instead of 4 at 640 columns) and, above
-// them, the filter's output of the row above the centre, also {valid, d}. The decision of (x, y) is
-// taken from that read and written back into the same word, where the next row's
+// them, the filter's output of the row above the centre, also {valid, d}. The decision
+// of (x, y) is taken from that read and written back into the same word, where the next row's
 // decision at column x reads it one row later: the recursion closes through the memory.
 //
 // Latency: the output beat after the ce of input beat n is the pixel of input beat
