@@ -27,3 +27,9 @@ sm_rtl_test(NAME tb_outfields_odd TOP sm_outfields SOURCES ${CMAKE_CURRENT_LIST_
             PARAMS MAX_WIDTH=50 DISP=10 CW=3 ARGS --width 23 --height 30)
 sm_rtl_test(NAME tb_outfields_paper TOP sm_outfields SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_outfields.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CW=6 ARGS --width 320 --height 5)
+
+# The bound study's features (known answers on small frames) and its leave-one-scene-out
+# forest (it must learn a rule the frames share).
+if(TARGET sm_output_bound)
+  sm_unit_test(test_output_bound LIBS sm_output_bound DISCOVER)
+endif()

@@ -5,11 +5,9 @@
 
 namespace sm::tools {
 
-namespace {
 bool evaluated(const cv::Mat& gt, const cv::Mat& mask, int y, int x) {
   return gt.at<float>(y, x) > 0 && (mask.empty() || mask.at<uint8_t>(y, x) != 0);
 }
-}  // namespace
 
 DispMetrics disp_metrics(const cv::Mat& est_f, const cv::Mat& gt, const cv::Mat& mask) {
   CV_Assert(est_f.type() == CV_32F && gt.type() == CV_32F && est_f.size() == gt.size());

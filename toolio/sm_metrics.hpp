@@ -10,7 +10,10 @@
 
 namespace sm::tools {
 
-// Over the evaluated pixels (gt > 0, mask set where given); est_f CV_32F, < 0 invalid.
+// Evaluated pixels: known ground truth (gt > 0) and, where a mask is given, set in it.
+bool evaluated(const cv::Mat& gt, const cv::Mat& mask, int y, int x);
+
+// Over the evaluated pixels; est_f CV_32F, < 0 invalid.
 struct DispMetrics {
   long evaluated = 0, valid = 0;
   long bad05 = 0, bad1 = 0, bad2 = 0;  // dense: invalid pixels count as bad

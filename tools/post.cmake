@@ -4,6 +4,12 @@ target_link_libraries(sm_filter_study PRIVATE sm_toolio CLI11::CLI11 nlohmann_js
 target_compile_options(sm_filter_study PRIVATE ${SM_WARNINGS})
 
 # Output-stage study: sub-pixel estimators, validity rules, confidence (docs/evaluation.md).
+# The bound study trains OpenCV's random forest (opencv_ml, part of Debian's libopencv-dev).
+find_package(OpenCV REQUIRED COMPONENTS ml)
+add_library(sm_output_bound STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_output_bound.cpp)
+target_include_directories(sm_output_bound PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+target_link_libraries(sm_output_bound PUBLIC sm_toolio opencv_ml)
+target_compile_options(sm_output_bound PRIVATE ${SM_WARNINGS})
 add_executable(sm_output_study ${CMAKE_CURRENT_LIST_DIR}/sm_output_study.cpp)
-target_link_libraries(sm_output_study PRIVATE sm_toolio CLI11::CLI11 nlohmann_json::nlohmann_json)
+target_link_libraries(sm_output_study PRIVATE sm_output_bound CLI11::CLI11 nlohmann_json::nlohmann_json)
 target_compile_options(sm_output_study PRIVATE ${SM_WARNINGS})

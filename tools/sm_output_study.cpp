@@ -3,7 +3,7 @@
 // disparity, then scores the sub-pixel estimators, validity rules and confidence formulas
 // of model/outword.hpp on all scenes at once (14-scene means), so each default is chosen
 // on every scene.
-//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf] [--json out.json]
+//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf,bound]
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -19,21 +19,17 @@
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_metrics.hpp"
 #include "confidence.hpp"
+#include "output_frame.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
+#include "sm_output_bound.hpp"
 
 using namespace sm;
 using namespace sm::tools;
 
 namespace {
 
-struct Frame {
-  std::string name;
-  int levels = 0;
-  Evidence ev;
-  DispImage post;
-  cv::Mat gt, mask;
-};
+using Frame = OutputFrame;
 
 bool classic(const std::string& n) { return n == "tsukuba" || n == "venus" || n == "teddy" || n == "cones"; }
 
@@ -51,6 +47,7 @@ Frame run_scene(const std::string& dir, int levels) {
   auto r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, false);
   f.ev = std::move(r.evidence);
   f.post = std::move(r.post);
+  f.left = s.left;
   f.gt = s.gt;
   f.mask = s.nonocc;
   return f;
@@ -157,23 +154,43 @@ void study_valid(const std::vector<Frame>& fr) {
   print_row("every rule off, background fill", score(fr, fill, 0, false), false);
 }
 
+// The forest of sm_output_bound.hpp on the dense output: what any validity rule or
+// confidence computed from this evidence (and more) could reach.
+void study_bound(const std::vector<Frame>& fr) {
+  std::vector<cv::Mat> est;
+  for (const auto& f : fr)
+    est.push_back(out_to_float(make_output(f.ev, f.post, f.levels, dense_mode(OutputRegs{}), 0)));
+  for (const bool evidence_only : {true, false}) {
+    BoundConfig cfg;
+    cfg.evidence_only = evidence_only;
+    const auto& names = bound_feature_names();
+    fmt::print("\nRandom forest, leave one scene out, features:");
+    for (size_t k = 0; k < (evidence_only ? kEvidenceFeatures : names.size()); ++k) fmt::print(" {};", names[k]);
+    fmt::print("\n");
+    print_bound(fr, est, loso_scores(fr, est, cfg));
+  }
+}
+
 void study_conf(const std::vector<Frame>& fr) {
   header(true);
   for (int v = 0; v < kConfidenceVariants; ++v)
     print_row(fmt::format("dense, confidence variant {}", v), score(fr, dense_mode(OutputRegs{}), v, true), true);
 }
 
-// Every evaluated pixel's evidence, output level and ground truth as int16 columns
-// (x y d matched cm c0 cp dw c1 c2 cmax fill_bg post_d gt*16 b0..b4 lr), for offline analysis.
+// Every pixel's evidence, output levels and ground truth as int16 columns (x y d matched cm
+// c0 cp dw c1 c2 cmax fill_bg post_d gt*16 b0..b4 lr gap evaluated dense*16 checked*16
+// confidence; outputs -16 where invalid), for offline analysis of windows around a pixel.
 void dump_features(const std::vector<Frame>& fr, const std::string& dir) {
   std::filesystem::create_directories(dir);
   for (const auto& f : fr) {
     std::vector<int16_t> v;
     const auto& e = f.ev;
+    const OutImage dense = make_output(f.ev, f.post, f.levels, dense_mode(OutputRegs{}), 0);
+    const cv::Mat dq = out_to_float(dense), conf = out_to_conf(dense);
+    const cv::Mat cq = out_to_float(make_output(f.ev, f.post, f.levels, OutputRegs{}, 0));
     for (int y = 0; y < f.post.h; ++y)
       for (int x = 0; x < f.post.w; ++x) {
         const float g = f.gt.at<float>(y, x);
-        if (!(g > 0) || (!f.mask.empty() && f.mask.at<uint8_t>(y, x) == 0)) continue;
         const int cols[] = {x,
                             y,
                             e.d.at(x, y),
@@ -193,7 +210,12 @@ void dump_features(const std::vector<Frame>& fr, const std::string& dir) {
                             e.band[2].at(x, y),
                             e.band[3].at(x, y),
                             e.band[4].at(x, y),
-                            e.lr.at(x, y)};
+                            e.lr.at(x, y),
+                            e.gap.at(x, y),
+                            evaluated(f.gt, f.mask, y, x),
+                            static_cast<int>(std::lround(dq.at<float>(y, x) * 16)),
+                            static_cast<int>(std::lround(cq.at<float>(y, x) * 16)),
+                            conf.at<uint8_t>(y, x)};
         for (int c : cols) v.push_back(static_cast<int16_t>(c));
       }
     write_text_atomic((std::filesystem::path(dir) / (f.name + ".bin")).string(),
@@ -213,7 +235,11 @@ int run(int argc, char** argv) {
       ->check(int_in(0, 254))
       ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
-  app.add_option("--study", studies, "comma-separated subset of subpix,valid,conf")->delimiter(',');
+  app.add_option("--study", studies,
+                 "comma-separated subset of subpix,valid,conf,bound (bound: a random forest on the evidence, "
+                 "leave one scene out, ~3 min; not in the default set)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound"}));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
   quiet_opencv();
   std::vector<Frame> fr;
@@ -234,7 +260,7 @@ int run(int argc, char** argv) {
     else if (s == "conf")
       study_conf(fr);
     else
-      throw ToolError(fmt::format("--study: unknown '{}'", s));
+      study_bound(fr);
   }
   return 0;
 }
