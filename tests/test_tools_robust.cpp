@@ -202,7 +202,8 @@ TEST_CASE("command-line errors: one prefixed line, exit 2; --help exits 0", "[ro
       {SM_EVALUATE_EXE, "sm_evaluate", fx.scene.string()},
       {SM_COVERAGE_EXE, "sm_coverage", dat},
       {SM_SYNTH_REPORT_EXE, "sm_synth_report", "show " + dat},
-      {SM_REGMAP_GEN_EXE, "sm_regmap_gen", dat + " " + fx.out.string()}};
+      {SM_REGMAP_GEN_EXE, "sm_regmap_gen", dat + " " + fx.out.string()},
+      {SM_OUTPUT_STUDY_EXE, "sm_output_study", fx.scene.string()}};
   for (const auto& [exe, name, args] : tools) {
     INFO(name);
     expect_error(run(exe, args + " --no-such-option"), 2, name, "--no-such-option");
@@ -276,5 +277,18 @@ TEST_CASE("sm_synth_report: reports whose keys have the wrong type", "[robust][t
   bad["total"]["luts"] = "many";
   expect_error(run(SM_SYNTH_REPORT_EXE, "show " + fx.file("bad.json", bad.dump())), 1, "sm_synth_report",
                "'total.luts' must be an integer");
+  expect_empty(fx.out);
+}
+
+TEST_CASE("sm_output_study: refused before any work", "[robust][tools]") {
+  Fx fx;
+  const std::string file = fx.file("f", "x");
+  expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --dump-features " + file), 1, "sm_output_study",
+               "--dump-features " + file + ": cannot write: not a folder");
+  expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --study bound"), 1, "sm_output_study",
+               "--study bound: needs two scenes or more");
+  expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --scenes nosuch"), 1, "sm_output_study",
+               "--scenes: nosuch: not a scene of");
+  expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --study foo"), 2, "sm_output_study", "--study: foo");
   expect_empty(fx.out);
 }

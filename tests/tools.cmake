@@ -20,7 +20,8 @@ endif()
 
 # Bad inputs to the tools, one test case per class (label robust, docs/robustness.md
 # "Tools"): exit code, the one error line naming the file or option, no output left.
-if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate AND TARGET sm_synth_report AND TARGET sm_coverage)
+if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate AND TARGET sm_synth_report AND TARGET sm_coverage
+   AND TARGET sm_output_study)
   add_executable(test_tools_robust ${CMAKE_CURRENT_LIST_DIR}/test_tools_robust.cpp)
   target_link_libraries(test_tools_robust PRIVATE sm_toolio Catch2::Catch2 nlohmann_json::nlohmann_json)
   target_include_directories(test_tools_robust PRIVATE ${CMAKE_CURRENT_LIST_DIR}/common)
@@ -29,8 +30,10 @@ if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate AND TARGET sm
     test_tools_robust PRIVATE SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/tools_tmp/test_tools_robust"
     SM_SCENE_EXE="$<TARGET_FILE:sm_scene>" SM_STEREO_MODEL_EXE="$<TARGET_FILE:stereo_model>"
     SM_EVALUATE_EXE="$<TARGET_FILE:sm_evaluate>" SM_SYNTH_REPORT_EXE="$<TARGET_FILE:sm_synth_report>"
-    SM_COVERAGE_EXE="$<TARGET_FILE:sm_coverage>" SM_REGMAP_GEN_EXE="$<TARGET_FILE:sm_regmap_gen>")
+    SM_COVERAGE_EXE="$<TARGET_FILE:sm_coverage>" SM_REGMAP_GEN_EXE="$<TARGET_FILE:sm_regmap_gen>"
+    SM_OUTPUT_STUDY_EXE="$<TARGET_FILE:sm_output_study>")
   add_test(NAME test_tools_robust COMMAND test_tools_robust)
   set_tests_properties(test_tools_robust PROPERTIES LABELS "robust")
-  add_dependencies(test_tools_robust sm_scene stereo_model sm_evaluate sm_synth_report sm_coverage sm_regmap_gen)
+  add_dependencies(test_tools_robust sm_scene stereo_model sm_evaluate sm_synth_report sm_coverage sm_regmap_gen
+                   sm_output_study)
 endif()

@@ -18,6 +18,7 @@
 #include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_metrics.hpp"
+#include "toolio/sm_outputs.hpp"
 #include "confidence.hpp"
 #include "output_frame.hpp"
 #include "outword.hpp"
@@ -181,7 +182,7 @@ void study_conf(const std::vector<Frame>& fr) {
 // c0 cp dw c1 c2 cmax fill_bg post_d gt*16 b0..b4 lr gap evaluated dense*16 checked*16
 // confidence; outputs -16 where invalid), for offline analysis of windows around a pixel.
 void dump_features(const std::vector<Frame>& fr, const std::string& dir) {
-  std::filesystem::create_directories(dir);
+  OutputSet out;  // all scenes' files or none
   for (const auto& f : fr) {
     std::vector<int16_t> v;
     const auto& e = f.ev;
@@ -218,9 +219,31 @@ void dump_features(const std::vector<Frame>& fr, const std::string& dir) {
                             conf.at<uint8_t>(y, x)};
         for (int c : cols) v.push_back(static_cast<int16_t>(c));
       }
-    write_text_atomic((std::filesystem::path(dir) / (f.name + ".bin")).string(),
-                      std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(int16_t)));
+    out.write((std::filesystem::path(dir) / (f.name + ".bin")).string(),
+              [&](const std::string& tmp) {
+                write_text_atomic(tmp,
+                                  std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(int16_t)));
+              },
+              true);
   }
+  out.commit();
+}
+
+// The dataset's scene folders, only those named in `names` when it is not empty (each
+// name must be a scene of the dataset).
+std::vector<std::string> selected_scenes(const std::string& dataset, const std::vector<std::string>& names) {
+  std::vector<std::string> dirs, found;
+  for (const auto& d : list_scenes(dataset)) {
+    const std::string n = std::filesystem::path(d).filename().string();
+    if (!names.empty() && std::find(names.begin(), names.end(), n) == names.end()) continue;
+    dirs.push_back(d);
+    found.push_back(n);
+  }
+  for (const auto& n : names)
+    if (std::find(found.begin(), found.end(), n) == found.end())
+      throw ToolError(fmt::format("--scenes: {}: not a scene of {}", n, dataset));
+  if (dirs.empty()) throw ToolError(fmt::format("{}: no scenes", dataset));
+  return dirs;
 }
 
 int run(int argc, char** argv) {
@@ -241,15 +264,16 @@ int run(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"subpix", "valid", "conf", "bound"}));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
+  if (!dump_dir.empty()) check_output_folder("--dump-features", dump_dir);
   quiet_opencv();
+  const auto dirs = selected_scenes(dataset, scenes);
+  if (dirs.size() < 2 && std::find(studies.begin(), studies.end(), "bound") != studies.end())
+    throw ToolError("--study bound: needs two scenes or more (each is scored by a forest trained on the others)");
   std::vector<Frame> fr;
-  for (const auto& d : list_scenes(dataset)) {
-    const std::string n = std::filesystem::path(d).filename().string();
-    if (!scenes.empty() && std::find(scenes.begin(), scenes.end(), n) == scenes.end()) continue;
-    fmt::print(stderr, "sm_output_study: {} ...\n", n);
+  for (const auto& d : dirs) {
+    fmt::print(stderr, "sm_output_study: {} ...\n", std::filesystem::path(d).filename().string());
     fr.push_back(run_scene(d, levels));
   }
-  if (fr.empty()) throw ToolError(fmt::format("{}: no scenes", dataset));
   if (!dump_dir.empty()) dump_features(fr, dump_dir);
   fmt::print("{} scenes; means over all of them (b1 cl4: bad-1.0 of the classic four)\n", fr.size());
   for (const auto& s : studies) {
