@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -22,6 +23,7 @@
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_metrics.hpp"
 #include "toolio/sm_scenegen.hpp"
+#include "output_regs.hpp"
 #include "pipeline.hpp"
 #include "sm_cmd.hpp"
 #include "sm_sim_run.hpp"
@@ -235,7 +237,8 @@ TEST_CASE("register schedule: every frame bit-exact with its own registers; one 
   }
 }
 
-TEST_CASE("objects in report.json equal the model's; more than MAX_OBJECTS sets too-many", "[sim][host]") {
+TEST_CASE("objects in report.json equal the model's; more than MAX_OBJECTS sets too-many, the next frame clears it",
+          "[sim][host]") {
   const Scenes sc;
   const fs::path d = kTmp / "objects";
   fs::create_directories(d);
@@ -247,9 +250,11 @@ TEST_CASE("objects in report.json equal the model's; more than MAX_OBJECTS sets 
   write_json(
       d / "f1.json",
       {{"obj_near", 1}, {"obj_tol", 0}, {"obj_min_pixels", 1}, {"filter_enable", 0}, {"occ", 8}, {"occ_edge", 8}});
-  const Run r =
-      sim("objects_run", "--continuous --scene \"" + sc.many.string() + "\" --frames 2 --regs \"" +
-                             (d / "f0.json").string() + "\" --regs-at 1=\"" + (d / "f1.json").string() + "\"");
+  // Frame 2: frame 0's registers again (a file changes only the registers it names).
+  write_json(d / "f2.json", {{"obj_near", 6}, {"obj_tol", 2}, {"obj_min_pixels", 16}, {"filter_enable", 15}});
+  const Run r = sim("objects_run", "--continuous --scene \"" + sc.many.string() + "\" --frames 3 --regs \"" +
+                                       (d / "f0.json").string() + "\" --regs-at 1=\"" + (d / "f1.json").string() +
+                                       "\" --regs-at 2=\"" + (d / "f2.json").string() + "\"");
   INFO("stderr: " << r.err);
   REQUIRE(r.rc == 0);
   const sm::HwConfig hw = hw_of(r.report);
@@ -272,7 +277,7 @@ TEST_CASE("objects in report.json equal the model's; more than MAX_OBJECTS sets 
   const sm::Image8 R = sm::tools::load_grey((sc.many / "right.png").string());
   const auto m0 = sm::run_pipeline(L, R, hw, r0, false), m1 = sm::run_pipeline(L, R, hw, r1, false);
   const json& fr = r.report.at("frame_results");
-  REQUIRE(fr.size() == 2);
+  REQUIRE(fr.size() == 3);
   // Frame 0: the scene's objects, box by box as the model finds them.
   REQUIRE(m0.objects.objects.size() >= 2);
   CHECK(!m0.objects.too_many_objects);
@@ -293,6 +298,77 @@ TEST_CASE("objects in report.json equal the model's; more than MAX_OBJECTS sets 
   CHECK(fr[1].at("object_packet").at("count") == hw.max_objects);
   CHECK(same_objects(fr[1].at("object_packet"), m1.objects));
   CHECK(r.out.find("TOO-MANY") != std::string::npos);
+  // Frame 2: the flag clears.
+  REQUIRE(r0.filter_enable == 15);
+  CHECK(fr[2].at("object_packet").at("too_many") == false);
+  CHECK(same_objects(fr[2].at("object_packet"), m0.objects));
+}
+
+TEST_CASE("output registers: random values every frame, each frame bit-exact with the model", "[sim][host]") {
+  const Scenes sc;
+  const fs::path d = kTmp / "outregs";
+  fs::create_directories(d);
+  // Every register of the output stage (SUBPIX .. TEX_T) drawn each frame (fixed seed):
+  // thresholds small half the time (rules that fail) and anywhere in 0..255 otherwise (every
+  // bit of the register reaches the pipeline).
+  std::mt19937 rng(39);
+  auto coin = [&] { return static_cast<uint8_t>(rng() % 2); };
+  auto thr = [&] { return static_cast<uint8_t>(rng() % 2 ? rng() % 4 : rng() % 256); };
+  const int n = 6;
+  std::vector<sm::OutputRegs> outs;
+  std::string args = "--continuous --scene \"" + sc.plain.string() + "\" --frames " + std::to_string(n) +
+                     " --disp-file \"" + (d / "disp.pfm").string() + "\" --disp-each-frame";
+  for (int f = 0; f < n; ++f) {
+    sm::OutputRegs o;
+    o.subpix_en = static_cast<uint8_t>(f % 3 != 0);
+    o.subpix_src = static_cast<uint8_t>(1 + rng() % 2);
+    o.subpix_fit = coin();
+    o.occ_en = coin(), o.occ_t = thr(), o.fill_bg = coin();
+    o.lr_en = coin(), o.lr_t = thr(), o.agree_en = coin(), o.agree_t = thr();
+    o.uniq_en = coin(), o.uniq_t = thr(), o.tex_en = coin(), o.tex_t = thr();
+    outs.push_back(o);
+    const json j = {{"subpix", o.subpix_en ? o.subpix_src : 0},
+                    {"subpix_fit", o.subpix_fit},
+                    {"occ_en", o.occ_en},
+                    {"occ_t", o.occ_t},
+                    {"fill_bg", o.fill_bg},
+                    {"lr_en", o.lr_en},
+                    {"lr_t", o.lr_t},
+                    {"agree_en", o.agree_en},
+                    {"agree_t", o.agree_t},
+                    {"uniq_en", o.uniq_en},
+                    {"uniq_t", o.uniq_t},
+                    {"tex_en", o.tex_en},
+                    {"tex_t", o.tex_t}};
+    const fs::path p = d / ("f" + std::to_string(f) + ".json");
+    write_json(p, j);
+    args += f == 0 ? " --regs \"" + p.string() + "\"" : " --regs-at " + std::to_string(f) + "=\"" + p.string() + "\"";
+  }
+  const Run r = sim("outregs_run", args);
+  INFO("stderr: " << r.err);
+  REQUIRE(r.rc == 0);
+  CHECK(r.report.at("bit_exact") == true);
+  const sm::HwConfig hw = hw_of(r.report);
+  sm::Regs g = sm::Regs::defaults(hw);
+  g.width = 64;
+  g.height = 48;
+  g.grid_l = sm::RectGrid::identity(64, 48);
+  g.grid_r = g.grid_l;
+  const sm::Image8 L = sm::tools::load_grey((sc.plain / "left.png").string());
+  const sm::Image8 R = sm::tools::load_grey((sc.plain / "right.png").string());
+  const json& fr = r.report.at("frame_results");
+  REQUIRE(fr.size() == static_cast<size_t>(n));
+  long invalid = 0;
+  for (int f = 0; f < n; ++f) {
+    INFO("frame " << f);
+    set_output_regs(g, outs[static_cast<size_t>(f)]);
+    const sm::PipelineResult m = sm::run_pipeline(L, R, hw, g, false);
+    const cv::Mat want = sm::tools::out_to_float(m.out);
+    CHECK(same_disp(sm::tools::read_disparity_file((d / fmt::format("disp_{:03d}.pfm", f)).string()), want));
+    CHECK(fr[f].at("bit_exact") == true);
+    invalid += cv::countNonZero(want < 0);
+  }
+  CHECK(invalid > 0);  // some rule failed somewhere: the valid bit toggles
 }
 
 TEST_CASE("bad register files: one error naming the file and the key, nothing simulated", "[sim][host]") {
