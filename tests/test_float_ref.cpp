@@ -10,15 +10,18 @@
 // and are checked with ==, not with a tolerance. With any simplification off no equality
 // with the model is claimed.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdint>
 #include <random>
 
 #include "aggregate.hpp"
 #include "census.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "dp.hpp"
 #include "float_ref/float_ref.hpp"
+#include "output_regs.hpp"
 #include "pipeline.hpp"
 #include "sm_test_util.hpp"
 
@@ -125,11 +128,47 @@ TEST_CASE("float reference with every simplification on equals the bit-exact mod
     regs.width = sp.width;
     regs.height = sp.height;
     regs.occ = static_cast<uint8_t>(occ);
-    regs.occ_edge = regs.occ;  // the float reference has the paper's one penalty
+    regs.occ_edge = regs.occ;                                     // the float reference has the paper's one penalty
+    sm::set_output_regs(regs, sm::dense_mode(sm::OutputRegs{}));  // every pixel valid, the Q.4 fraction
     const auto model = sm::run_pipeline(l, r, hw, regs, false);
     INFO("occ " << occ);
     CHECK(sm::fref::run(l, r, p, 4.0 * occ) == model.post);
+    // The sub-pixel output: the model's dense output word by word.
+    const sm::DispImage dp = sm::fref::trellis(fa, 4.0 * occ, p);
+    const std::vector<float> sub = sm::fref::subpix(fa, dp, sm::fref::post(dp, p), p);
+    const cv::Mat want = sm::tools::out_to_float(model.out);
+    size_t off = 0, fractions = 0;
+    for (int y = 0; y < sp.height; ++y)
+      for (int x = 0; x < sp.width; ++x) {
+        const float v = sub[static_cast<size_t>(y) * sp.width + x];
+        off += v != want.at<float>(y, x);
+        fractions += v != std::floor(v);
+      }
+    CHECK(off == 0);
+    CHECK(fractions > 0);
   }
+}
+
+TEST_CASE("float sub-pixel fit: known answers, real-valued and Q.4", "[unit][float_ref]") {
+  // One pixel, 5 levels, the DP's level 2: costs 10 - 2 (k - 2.25)^2 sampled at k = 1, 2, 3
+  // have their minimum at 2.25 (a parabola through them is exact).
+  sm::fref::CostVol a;
+  a.w = a.h = 1;
+  a.d = 5;
+  auto c = [](double k) { return static_cast<float>(2 * (k - 2.25) * (k - 2.25) + 10); };
+  a.a = {c(0), c(1), c(2), c(3), c(4)};
+  const sm::DispImage dp(1, 1, sm::make_disp(2, true));
+  sm::fref::Params p = sm::fref::Params::defaults();
+  p.levels = 5;
+  CHECK(sm::fref::subpix(a, dp, dp, p)[0] == Approx(2.25));
+  p.simp.frac_q4 = true;
+  CHECK(sm::fref::subpix(a, dp, dp, p)[0] == 2.25f);  // 4/16 exactly
+  // The filters changed the level: no fraction. Level 0 or levels - 1: no fit.
+  const sm::DispImage moved(1, 1, sm::make_disp(3, true));
+  CHECK(sm::fref::subpix(a, dp, moved, p)[0] == 3.0f);
+  a.a = {c(2), c(3), c(4), c(5), c(6)};  // least cost at level 0
+  const sm::DispImage edge(1, 1, sm::make_disp(0, true));
+  CHECK(sm::fref::subpix(a, edge, edge, p)[0] == 0.0f);
 }
 
 TEST_CASE("float reference switches", "[unit][float_ref]") {

@@ -17,15 +17,15 @@
 namespace sm::fref {
 
 const std::vector<std::string>& simplify_names() {
-  static const std::vector<std::string> n = {"shift", "wquant",        "table",      "nospatial",
-                                             "round", "census-border", "agg-border", "int-penalty"};
+  static const std::vector<std::string> n = {"shift",         "wquant",     "table",       "nospatial", "round",
+                                             "census-border", "agg-border", "int-penalty", "frac-q4"};
   return n;
 }
 
 namespace {
 bool* field(Simplify& s, size_t i) {
-  bool* f[] = {&s.cost_shift, &s.weight_quant,  &s.weight_table, &s.no_spatial,
-               &s.norm_round, &s.census_border, &s.agg_border,   &s.int_penalty};
+  bool* f[] = {&s.cost_shift,    &s.weight_quant, &s.weight_table, &s.no_spatial, &s.norm_round,
+               &s.census_border, &s.agg_border,   &s.int_penalty,  &s.frac_q4};
   return f[i];
 }
 }  // namespace
@@ -274,6 +274,36 @@ DispImage post(const DispImage& dp, const Params& p) {
       break;
   }
   return dp;
+}
+
+namespace {
+
+// Offset of the parabola's minimum through (-1, cm), (0, c0), (1, cp), in levels.
+double fit_parabola(double cm, double c0, double cp, bool q4) {
+  const double num = cm - cp, den = 2 * (cm - 2 * c0 + cp);
+  if (!(den > 0)) return 0;
+  if (!q4) return std::clamp(num / den, -0.5, 0.5);
+  const double q = std::min(8.0, std::floor(16 * std::fabs(num) / den + 0.5));  // half away from zero
+  return (num < 0 ? -q : q) / 16;
+}
+
+// The lowest level of least cost.
+int wta(const float* c, int nd) { return static_cast<int>(std::min_element(c, c + nd) - c); }
+
+}  // namespace
+
+std::vector<float> subpix(const CostVol& a, const DispImage& dp, const DispImage& out, const Params& p) {
+  std::vector<float> v(static_cast<size_t>(a.w) * a.h);
+  for (int y = 0; y < a.h; ++y)
+    for (int x = 0; x < a.w; ++x) {
+      const int d = static_cast<int>(disp_value(dp.at(x, y))), o = static_cast<int>(disp_value(out.at(x, y)));
+      const float* c = a.pix(x, y);
+      double f = 0;
+      if (o == d && d > 0 && d < a.d - 1 && std::abs(wta(c, a.d) - d) <= 1)
+        f = fit_parabola(c[d - 1], c[d], c[d + 1], p.simp.frac_q4);
+      v[static_cast<size_t>(y) * a.w + x] = static_cast<float>(o + f);
+    }
+  return v;
 }
 
 DispImage run(const Image8& left, const Image8& right, const Params& p, double penalty_raw) {

@@ -35,9 +35,11 @@ struct Simplify {
                                // (model); off: clamped coordinates
   bool int_penalty = false;    // occlusion penalty: an integer 0..255 in the units of A
                                // (the model's 8-bit occ register)
+  bool frac_q4 = false;        // sub-pixel fraction rounded to 1/16 (the model's fit_q4);
+                               // off: the real-valued fit
   static Simplify none() { return {}; }
   // Every simplification the bit-exact model makes.
-  static Simplify all() { return {true, true, true, true, true, false, true, true}; }
+  static Simplify all() { return {true, true, true, true, true, false, true, true, true}; }
   bool integer_weights() const { return (weight_quant || weight_table) && no_spatial; }
 };
 
@@ -97,6 +99,13 @@ std::vector<int> trellis_line(const float* a, int n, int levels, double occ);
 DispImage trellis(const CostVol& a, double penalty_raw, const Params& p);
 // The post filters of p.post (the model's post_process / post_median).
 DispImage post(const DispImage& dp, const Params& p);
+
+// Sub-pixel disparity of every pixel (docs/algorithm.md 9.1, the default estimator: the
+// parabola through A(d - 1), A(d), A(d + 1) at the DP's level d where the WTA level is
+// within 1 of d and 0 < d < levels - 1, clamped to half a level), kept where the post
+// filters kept d (`out` = post(dp)); else the output's level. Real-valued, or the model's
+// Q.4 value with simp.frac_q4 (equal to the model's dense output on integer costs).
+std::vector<float> subpix(const CostVol& a, const DispImage& dp, const DispImage& out, const Params& p);
 
 // Whole pipeline for one penalty (raw Hamming scale).
 DispImage run(const Image8& left, const Image8& right, const Params& p, double penalty_raw);
