@@ -78,6 +78,17 @@ struct Scenes {
   }
 };
 
+// The registers' defaults at the scenes' 64x48 with identity rectification: what a run
+// without a calibration has before its register files.
+sm::Regs plain_regs(const sm::HwConfig& hw) {
+  sm::Regs g = sm::Regs::defaults(hw);
+  g.width = 64;
+  g.height = 48;
+  g.grid_l = sm::RectGrid::identity(64, 48);
+  g.grid_r = g.grid_l;
+  return g;
+}
+
 void write_json(const fs::path& p, const json& j) { std::ofstream(p) << j.dump(2) << "\n"; }
 
 bool same_disp(const cv::Mat& a, const cv::Mat& b) {
@@ -258,11 +269,7 @@ TEST_CASE("objects in report.json equal the model's; more than MAX_OBJECTS sets 
   INFO("stderr: " << r.err);
   REQUIRE(r.rc == 0);
   const sm::HwConfig hw = hw_of(r.report);
-  sm::Regs r0 = sm::Regs::defaults(hw);
-  r0.width = 64;
-  r0.height = 48;
-  r0.grid_l = sm::RectGrid::identity(64, 48);
-  r0.grid_r = r0.grid_l;
+  sm::Regs r0 = plain_regs(hw);
   r0.obj_near = 6;
   r0.obj_tol = 2;
   r0.obj_min_pixels = 16;
@@ -350,11 +357,7 @@ TEST_CASE("output registers: random values every frame, each frame bit-exact wit
   REQUIRE(r.rc == 0);
   CHECK(r.report.at("bit_exact") == true);
   const sm::HwConfig hw = hw_of(r.report);
-  sm::Regs g = sm::Regs::defaults(hw);
-  g.width = 64;
-  g.height = 48;
-  g.grid_l = sm::RectGrid::identity(64, 48);
-  g.grid_r = g.grid_l;
+  sm::Regs g = plain_regs(hw);
   const sm::Image8 L = sm::tools::load_grey((sc.plain / "left.png").string());
   const sm::Image8 R = sm::tools::load_grey((sc.plain / "right.png").string());
   const json& fr = r.report.at("frame_results");
