@@ -16,6 +16,7 @@ namespace {
 
 constexpr int kSupportRadii[] = {1, 2, 7};  // windows of the output level: 3x3, 5x5, 15x15
 constexpr int kTextureSides[] = {5, 15, 31};
+constexpr double kGoalDensity = 85.0, kGoalBad1 = 5.0;  // issue 39's checked mode, 14-scene means
 
 // Per pixel: how many pixels of the (2r + 1)^2 window hold a level within 1 of its own.
 cv::Mat level_support(const DispImage& post, int r) {
@@ -38,12 +39,15 @@ cv::Mat row_distance_unmatched(const Evidence& ev) {
   cv::Mat out(h, w, CV_32F);
   std::vector<int> left(static_cast<size_t>(w));
   for (int y = 0; y < h; ++y) {
-    int last = -cap;
-    for (int x = 0; x < w; ++x) left[x] = x - (last = ev.matched.at(x, y) ? last : x);
-    int next = w + cap;
+    int last = -cap;  // the last unmatched pixel at or left of x
+    for (int x = 0; x < w; ++x) {
+      if (!ev.matched.at(x, y)) last = x;
+      left[static_cast<size_t>(x)] = x - last;
+    }
+    int next = w + cap;  // the first unmatched pixel at or right of x
     for (int x = w - 1; x >= 0; --x) {
       next = ev.matched.at(x, y) ? next : x;
-      out.at<float>(y, x) = static_cast<float>(std::min({cap, left[x], next - x}));
+      out.at<float>(y, x) = static_cast<float>(std::min({cap, left[static_cast<size_t>(x)], next - x}));
     }
   }
   return out;
@@ -125,9 +129,6 @@ cv::Mat pixel_features(const OutputFrame& f) {
   return x_out;
 }
 
-}  // namespace sm::tools
-
-namespace sm::tools {
 namespace {
 
 // The columns of pixel_features the configuration uses.
@@ -207,8 +208,8 @@ void print_bound(const std::vector<OutputFrame>& fr, const std::vector<cv::Mat>&
       b1v += m.bad1_of_valid() / n;
     }
     if (t % 10 == 0) fmt::print("| {} | {:.2f} | {:.2f} |\n", t, dens, b1v);
-    if (b1v <= 5.0) best_dens = std::max(best_dens, dens);
-    if (dens >= 85.0) b1v_at_85 = b1v;
+    if (b1v <= kGoalBad1) best_dens = std::max(best_dens, dens);
+    if (dens >= kGoalDensity) b1v_at_85 = b1v;
   }
   double auc = 0, oauc = 0;
   for (size_t i = 0; i < fr.size(); ++i) {
