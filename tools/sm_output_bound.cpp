@@ -138,12 +138,12 @@ cv::Mat used_features(const OutputFrame& f, const BoundConfig& cfg) {
 }
 
 // The evaluated pixels' feature rows of one frame and their labels (1: dense output bad-1.0).
-void labelled_rows(const OutputFrame& f, const cv::Mat& est, const BoundConfig& cfg, cv::Mat& rows, cv::Mat& labels) {
-  const cv::Mat all = used_features(f, cfg);
+// `features`: the frame's used_features.
+void labelled_rows(const OutputFrame& f, const cv::Mat& features, const cv::Mat& est, cv::Mat& rows, cv::Mat& labels) {
   for (int y = 0; y < f.gt.rows; ++y)
     for (int x = 0; x < f.gt.cols; ++x) {
       if (!evaluated(f.gt, f.mask, y, x)) continue;
-      rows.push_back(all.row(y * f.gt.cols + x));
+      rows.push_back(features.row(y * f.gt.cols + x));
       const float e = est.at<float>(y, x);
       labels.push_back(e < 0 || std::fabs(e - f.gt.at<float>(y, x)) > 1.0f ? 1.0f : 0.0f);
     }
@@ -180,15 +180,18 @@ cv::Mat forest_score(const cv::ml::RTrees& forest, const cv::Mat& features, int 
 
 std::vector<cv::Mat> loso_scores(const std::vector<OutputFrame>& fr, const std::vector<cv::Mat>& est,
                                  const BoundConfig& cfg) {
-  std::vector<cv::Mat> rows(fr.size()), labels(fr.size()), scores;
-  for (size_t i = 0; i < fr.size(); ++i) labelled_rows(fr[i], est[i], cfg, rows[i], labels[i]);
+  std::vector<cv::Mat> features(fr.size()), rows(fr.size()), labels(fr.size()), scores;
+  for (size_t i = 0; i < fr.size(); ++i) {
+    features[i] = used_features(fr[i], cfg);
+    labelled_rows(fr[i], features[i], est[i], rows[i], labels[i]);
+  }
   for (size_t i = 0; i < fr.size(); ++i) {
     fmt::print(stderr, "sm_output_study: bound, forest without {} ({}/{}) ...\n", fr[i].name, i + 1, fr.size());
     cv::Mat x, y;
     for (size_t j = 0; j < fr.size(); ++j)
       if (j != i) x.push_back(rows[j]), y.push_back(labels[j]);
     const auto forest = train_forest(x, y, cfg);
-    scores.push_back(forest_score(*forest, used_features(fr[i], cfg), fr[i].post.w, fr[i].post.h));
+    scores.push_back(forest_score(*forest, features[i], fr[i].post.w, fr[i].post.h));
   }
   return scores;
 }
