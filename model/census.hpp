@@ -16,6 +16,20 @@ CensusImage census_transform(const Image8& in, const HwConfig& hw, int threads =
 // hw.census_bits() when x - d < 0. Throws std::invalid_argument on a size mismatch.
 CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw, int threads = 1);
 
+// The cost's intensity term (sm_ad_term): min(|a - b| >> hw.ad_shift, hw.ad_max), 0 when
+// hw.ad_max is 0 (census only).
+inline int ad_term(int a, int b, const HwConfig& hw) {
+  const int t = (a > b ? a - b : b - a) >> hw.ad_shift;
+  return t < hw.ad_max ? t : hw.ad_max;
+}
+
+// The matching cost sm_cost outputs (docs/algorithm.md, section 4): C(x, y, d) =
+// min(H(x, y, d) + (ad_term(left(x, y), right(x - d, y)) << hw.cost_shift), CB) with H of
+// hamming_cost, or CB = hw.census_bits() when x - d < 0. left and right are the images the
+// census vectors came from. Throws std::invalid_argument on a size mismatch.
+CostVolume matching_cost(const CensusImage& cl, const CensusImage& cr, const Image8& left, const Image8& right,
+                         const HwConfig& hw, int threads = 1);
+
 // popcount(a ^ b) over the four words.
 inline int census_distance(const CensusVec& a, const CensusVec& b) {
   return __builtin_popcountll(a[0] ^ b[0]) + __builtin_popcountll(a[1] ^ b[1]) + __builtin_popcountll(a[2] ^ b[2]) +

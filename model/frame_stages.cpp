@@ -14,7 +14,8 @@ PipelineResult run_frame_stages(const Image8& left, const Image8& right, const H
   r.br = brightness(right, regs.gain_r, regs.offset_r);
   r.rl = rectify(r.bl, regs.grid_l, regs.rect_enable, hw);
   r.rr = rectify(r.br, regs.grid_r, regs.rect_enable, hw);
-  r.raw = hamming_cost(census_transform(r.rl, hw, threads), census_transform(r.rr, hw, threads), hw, threads);
+  r.raw =
+      matching_cost(census_transform(r.rl, hw, threads), census_transform(r.rr, hw, threads), r.rl, r.rr, hw, threads);
   r.agg = sw_aggregate(r.raw, r.rl, regs.sw_table, hw, threads);
   r.dp = trellis_dp_edge(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw, threads);
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);

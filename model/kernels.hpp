@@ -59,6 +59,14 @@ void census_row(const CensusPad& in, int y, CensusVec* out);
 // pipeline passes COST_SHIFT and gets C directly).
 void cost_row(const CensusVec* l, const CensusVec* rr, int w, int nd, uint8_t cb, int shift, uint8_t* out);
 
+// Adds the intensity terms to one row of costs (sm_cost_addsat): out[x * nd + d] =
+// min(out + (ad_term(l[x], r[x - d]) << shift), cap) for x - d >= 0; the levels with x - d
+// < 0 keep their value. On H (shift COST_SHIFT, cap CB) or on C = H >> COST_SHIFT (shift 0,
+// cap CB >> COST_SHIFT): min(H + (t << s), CB) >> s = min((H >> s) + t, CB >> s), so both
+// give the same C.
+void add_term_row(const uint8_t* l, const uint8_t* r, int w, int nd, const HwConfig& hw, int shift, int cap,
+                  uint8_t* out);
+
 // Support-weight aggregation of row y (SW <= 7). c_rows[j + r] is row y + j of C = H >>
 // COST_SHIFT (w * nd bytes followed by kCostPad readable bytes), j = -r..r; rows outside
 // the image are never read (their weight is 0) and may be null. left: the left

@@ -83,9 +83,11 @@ void stream_rows(const Rows& s, int y0, int y1, bool keep_volumes, PipelineResul
       if (keep_volumes && y >= y0 && y < y1) {
         uint8_t* hr = r.raw.pix(0, y);
         detail::cost_row(cl.data(), cr.data(), w, nd, cb, 0, hr);
+        detail::add_term_row(s.pl.row(y), s.pr.row(y), w, nd, hw, hw.cost_shift, cb, hr);
         for (size_t i = 0; i < row; ++i) c[i] = static_cast<uint8_t>(hr[i] >> hw.cost_shift);
       } else {
         detail::cost_row(cl.data(), cr.data(), w, nd, cb, hw.cost_shift, c);
+        detail::add_term_row(s.pl.row(y), s.pr.row(y), w, nd, hw, 0, cb >> hw.cost_shift, c);
       }
       const auto t2 = clock::now();
       ms[0] += since(t0, t1);

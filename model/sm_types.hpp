@@ -75,6 +75,8 @@ struct HwConfig {
   int rect_radius = 18;  // RECT_RADIUS: rows above/below the output row the
                          // rectifier can read (line buffer holds 2R+2 rows)
   int cost_shift = 2;    // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
+  int ad_shift = 2;      // AD_SHIFT: the cost's intensity term is |left - right| >> AD_SHIFT ...
+  int ad_max = 7;        // AD_MAX: ... capped at AD_MAX (0: census only; algorithm.md section 4)
   int max_objects = 8;   // MAX_OBJECTS (K): objects reported per frame
   int label_slots = 64;  // LABEL_SLOTS: equivalence-table entries of the labeller
   int band_k = 8;        // BAND_K: look-ahead rows of the band filter F0

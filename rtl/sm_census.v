@@ -25,7 +25,8 @@ module sm_census #(
     output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [CB-1:0] m_cl,     // left census vector, bit k = neighbour k < centre
     output reg  [CB-1:0] m_cr,     // right census vector
-    output reg  [7:0]    m_left    // left centre pixel, for the aggregation weights
+    output reg  [7:0]    m_left,   // left centre pixel, for the aggregation weights
+    output reg  [7:0]    m_right   // right centre pixel, for the cost's intensity term
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam CB = CENSUS * CENSUS - 1;
@@ -133,6 +134,7 @@ module sm_census #(
       m_cl   <= cl_bits;
       m_cr   <= cr_bits;
       m_left <= ctr_l;
+      m_right <= ctr_r;
     end
   end
 

@@ -1,8 +1,9 @@
 `default_nettype none
 `include "sm_defs.vh"
 // Matching cost: Hamming distance of the left census vector with the right vectors
-// of the DISP previous beats (docs/algorithm.md, section 4). The right vectors of the
-// last DISP-1 beats sit in a delay line; since rows are exactly width beats, the
+// of the DISP previous beats, plus the intensity term of the centre pixels (sm_ad_term),
+// capped at CB (sm_cost_addsat; docs/algorithm.md, section 4). The right vectors and
+// pixels of the last beats sit in delay lines; since rows are exactly width beats, the
 // beat d back in the same row is the right pixel x - d. A thermometer of the column
 // (reset by sol) marks the levels with x - d < 0, which get CB.
 //
@@ -29,7 +30,10 @@ module sm_cost #(
     parameter MAX_WIDTH = 320,  // widest active line
     parameter DISP      = 128,  // disparity levels 0..DISP-1
     parameter CENSUS    = 15,   // census window side (odd, 3..15)
-    parameter PU        = DISP  // levels computed per clock (divides DISP; DISP: not folded)
+    parameter PU        = DISP, // levels computed per clock (divides DISP; DISP: not folded)
+    parameter COST_SHIFT = 2,   // the aggregation's shift of the cost: the intensity term is added at its scale
+    parameter AD_SHIFT  = 2,    // intensity term: |left - right| >> AD_SHIFT ...
+    parameter AD_MAX    = 7     // ... capped at AD_MAX (0: census only)
 ) (
     input  wire               clk,
     input  wire               rst_n,
@@ -39,6 +43,7 @@ module sm_cost #(
     input  wire [CB-1:0]      s_cl,    // left census vector
     input  wire [CB-1:0]      s_cr,    // right census vector
     input  wire [7:0]         s_left,  // left centre pixel, passed through
+    input  wire [7:0]         s_right, // right centre pixel
     output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [HW*DISP-1:0] m_cost,  // bit-plane order: bit f of level d at [f*DISP + d]
     output reg  [7:0]         m_left
@@ -48,10 +53,7 @@ module sm_cost #(
   localparam HW = $clog2(CB + 1);
   localparam F  = DISP / PU;                  // clocks per beat
   localparam GW = (F > 1) ? $clog2(F) : 1;    // sub-step counter
-  // cost of a level whose right pixel is left of the image; CB fits HW bits by definition
-  /* verilator lint_off WIDTH */
-  localparam [HW-1:0] CB_V = CB;
-  /* verilator lint_on WIDTH */
+  localparam TW = (AD_MAX > 0) ? $clog2(AD_MAX + 1) : 1;  // intensity term
 
   generate
     `SM_BAD_PARAM(g_bad_census, CENSUS < `SM_CENSUS_MIN || CENSUS > `SM_CENSUS_MAX || CENSUS % 2 == 0,
@@ -59,6 +61,9 @@ module sm_cost #(
     `SM_BAD_PARAM(g_bad_disp, DISP < 2 || DISP > 256, ("sm_cost: DISP (%0d) must be 2..256", DISP))
     `SM_BAD_PARAM(g_bad_pu, PU < 1 || PU > DISP || DISP % PU != 0,
                   ("sm_cost: PU (%0d) must divide DISP (%0d)", PU, DISP))
+    `SM_BAD_PARAM(g_bad_ad, AD_MAX < 0 || AD_MAX > 15 || AD_SHIFT < 0 || AD_SHIFT > 7,
+                  ("sm_cost: AD_MAX (%0d) must be 0..15 and AD_SHIFT (%0d) 0..7", AD_MAX, AD_SHIFT))
+    `SM_BAD_PARAM(g_bad_shift, COST_SHIFT < 0 || COST_SHIFT > 7, ("sm_cost: COST_SHIFT (%0d) must be 0..7", COST_SHIFT))
   endgenerate
   wire unused_width = &width;
 
@@ -85,7 +90,7 @@ module sm_cost #(
     end
   end
 
-  genvar i, f;
+  genvar i;
   generate
     if (F == 1) begin : g_par
       // Right vectors in bit-plane order (one plane per census bit, one bit per level):
@@ -111,20 +116,29 @@ module sm_cost #(
       wire [HW*DISP-1:0] pc;  // bit-plane order: bit f of level d at [f*DISP + d]
       sm_popcount #(.N(CB), .L(DISP)) u_pc (.clk(clk), .ce(ce), .a(cl_all), .b(cr_all), .cnt(pc));
 
-      // Output costs: CB where x - d < 0, applied plane by plane (bit f: the count's where
-      // ok, CB's bit f elsewhere; the same 2:1 multiplexer per bit as a per-level select,
-      // as DISP-bit operations in Verilator). They leave in bit-plane order, the order
-      // sm_sw_aggregate sums them in: a transpose to level order and back would be wiring
-      // in hardware but two thousand bit moves a clock in Verilator.
+      // Right pixels in level order: after the ce of beat n, rpx_q[8*d +: 8] is the
+      // pixel of beat n - d, level d's; with the left pixel of that ce (left_q2) they give
+      // the intensity terms, registered on the next ce beside the popcount result.
+      reg  [8*DISP-1:0]  rpx_q;
+      reg  [TW*DISP-1:0] t_q;  // bit-plane order
+      wire [TW*DISP-1:0] t_c;
+      always @(posedge clk) if (ce) rpx_q <= {rpx_q[8*(DISP-1)-1:0], s_right};
+      if (AD_MAX > 0) begin : g_ad
+        sm_ad_term #(.L(DISP), .AD_SHIFT(AD_SHIFT), .AD_MAX(AD_MAX)) u_ad (.a(left_q2), .b(rpx_q), .t(t_c));
+      end else begin : g_no_ad
+        assign t_c = {TW*DISP{1'b0}};
+        wire unused_rpx = ^rpx_q;
+      end
+      always @(posedge clk) if (ce) t_q <= t_c;
+
+      // Output costs: the count plus the term, capped at CB, and CB where x - d < 0. They
+      // stay in bit-plane order, the order sm_sw_aggregate sums them in: a transpose to
+      // level order and back would be wiring in hardware but two thousand bit moves a
+      // clock in Verilator.
       reg  [DISP-1:0]    ok_q2, ok_q3;
       wire [HW*DISP-1:0] cost_p;  // bit-plane order
-      for (f = 0; f < HW; f = f + 1) begin : g_cb
-        if (CB_V[f]) begin : g_one
-          assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] | ~ok_q3;
-        end else begin : g_zero
-          assign cost_p[f*DISP +: DISP] = pc[f*DISP +: DISP] & ok_q3;
-        end
-      end
+      sm_cost_addsat #(.L(DISP), .HW(HW), .TW(TW), .COST_SHIFT(COST_SHIFT), .CB(CB)) u_sum (
+          .h(pc), .t(t_q), .ok(ok_q3), .cost(cost_p));
       always @(posedge clk) begin
         if (ce) begin
           ok_q2  <= ok;
@@ -181,6 +195,32 @@ module sm_cost #(
         end
       end
 
+      // The right pixels in the same chained segments, one per pixel bit, gathered to
+      // level order per lane and registered with the left pixel (which changes after the
+      // beat's ce, possibly before its last sub-step's term); the terms are registered
+      // once more, so they meet the popcount result 2 clocks after its inputs.
+      wire [8*PU-1:0]  pseg_q;  // bit-plane order
+      reg  [8*PU-1:0]  px_p1;   // level order: lane j at [8*j +: 8]
+      reg  [7:0]       left_p1;
+      reg  [TW*PU-1:0] t_p2;    // bit-plane order
+      wire [TW*PU-1:0] t_c;
+      for (i = 0; i < 8; i = i + 1) begin : g_pix_plane
+        sm_cost_srl #(.L(PU), .DEPTH(F)) u_srl (
+            .clk(clk), .shift(ce), .addr(sub_q), .d(s_right[i]), .q(pseg_q[i*PU +: PU]));
+        for (j = 0; j < PU; j = j + 1) begin : g_lane
+          wire b = (last && j == PU - 1) ? s_right[i] : pseg_q[i*PU + j];
+          always @(posedge clk) px_p1[8*j + i] <= b;
+        end
+      end
+      always @(posedge clk) left_p1 <= s_left;
+      if (AD_MAX > 0) begin : g_ad
+        sm_ad_term #(.L(PU), .AD_SHIFT(AD_SHIFT), .AD_MAX(AD_MAX)) u_ad (.a(left_p1), .b(px_p1), .t(t_c));
+      end else begin : g_no_ad
+        assign t_c = {TW*PU{1'b0}};
+        wire unused_px = ^{px_p1, left_p1};
+      end
+      always @(posedge clk) t_p2 <= t_c;
+
       // x - d >= 0 of each lane's level at this sub-step (ok[0] = 1 covers level 0).
       wire [PU-1:0] ok_l;
       for (j = 0; j < PU; j = j + 1) begin : g_okl
@@ -203,13 +243,8 @@ module sm_cost #(
         sub_p2 <= sub_p1;
       end
       wire [HW*PU-1:0] cost_l;  // bit-plane order
-      for (f = 0; f < HW; f = f + 1) begin : g_cb
-        if (CB_V[f]) begin : g_one
-          assign cost_l[f*PU +: PU] = pc[f*PU +: PU] | ~ok_p2;
-        end else begin : g_zero
-          assign cost_l[f*PU +: PU] = pc[f*PU +: PU] & ok_p2;
-        end
-      end
+      sm_cost_addsat #(.L(PU), .HW(HW), .TW(TW), .COST_SHIFT(COST_SHIFT), .CB(CB)) u_sum (
+          .h(pc), .t(t_p2), .ok(ok_p2), .cost(cost_l));
 
       // Collect: sub-step g's lanes at [g*HW*PU +: HW*PU]. Sub-steps repeated while the
       // counter waits at F - 1 rewrite the same values.

@@ -17,6 +17,8 @@ module sm_top #(
     parameter SW          = 5,    // support-weight window side
     parameter RECT_RADIUS = 18,   // rows above/below an output row the rectifier reads (the reference rig needs 18)
     parameter COST_SHIFT  = 2,    // raw Hamming cost >> COST_SHIFT before aggregation
+    parameter AD_SHIFT    = 2,    // cost's intensity term: |left - right| >> AD_SHIFT ...
+    parameter AD_MAX      = 7,    // ... capped at AD_MAX (0: census only; docs/algorithm.md 4)
     parameter MAX_OBJECTS = 8,    // objects reported per frame
     parameter LABEL_SLOTS = 64,   // equivalence-table entries of the object labeller
     parameter BAND_K      = 8,    // look-ahead rows of the band filter F0 (1..16)
@@ -266,19 +268,22 @@ module sm_top #(
   // ---------------------------------------------------------------- main processing
   wire [`SM_SIDE_W-1:0] cs_side;
   wire [CB-1:0] cs_cl, cs_cr;
-  wire [7:0]    cs_left;
+  wire [7:0]    cs_left, cs_right;
   sm_census #(.MAX_WIDTH(MAX_WIDTH), .CENSUS(CENSUS)) u_census (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
       .s_side(rl_side), .s_left(rl_pix), .s_right(rr_pix),
-      .m_side(cs_side), .m_cl(cs_cl), .m_cr(cs_cr), .m_left(cs_left)
+      .m_side(cs_side), .m_cl(cs_cl), .m_cr(cs_cr), .m_left(cs_left), .m_right(cs_right)
   );
 
   wire [`SM_SIDE_W-1:0] ct_side;
   wire [HW*DISP-1:0] ct_cost;  // bit-plane order: bit f of level d at [f*DISP + d]
   wire [7:0]         ct_left;
-  sm_cost #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .PU(PUE)) u_cost (
+  sm_cost #(
+      .MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .PU(PUE), .COST_SHIFT(COST_SHIFT),
+      .AD_SHIFT(AD_SHIFT), .AD_MAX(AD_MAX)
+  ) u_cost (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
-      .s_side(cs_side), .s_cl(cs_cl), .s_cr(cs_cr), .s_left(cs_left),
+      .s_side(cs_side), .s_cl(cs_cl), .s_cr(cs_cr), .s_left(cs_left), .s_right(cs_right),
       .m_side(ct_side), .m_cost(ct_cost), .m_left(ct_left)
   );
 

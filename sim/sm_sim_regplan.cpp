@@ -26,6 +26,8 @@ void check_hw_keys(const std::string& path, const HwConfig& got, const HwConfig&
                                                                   {"sw", got.sw, hw.sw},
                                                                   {"rect_radius", got.rect_radius, hw.rect_radius},
                                                                   {"cost_shift", got.cost_shift, hw.cost_shift},
+                                                                  {"ad_shift", got.ad_shift, hw.ad_shift},
+                                                                  {"ad_max", got.ad_max, hw.ad_max},
                                                                   {"max_objects", got.max_objects, hw.max_objects},
                                                                   {"label_slots", got.label_slots, hw.label_slots},
                                                                   {"band_k", got.band_k, hw.band_k}};

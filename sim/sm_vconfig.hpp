@@ -33,6 +33,12 @@ inline HwConfig verilated_config() {
 #ifdef SM_P_COST_SHIFT
   hw.cost_shift = SM_P_COST_SHIFT;
 #endif
+#ifdef SM_P_AD_SHIFT
+  hw.ad_shift = SM_P_AD_SHIFT;
+#endif
+#ifdef SM_P_AD_MAX
+  hw.ad_max = SM_P_AD_MAX;
+#endif
 #ifdef SM_P_MAX_OBJECTS
   hw.max_objects = SM_P_MAX_OBJECTS;
 #endif

@@ -27,6 +27,23 @@ sm_rtl_test(NAME tb_census_paper TOP sm_census SOURCES ${CMAKE_CURRENT_LIST_DIR}
 sm_rtl_test(NAME tb_cost_paper TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 ARGS --width 301 --heights 20 3 5 --max-cost-frame LABELS rtl slow)
 
+# The cost's intensity term (sm_ad_term), every pixel pair: the default, no shift with the
+# widest cap, the widest shift with a cap of 1.
+sm_rtl_test(NAME tb_ad_term TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ad_term.cpp
+            PARAMS L=3 AD_SHIFT=2 AD_MAX=7)
+sm_rtl_test(NAME tb_ad_term_wide TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ad_term.cpp
+            PARAMS L=2 AD_SHIFT=0 AD_MAX=15)
+sm_rtl_test(NAME tb_ad_term_narrow TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ad_term.cpp
+            PARAMS L=1 AD_SHIFT=7 AD_MAX=1)
+# Count plus term, capped (sm_cost_addsat): the paper (CB 224 in 8 bits, a cap below 2^HW - 1),
+# a term wider than the count (CENSUS 3: CB 8 in 4 bits, 7 << 2 = 28), and CB = 2^HW - 1.
+sm_rtl_test(NAME tb_cost_addsat TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
+            PARAMS L=128 HW=8 TW=3 COST_SHIFT=2 CB=224)
+sm_rtl_test(NAME tb_cost_addsat_small TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
+            PARAMS L=5 HW=4 TW=3 COST_SHIFT=2 CB=8)
+sm_rtl_test(NAME tb_cost_addsat_full TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
+            PARAMS L=7 HW=6 TW=4 COST_SHIFT=0 CB=63)
+
 # Folded sm_cost (F = DISP / PU clocks per beat, ce at most every F clocks, inputs held):
 # PU = DISP explicitly (the parallel branch), F = 2 (the early-ce hold multiplexer), 4, 8
 # and 16 (PU 1); F = 3 and F = 13 (segments whose depth is not a power of two, odd width

@@ -85,11 +85,12 @@ int main(int argc, char** argv) {
     const auto gr = sm::test::get_port_u64<4>(t->m_cr, cb);
     const auto& el = cl[p->frame].at(p->x, p->y);
     const auto& er = cr[p->frame].at(p->x, p->y);
-    const int eleft = left[p->frame].at(p->x, p->y);
-    t.check(gl == el && gr == er && t->m_left == eleft, [&] {
+    const int eleft = left[p->frame].at(p->x, p->y), eright = right[p->frame].at(p->x, p->y);
+    t.check(gl == el && gr == er && t->m_left == eleft && t->m_right == eright, [&] {
       return fmt::format(
-          "frame {} x {} y {}:\n  cl expected {} got {}\n  cr expected {} got {}\n  left expected {} got {}", p->frame,
-          p->x, p->y, hex(el), hex(gl), hex(er), hex(gr), eleft, t->m_left);
+          "frame {} x {} y {}:\n  cl expected {} got {}\n  cr expected {} got {}\n  left expected {} got {}\n"
+          "  right expected {} got {}",
+          p->frame, p->x, p->y, hex(el), hex(gl), hex(er), hex(gr), eleft, t->m_left, eright, t->m_right);
     });
   }
   t.all_out();

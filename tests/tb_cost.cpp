@@ -1,12 +1,13 @@
-// Block test of sm_cost against the model's hamming_cost. The census inputs come from
+// Block test of sm_cost against the model's matching_cost. The census inputs come from
 // the model's census images of random image pairs (the right image a shifted copy of
-// the left with noise, so low costs occur); virtual beats and idle cycles carry
-// garbage. Every level of every real output pixel is compared. Folded (SM_P_PU defined,
+// the left with noise, so low costs occur), the centre pixels from the images; virtual
+// beats and idle cycles carry garbage. Every level of every real output pixel is compared. Folded (SM_P_PU defined,
 // F = DISP / PU > 1): ce comes at most once every F clocks and the next beat's input
 // (real or garbage) is held from the clock after a ce until its own ce, as sm_top
 // guarantees; at F = 1 idle clocks carry garbage. --max-cost-frame appends a frame whose
 // left image has isolated peaks (census code all ones) over a flat right image (all zeros),
-// so the popcount trees reach their widest sums.
+// so the popcount trees reach their widest sums (and the intensity term, 155 >> AD_SHIFT,
+// goes past CB: the cap).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -55,7 +56,7 @@ int main(int argc, char** argv) {
   while ((1 << hwb) < cb + 1) ++hwb;
 
   std::mt19937 rng(4321);
-  std::vector<sm::Image8> left;
+  std::vector<sm::Image8> left, right;
   std::vector<sm::CensusImage> cl, cr;
   std::vector<sm::CostVolume> cost;
   for (size_t f = 0; f < heights.size(); ++f) {
@@ -78,9 +79,10 @@ int main(int argc, char** argv) {
           r.at(x, y) = (x + shift < w && rng() % 8) ? l.at(x + shift, y) : static_cast<uint8_t>(rng());
     }
     left.push_back(l);
+    right.push_back(r);
     cl.push_back(sm::census_transform(l, hw));
     cr.push_back(sm::census_transform(r, hw));
-    cost.push_back(sm::hamming_cost(cl.back(), cr.back(), hw));
+    cost.push_back(sm::matching_cost(cl.back(), cr.back(), l, r, hw));
     if (max_cost_frame && f + 1 == heights.size()) {
       const auto& v = cost.back().v;
       const long at_cb = std::count(v.begin(), v.end(), static_cast<uint8_t>(cb));
@@ -99,7 +101,7 @@ int main(int argc, char** argv) {
 
   // Folded: the inputs of beat n, drawn once and held on every clock up to its ce.
   size_t held = sched.size();
-  uint8_t held_side = 0, held_left = 0;
+  uint8_t held_side = 0, held_left = 0, held_right = 0;
   sm::CensusVec held_cl{}, held_cr{};
   int warm = fold - 1;
   for (size_t n = 0; n < sched.size();) {
@@ -121,27 +123,32 @@ int main(int argc, char** argv) {
           held_cl = cl[b.frame].at(b.x, b.y);
           held_cr = cr[b.frame].at(b.x, b.y);
           held_left = left[b.frame].at(b.x, b.y);
+          held_right = right[b.frame].at(b.x, b.y);
         } else {
           held_cl = garbage(rng);
           held_cr = garbage(rng);
           held_left = static_cast<uint8_t>(rng());
+          held_right = static_cast<uint8_t>(rng());
         }
       }
       t->s_side = held_side;
       sm::test::set_port_u64(t->s_cl, held_cl, cb);
       sm::test::set_port_u64(t->s_cr, held_cr, cb);
       t->s_left = held_left;
+      t->s_right = held_right;
     } else if (ce && sched[n].frame >= 0) {
       const auto& b = sched[n];
       t->s_side = b.side;
       sm::test::set_port_u64(t->s_cl, cl[b.frame].at(b.x, b.y), cb);
       sm::test::set_port_u64(t->s_cr, cr[b.frame].at(b.x, b.y), cb);
       t->s_left = left[b.frame].at(b.x, b.y);
+      t->s_right = right[b.frame].at(b.x, b.y);
     } else {
       t->s_side = ce ? sched[n].side : static_cast<uint8_t>(rng() & 31);
       sm::test::set_port_u64(t->s_cl, garbage(rng), cb);
       sm::test::set_port_u64(t->s_cr, garbage(rng), cb);
       t->s_left = static_cast<uint8_t>(rng());
+      t->s_right = static_cast<uint8_t>(rng());
     }
     t.tick();
     if (!ce) continue;

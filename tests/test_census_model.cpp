@@ -1,4 +1,4 @@
-// Model unit tests of census_transform and hamming_cost against independent truth:
+// Model unit tests of census_transform, hamming_cost and matching_cost against independent truth:
 // hand-computed vectors and costs, a naive per-bit reference, brightness invariance
 // and the known disparity of a shifted random texture.
 #include <algorithm>
@@ -202,4 +202,41 @@ TEST_CASE("census border equals a census of the replicate-padded image (OpenCV)"
         REQUIRE(c.at(x, y) == v);
       }
   }
+}
+
+TEST_CASE("matching cost adds the intensity term at the aggregation's scale, capped at CB", "[cost]") {
+  // Flat images: every census vector is 0, so H = 0 and the cost is the term alone, by hand:
+  // |100 - 120| = 20, >> 2 = 5, << COST_SHIFT 2 = 20; |100 - 40| = 60 >> 2 = 15, capped at 7: 28.
+  const int w = 12, h = 3;
+  auto hw = config(5, 8);  // CB = 24
+  sm::Image8 left(w, h), r120(w, h), r40(w, h);
+  std::fill(left.px.begin(), left.px.end(), uint8_t{100});
+  std::fill(r120.px.begin(), r120.px.end(), uint8_t{120});
+  std::fill(r40.px.begin(), r40.px.end(), uint8_t{40});
+  const auto cl = sm::census_transform(left, hw);
+  const auto c120 = sm::matching_cost(cl, sm::census_transform(r120, hw), left, r120, hw);
+  const auto c40 = sm::matching_cost(cl, sm::census_transform(r40, hw), left, r40, hw);
+  CHECK(c120.at(5, 1, 3) == 20);
+  CHECK(c40.at(5, 1, 3) == 24);   // 28 capped at CB
+  CHECK(c120.at(2, 1, 3) == 24);  // x - d < 0: CB
+  hw.ad_max = 0;                  // census only
+  CHECK(sm::matching_cost(cl, sm::census_transform(r120, hw), left, r120, hw).at(5, 1, 3) == 0);
+  hw.ad_max = 7;
+  hw.ad_shift = 0;
+  hw.cost_shift = 1;  // min(20, 7) << 1
+  CHECK(sm::matching_cost(cl, sm::census_transform(r120, hw), left, r120, hw).at(5, 1, 3) == 14);
+  // On a random pair: H plus the term, capped, level by level (the naive sum).
+  const auto a = random_image(40, 4, 91), b = random_image(40, 4, 92);
+  hw = config(15, 16);
+  const auto ca = sm::census_transform(a, hw), cb = sm::census_transform(b, hw);
+  const auto hm = sm::hamming_cost(ca, cb, hw), m = sm::matching_cost(ca, cb, a, b, hw);
+  int wrong = 0;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 40; ++x)
+      for (int d = 0; d < 16; ++d) {
+        const int t = x >= d ? std::min(std::abs(a.at(x, y) - b.at(x - d, y)) / 4, 7) : 0;
+        wrong += m.at(x, y, d) != std::min(hm.at(x, y, d) + 4 * t, 224);
+      }
+  CHECK(wrong == 0);
+  CHECK_THROWS_AS(sm::matching_cost(ca, cb, a, random_image(39, 4, 93), hw), std::invalid_argument);
 }

@@ -113,7 +113,7 @@ TEST_CASE("float reference with every simplification on equals the bit-exact mod
   // Aggregated costs: the same integers as the model's stage functions.
   const sm::Regs regs0 = sm::Regs::defaults(hw);
   const sm::CostVolume agg = sm::sw_aggregate(
-      sm::hamming_cost(sm::census_transform(l, hw), sm::census_transform(r, hw), hw), l, regs0.sw_table, hw);
+      sm::matching_cost(sm::census_transform(l, hw), sm::census_transform(r, hw), l, r, hw), l, regs0.sw_table, hw);
   const sm::fref::CostVol fa = sm::fref::aggregate(l, r, p);
   REQUIRE(fa.a.size() == agg.v.size());
   size_t differ = 0;

@@ -67,6 +67,12 @@ int run(int argc, char** argv) {
   app.add_option("--cost-shift", p.cost_shift, "COST_SHIFT of the 'shift' simplification")
       ->check(sm::tools::int_in(0, 4))
       ->capture_default_str();
+  app.add_option("--ad-shift", p.ad_shift, "the cost's intensity term: |left - right| >> AD_SHIFT")
+      ->check(sm::tools::int_in(0, 7))
+      ->capture_default_str();
+  app.add_option("--ad-max", p.ad_max, "the intensity term's cap (0: census only)")
+      ->check(sm::tools::int_in(0, 15))
+      ->capture_default_str();
   app.add_option("--gc", p.gc, "float weights: intensity scale")
       ->check(sm::tools::finite_in(1e-6, 1e6))
       ->capture_default_str();
@@ -114,8 +120,16 @@ int run(int argc, char** argv) {
   json jout;
   jout["dataset"] = dataset;
   jout["simplify"] = sm::fref::simplify_string(p.simp);
-  jout["params"] = {{"census", p.census}, {"sw", p.sw}, {"levels", p.levels}, {"cost_shift", p.cost_shift},
-                    {"gc", p.gc},         {"gp", p.gp}, {"post", post},       {"sw_table", p.sw_table},
+  jout["params"] = {{"census", p.census},
+                    {"sw", p.sw},
+                    {"levels", p.levels},
+                    {"cost_shift", p.cost_shift},
+                    {"ad_shift", p.ad_shift},
+                    {"ad_max", p.ad_max},
+                    {"gc", p.gc},
+                    {"gp", p.gp},
+                    {"post", post},
+                    {"sw_table", p.sw_table},
                     {"penalties", pen}};
   jout["scenes"] = json::array();
   jout["subpix"] = subpix;

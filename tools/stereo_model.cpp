@@ -124,7 +124,11 @@ int run(int argc, char** argv) {
       app.add_option("--cost-shift", hw.cost_shift, "COST_SHIFT")->capture_default_str(),
       app.add_option("--max-objects", hw.max_objects, "MAX_OBJECTS")->capture_default_str(),
       app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str(),
-      app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str()};
+      app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str(),
+      app.add_option("--ad-shift", hw.ad_shift, "AD_SHIFT: the cost's intensity term is |L - R| >> AD_SHIFT")
+          ->capture_default_str(),
+      app.add_option("--ad-max", hw.ad_max, "AD_MAX: the intensity term's cap (0: census only)")
+          ->capture_default_str()};
   // the value registers (the active size comes from the images, RECT_ENABLE is --no-rect)
   // ranges in --help at the default configuration (--disp, ... may change them)
   const sm::tools::RegOptions reg_opts(app, r, hw, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
@@ -186,6 +190,8 @@ int run(int argc, char** argv) {
   if (hw_opts[5]->count()) hw.max_objects = cli_hw.max_objects;
   if (hw_opts[6]->count()) hw.label_slots = cli_hw.label_slots;
   if (hw_opts[7]->count()) hw.band_k = cli_hw.band_k;
+  if (hw_opts[8]->count()) hw.ad_shift = cli_hw.ad_shift;
+  if (hw_opts[9]->count()) hw.ad_max = cli_hw.ad_max;
   try {
     hw.validate();
   } catch (const std::invalid_argument& e) {

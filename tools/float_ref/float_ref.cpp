@@ -72,6 +72,8 @@ Params Params::defaults() {
   p.sw = hw.sw;
   p.levels = hw.disp;
   p.cost_shift = hw.cost_shift;
+  p.ad_shift = hw.ad_shift;
+  p.ad_max = hw.ad_max;
   p.sw_table = Regs::defaults(hw).sw_table;
   return p;
 }
@@ -121,20 +123,33 @@ CostVol aggregate(const Image8& left, const Image8& right, const Params& p) {
   if (p.sw < 1 || p.sw > 7 || p.sw % 2 == 0) throw std::invalid_argument(fmt::format("sw {} must be odd, 1..7", p.sw));
   if (p.cost_shift < 0 || p.cost_shift > 4)
     throw std::invalid_argument(fmt::format("cost_shift {} outside 0..4", p.cost_shift));
+  if (p.ad_shift < 0 || p.ad_shift > 7 || p.ad_max < 0 || p.ad_max > 15)
+    throw std::invalid_argument(
+        fmt::format("ad_shift {} outside 0..7 or ad_max {} outside 0..15", p.ad_shift, p.ad_max));
   if (!(p.gc > 0) || !(p.gp > 0)) throw std::invalid_argument("gc and gp must be positive");
   const Simplify& s = p.simp;
   const int w = left.w, h = left.h, nd = p.levels, r = (p.sw - 1) / 2;
   const int shift = s.cost_shift ? p.cost_shift : 0;
   const int cb = p.census * p.census - 1;
 
-  // C(x, y, d): the Hamming cost (CB where x - d < 0), shifted when simp.cost_shift.
+  // C(x, y, d): the Hamming cost plus the intensity term at the aggregation's scale, capped
+  // at CB (CB where x - d < 0; model/census.hpp matching_cost), shifted when simp.cost_shift.
+  // The term is the model's integer: it is part of the cost's definition, like the census bits.
   const CensusImage cl = census(left, p.census, s.census_border), cr = census(right, p.census, s.census_border);
+  HwConfig ad;
+  ad.ad_shift = p.ad_shift;
+  ad.ad_max = p.ad_max;
   std::vector<float> c(static_cast<size_t>(w) * h * nd);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       float* o = &c[(static_cast<size_t>(y) * w + x) * nd];
-      for (int d = 0; d < nd; ++d)
-        o[d] = static_cast<float>((x - d >= 0 ? census_distance(cl.at(x, y), cr.at(x - d, y)) : cb) >> shift);
+      for (int d = 0; d < nd; ++d) {
+        const int hc = x - d >= 0 ? std::min(census_distance(cl.at(x, y), cr.at(x - d, y)) +
+                                                 (ad_term(left.at(x, y), right.at(x - d, y), ad) << p.cost_shift),
+                                             cb)
+                                  : cb;
+        o[d] = static_cast<float>(hc >> shift);
+      }
     }
 
   // Weight factors: intensity by |dI| (0..255), spatial by window position.

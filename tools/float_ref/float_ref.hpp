@@ -58,12 +58,14 @@ struct Params {
   int sw = 5;                          // support-weight window side (odd, 1..7)
   int levels = 128;                    // disparity levels 0..levels-1
   int cost_shift = 2;                  // used when simp.cost_shift
+  int ad_shift = 2;                    // the cost's intensity term (model ad_term) ...
+  int ad_max = 7;                      // ... and its cap (0: census only)
   double gc = 10;                      // intensity scale of the float weights
   double gp = 10;                      // spatial scale of the float weights
   std::array<uint8_t, 32> sw_table{};  // used when simp.weight_table (model codes)
   Simplify simp;
   Post post = Post::chain;
-  // Model defaults for census, sw, levels, cost_shift and sw_table (HwConfig{},
+  // Model defaults for census, sw, levels, cost_shift, ad_shift, ad_max and sw_table (HwConfig{},
   // Regs::defaults); gc = gp = 10 (the float twin of issue 21).
   static Params defaults();
 };
