@@ -359,6 +359,12 @@ void add_term_portable(const uint8_t* l, const uint8_t* rev, int w, int nd, uint
 }
 
 #if defined(SM_X86_DISPATCH)
+__attribute__((target("avx512f,avx512bw"))) void add_term_avx512(const uint8_t* l, const uint8_t* rev, int w, int nd,
+                                                                 uint8_t mx, int as, int shift, uint8_t cp,
+                                                                 uint8_t* out) {
+  add_term_levels(l, rev, w, nd, mx, as, shift, cp, out);
+}
+
 __attribute__((target("avx2"))) void add_term_avx2(const uint8_t* l, const uint8_t* rev, int w, int nd, uint8_t mx,
                                                    int as, int shift, uint8_t cp, uint8_t* out) {
   add_term_levels(l, rev, w, nd, mx, as, shift, cp, out);
@@ -378,6 +384,9 @@ void add_term_row(const uint8_t* l, const uint8_t* r, int w, int nd, const HwCon
   for (int i = 0; i < w; ++i) rev[static_cast<size_t>(i)] = r[w - 1 - i];
   const auto mx = static_cast<uint8_t>(hw.ad_max), cp = static_cast<uint8_t>(cap);
 #if defined(SM_X86_DISPATCH)
+  static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                             std::getenv("SM_NO_AVX512") == nullptr;  // (tests of the AVX2 kernel)
+  if (avx512) return add_term_avx512(l, rev.data(), w, nd, mx, hw.ad_shift, shift, cp, out);
   static const bool avx2 = __builtin_cpu_supports("avx2");
   if (avx2) return add_term_avx2(l, rev.data(), w, nd, mx, hw.ad_shift, shift, cp, out);
 #endif

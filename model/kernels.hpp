@@ -1,4 +1,4 @@
-// Row kernels shared by the whole-frame stage functions (census_transform, hamming_cost,
+// Row kernels shared by the whole-frame stage functions (census_transform, matching_cost,
 // sw_aggregate, trellis_dp) and by run_pipeline, which streams a frame through them one
 // row at a time like the hardware does (a few rows of cost in a ring instead of whole
 // cost volumes: the volumes are 10 MB each at the paper configuration, and allocating

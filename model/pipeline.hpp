@@ -20,7 +20,7 @@ namespace sm {
 struct PipelineResult {
   Image8 bl, br;                      // after brightness control
   Image8 rl, rr;                      // after rectification
-  CostVolume raw;                     // Hamming costs (kept when keep_volumes)
+  CostVolume raw;                     // matching costs H (kept when keep_volumes)
   CostVolume agg;                     // aggregated costs (kept when keep_volumes)
   DispImage dp;                       // trellis DP output
   DispImage post;                     // after the enabled post-processing filters

@@ -19,10 +19,8 @@ module sm_ad_term #(
     input  wire [8*L-1:0]  b,  // right pixel of lane l at [8*l +: 8]
     output wire [TW*L-1:0] t   // bit k of lane l's term at [k*L + l]
 );
-  localparam TW = $clog2(AD_MAX + 1);
-  /* verilator lint_off WIDTH */
-  localparam [7:0] MAX_V = AD_MAX;
-  /* verilator lint_on WIDTH */
+  localparam TW  = $clog2(AD_MAX + 1);
+  localparam SHW = 8 - AD_SHIFT;  // width of |a - b| >> AD_SHIFT
 
   generate
     `SM_BAD_PARAM(g_bad_shift, AD_SHIFT < 0 || AD_SHIFT > 7,
@@ -36,14 +34,27 @@ module sm_ad_term #(
     for (l = 0; l < L; l = l + 1) begin : g_lane
       wire [7:0] bl = b[8*l +: 8];
       // Two subtractions side by side, picked by the compare: no negation after the
-      // subtraction, so the carry chains run in parallel.
-      wire [7:0] diff = (a >= bl) ? a - bl : bl - a;
-      wire [7:0] sh   = diff >> AD_SHIFT;
-      wire [7:0] term = (sh > MAX_V) ? MAX_V : sh;
+      // subtraction, so the carry chains run in parallel. Only the bits the shift keeps go
+      // on, and the term is TW bits wide: no wire here is constant by construction.
+      wire [7:0]     diff = (a >= bl) ? a - bl : bl - a;
+      wire [SHW-1:0] sh   = diff[7:AD_SHIFT];
+      wire [TW-1:0]  term;
+      if ((1 << SHW) - 1 > AD_MAX) begin : g_cap  // then SHW >= TW: AD_MAX >= 2^(TW-1)
+        /* verilator lint_off WIDTH */
+        localparam [SHW-1:0] MAX_V = AD_MAX;
+        /* verilator lint_on WIDTH */
+        assign term = (sh > MAX_V) ? MAX_V[TW-1:0] : sh[TW-1:0];
+      end else if (TW > SHW) begin : g_wide  // the shifted difference never exceeds the cap
+        assign term = {{(TW - SHW) {1'b0}}, sh};
+      end else begin : g_fit
+        assign term = sh;
+      end
       for (k = 0; k < TW; k = k + 1) begin : g_bit
         assign t[k*L + l] = term[k];
       end
-      wire unused_term_top = |(term >> TW);  // zero: term <= AD_MAX < 2^TW
+      if (AD_SHIFT > 0) begin : g_low
+        wire unused_low = |diff[AD_SHIFT-1:0];  // below the term's resolution
+      end
     end
   endgenerate
 endmodule
