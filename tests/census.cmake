@@ -46,6 +46,15 @@ sm_rtl_test(NAME tb_cost_addsat_small TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT
 sm_rtl_test(NAME tb_cost_addsat_full TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
             PARAMS L=7 HW=6 TW=4 COST_SHIFT=0 CB=63)
 
+# The census-only cost (AD_MAX 0: no intensity term), unfolded and folded.
+sm_rtl_test(NAME tb_cost_census_only TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 AD_MAX=0 ARGS --max-cost-frame)
+sm_rtl_test(NAME tb_cost_census_only_pu4 TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 PU=4 AD_MAX=0 ARGS --max-cost-frame)
+# A cost shift the term's cap meets early (COST_SHIFT 4: 7 << 4 = 112 against CB 48).
+sm_rtl_test(NAME tb_cost_shift4 TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 CENSUS=7 COST_SHIFT=4 ARGS --max-cost-frame)
+
 # Folded sm_cost (F = DISP / PU clocks per beat, ce at most every F clocks, inputs held):
 # PU = DISP explicitly (the parallel branch), F = 2 (the early-ce hold multiplexer), 4, 8
 # and 16 (PU 1); F = 3 and F = 13 (segments whose depth is not a power of two, odd width

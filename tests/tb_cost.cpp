@@ -168,5 +168,6 @@ int main(int argc, char** argv) {
     t.check(what.empty(), [&] { return fmt::format("frame {} x {} y {} {}", p->frame, p->x, p->y, what); });
   }
   t.all_out();
-  return t.finish(fmt::format("tb_cost MAX_WIDTH={} CENSUS={} DISP={} PU={} W={}", kMaxWidth, kCensus, kDisp, pu, w));
+  return t.finish(fmt::format("tb_cost MAX_WIDTH={} CENSUS={} DISP={} PU={} COST_SHIFT={} AD_SHIFT={} AD_MAX={} W={}",
+                              kMaxWidth, kCensus, kDisp, pu, hw.cost_shift, hw.ad_shift, hw.ad_max, w));
 }
