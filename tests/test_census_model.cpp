@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <opencv2/core.hpp>
 #include <random>
+#include <tuple>
 
 #include "census.hpp"
 
@@ -225,18 +226,26 @@ TEST_CASE("matching cost adds the intensity term at the aggregation's scale, cap
   hw.ad_shift = 0;
   hw.cost_shift = 1;  // min(20, 7) << 1
   CHECK(sm::matching_cost(cl, sm::census_transform(r120, hw), left, r120, hw).at(5, 1, 3) == 14);
-  // On a random pair: H plus the term, capped, level by level (the naive sum).
-  const auto a = random_image(40, 4, 91), b = random_image(40, 4, 92);
-  hw = config(15, 16);
-  const auto ca = sm::census_transform(a, hw), cb = sm::census_transform(b, hw);
-  const auto hm = sm::hamming_cost(ca, cb, hw), m = sm::matching_cost(ca, cb, a, b, hw);
-  int wrong = 0;
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 40; ++x)
-      for (int d = 0; d < 16; ++d) {
-        const int t = x >= d ? std::min(std::abs(a.at(x, y) - b.at(x - d, y)) / 4, 7) : 0;
-        wrong += m.at(x, y, d) != std::min(hm.at(x, y, d) + 4 * t, 224);
-      }
-  CHECK(wrong == 0);
-  CHECK_THROWS_AS(sm::matching_cost(ca, cb, a, random_image(39, 4, 93), hw), std::invalid_argument);
+  // On random pairs: H plus the term, capped, level by level (the naive sum); 16 levels (the
+  // vector kernels' tails only) and 128 (their 32-level blocks too), two shift pairs.
+  for (const auto& [disp, ad_shift, cost_shift] :
+       {std::tuple{16, 2, 2}, std::tuple{128, 2, 2}, std::tuple{128, 0, 4}}) {
+    INFO("levels " << disp << " AD_SHIFT " << ad_shift << " COST_SHIFT " << cost_shift);
+    const int w = 160;
+    const auto a = random_image(w, 4, 91), b = random_image(w, 4, 92);
+    hw = config(15, disp);
+    hw.ad_shift = ad_shift;
+    hw.cost_shift = cost_shift;
+    const auto ca = sm::census_transform(a, hw), cb = sm::census_transform(b, hw);
+    const auto hm = sm::hamming_cost(ca, cb, hw), m = sm::matching_cost(ca, cb, a, b, hw);
+    int wrong = 0;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int d = 0; d < disp; ++d) {
+          const int t = x >= d ? std::min(std::abs(a.at(x, y) - b.at(x - d, y)) >> ad_shift, 7) : 0;
+          wrong += m.at(x, y, d) != std::min(hm.at(x, y, d) + (t << cost_shift), 224);
+        }
+    CHECK(wrong == 0);
+    CHECK_THROWS_AS(sm::matching_cost(ca, cb, a, random_image(w - 1, 4, 93), hw), std::invalid_argument);
+  }
 }
