@@ -336,27 +336,15 @@ namespace {
 // n levels of one left pixel a against the right pixels q[0..n-1] (add_term_row's rule).
 __attribute__((always_inline)) inline void add_term_span(uint8_t a, const uint8_t* q, int n, uint8_t mx, int as,
                                                          int shift, uint8_t cp, uint8_t* o) {
-  for (int d = 0; d < n; ++d) {
-    const uint8_t b = q[d];
-    const auto diff = static_cast<uint8_t>(std::max(a, b) - std::min(a, b));
-    const auto t = static_cast<uint8_t>(std::min(static_cast<uint8_t>(diff >> as), mx) << shift);
-    // min(o + t, cap) with a saturating byte sum: a sum past 255 is past cap too
-    const auto sum = static_cast<uint8_t>(o[d] + t);
-    o[d] = std::min(sum < o[d] ? uint8_t{255} : sum, cp);
-  }
+  for (int d = 0; d < n; ++d)  // min(o + t, cap), the sum in int
+    o[d] = static_cast<uint8_t>(std::min(o[d] + (ad_term(a, q[d], as, mx) << shift), int{cp}));
 }
 
-// The body of add_term_row on the reversed right row; always inlined, so each caller below
-// is compiled for its own instruction set.
-__attribute__((always_inline)) inline void add_term_levels(const uint8_t* l, const uint8_t* rev, int w, int nd,
-                                                           uint8_t mx, int as, int shift, uint8_t cp, uint8_t* out) {
-  for (int x = 0; x < w; ++x)
-    add_term_span(l[x], rev + (w - 1 - x), std::min(nd, x + 1), mx, as, shift, cp, out + static_cast<size_t>(x) * nd);
-}
-
+// add_term_row on the reversed right row without vector code.
 void add_term_portable(const uint8_t* l, const uint8_t* rev, int w, int nd, uint8_t mx, int as, int shift, uint8_t cp,
                        uint8_t* out) {
-  add_term_levels(l, rev, w, nd, mx, as, shift, cp, out);
+  for (int x = 0; x < w; ++x)
+    add_term_span(l[x], rev + (w - 1 - x), std::min(nd, x + 1), mx, as, shift, cp, out + static_cast<size_t>(x) * nd);
 }
 
 #if defined(SM_X86_DISPATCH)

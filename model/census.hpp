@@ -16,11 +16,11 @@ CensusImage census_transform(const Image8& in, const HwConfig& hw, int threads =
 // hw.census_bits() when x - d < 0. Throws std::invalid_argument on a size mismatch.
 CostVolume hamming_cost(const CensusImage& cl, const CensusImage& cr, const HwConfig& hw, int threads = 1);
 
-// The cost's intensity term (sm_ad_term): min(|a - b| >> hw.ad_shift, hw.ad_max), 0 when
-// hw.ad_max is 0 (census only).
-inline int ad_term(int a, int b, const HwConfig& hw) {
-  const int t = (a > b ? a - b : b - a) >> hw.ad_shift;
-  return t < hw.ad_max ? t : hw.ad_max;
+// The cost's intensity term (sm_ad_term): min(|a - b| >> ad_shift, ad_max) (HwConfig's
+// AD_SHIFT and AD_MAX), 0 when ad_max is 0 (census only).
+inline int ad_term(int a, int b, int ad_shift, int ad_max) {
+  const int t = (a > b ? a - b : b - a) >> ad_shift;
+  return t < ad_max ? t : ad_max;
 }
 
 // The matching cost sm_cost outputs (docs/algorithm.md, section 4): C(x, y, d) =

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
       t->eval();
       for (int l = 0; l < kL; ++l) {
         const int bl = (b + 37 * l) & 255;
-        const unsigned got = sm::test::plane_bits(t->t, l, tw, kL), want = sm::ad_term(a, bl, hw);
+        const unsigned got = sm::test::plane_bits(t->t, l, tw, kL), want = sm::ad_term(a, bl, hw.ad_shift, hw.ad_max);
         t.check(got == want, [&] { return fmt::format("a {} b {} lane {}: term {}, want {}", a, bl, l, got, want); });
       }
     }

@@ -136,18 +136,17 @@ CostVol aggregate(const Image8& left, const Image8& right, const Params& p) {
   // at CB (CB where x - d < 0; model/census.hpp matching_cost), shifted when simp.cost_shift.
   // The term is the model's integer: it is part of the cost's definition, like the census bits.
   const CensusImage cl = census(left, p.census, s.census_border), cr = census(right, p.census, s.census_border);
-  HwConfig ad;
-  ad.ad_shift = p.ad_shift;
-  ad.ad_max = p.ad_max;
   std::vector<float> c(static_cast<size_t>(w) * h * nd);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       float* o = &c[(static_cast<size_t>(y) * w + x) * nd];
       for (int d = 0; d < nd; ++d) {
-        const int hc = x - d >= 0 ? std::min(census_distance(cl.at(x, y), cr.at(x - d, y)) +
-                                                 (ad_term(left.at(x, y), right.at(x - d, y), ad) << p.cost_shift),
-                                             cb)
-                                  : cb;
+        const int hc =
+            x - d >= 0
+                ? std::min(census_distance(cl.at(x, y), cr.at(x - d, y)) +
+                               (ad_term(left.at(x, y), right.at(x - d, y), p.ad_shift, p.ad_max) << p.cost_shift),
+                           cb)
+                : cb;
         o[d] = static_cast<float>(hc >> shift);
       }
     }
