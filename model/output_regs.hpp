@@ -1,5 +1,5 @@
 // The output stage's settings (sub-pixel estimator, validity rules; docs/algorithm.md
-// section 9) as the model's functions take them. The registers SUBPIX .. TEX_T of
+// section 9) as the model's functions take them. The registers SUBPIX .. SMOOTH_T of
 // rtl/regmap.json (members of Regs) give them (output_regs); the studies also set the
 // model-only estimator subpix_src 0, which no register reaches. The member defaults are
 // the registers' reset values, chosen on the 14 scenes.
@@ -33,6 +33,9 @@ struct OutputRegs {
   uint8_t uniq_t = 1;
   uint8_t tex_en = 0;  // texture: invalid when Cmax - C1 < tex_t (flat cost curve)
   uint8_t tex_t = 0;
+  // ---- smoothing of the Q.4 value (SMOOTH_EN, SMOOTH_T; model/smooth.hpp) ----
+  uint8_t smooth_en = 1;
+  uint8_t smooth_t = 24;
 };
 
 // The same registers with every validity rule off and the DP's own fill: the dense mode
@@ -60,6 +63,8 @@ inline OutputRegs output_regs(const Regs& r) {
   o.uniq_t = r.uniq_t;
   o.tex_en = r.tex_en;
   o.tex_t = r.tex_t;
+  o.smooth_en = r.smooth_en;
+  o.smooth_t = r.smooth_t;
   return o;
 }
 
@@ -78,6 +83,8 @@ inline void set_output_regs(Regs& r, const OutputRegs& o) {
   r.uniq_t = o.uniq_t;
   r.tex_en = o.tex_en;
   r.tex_t = o.tex_t;
+  r.smooth_en = o.smooth_en;
+  r.smooth_t = o.smooth_t;
 }
 
 }  // namespace sm

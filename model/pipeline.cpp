@@ -14,6 +14,7 @@
 
 #include "kernels.hpp"
 #include "parallel.hpp"
+#include "smooth.hpp"
 
 namespace sm {
 
@@ -240,7 +241,12 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     const auto words = output_and_objects(r, regs, hw, band_count(h, threads));
     r.stage_ms.emplace_back("output", std::chrono::duration<double, std::milli>(words - t).count());
     r.stage_ms.emplace_back("objects", std::chrono::duration<double, std::milli>(clock::now() - words).count());
+    t = clock::now();
   }
+  // The labeller reads the words as formed (sm_outstage's m_obj_disp); the stream carries
+  // them smoothed.
+  r.out = smooth_output(r.out, regs.smooth_en, regs.smooth_t, threads);
+  lap("smooth");
   return r;
 }
 

@@ -27,7 +27,7 @@ struct PipelineResult {
   std::vector<DispImage> post_steps;  // after each filter step F0..F3 (enabled or not)
   ObjectList objects;
   Evidence evidence;  // per-pixel evidence of the output stage (model/evidence.hpp)
-  OutImage out;       // planned output word per pixel at regs.out (model/outword.hpp)
+  OutImage out;       // the output word per pixel, smoothed (model/outword.hpp, model/smooth.hpp)
   std::vector<std::pair<std::string, double>> stage_ms;  // wall time per stage
 };
 

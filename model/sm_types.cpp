@@ -53,7 +53,8 @@ std::map<std::string, int> HwConfig::parameters() const {
 }
 
 int HwConfig::flush_rows() const {  // as sm_top.v's FLUSH_ROWS
-  return (rect_radius + 1) + (census - 1) / 2 + (sw - 1) / 2 + 2 + band_k + 5 + (disp / 2 + 64 + 1 + 15) / 16 + 1;
+  return (rect_radius + 1) + (census - 1) / 2 + (sw - 1) / 2 + 2 + band_k + 5 + 2 + (disp / 2 + 64 + 1 + 7 + 15) / 16 +
+         1;
 }
 
 void HwConfig::validate() const {

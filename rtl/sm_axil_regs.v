@@ -75,6 +75,7 @@ module sm_axil_regs #(
     // UNIQ_T, AGREE_T, LR_T, OCC_T, TEX_EN, UNIQ_EN, AGREE_EN, LR_EN, FILL_BG, OCC_EN,
     // SUBPIX_FIT, SUBPIX}
     output wire [48:0]       cfg_out,
+    output wire [6:0]        cfg_smooth,      // {SMOOTH_T, SMOOTH_EN}
     /* verilator coverage_on */
     // object list read port: obj_rd_data is sampled two clocks after obj_rd_idx changes
     output reg  [OIW-1:0]    obj_rd_idx,
@@ -173,6 +174,7 @@ module sm_axil_regs #(
                     shadow_q[SM_UNIQ_EN_VALUE_SOFF], shadow_q[SM_AGREE_EN_VALUE_SOFF], shadow_q[SM_LR_EN_VALUE_SOFF],
                     shadow_q[SM_FILL_BG_VALUE_SOFF], shadow_q[SM_OCC_EN_VALUE_SOFF],
                     shadow_q[SM_SUBPIX_FIT_VALUE_SOFF], shadow_q[SM_SUBPIX_VALUE_SOFF +: 2]};
+  assign cfg_smooth = {shadow_q[SM_SMOOTH_T_VALUE_SOFF +: 6], shadow_q[SM_SMOOTH_EN_VALUE_SOFF]};
 
   // ---- address decoding (the byte-lane bits a[1:0] are ignored by design)
   /* verilator lint_off UNUSEDSIGNAL */

@@ -83,12 +83,13 @@ module sm_top #(
   localparam IN_DEPTH = 1 << $clog2(MAX_WIDTH + 32);  // input FIFO (sm_seq's depth rule)
   localparam IN_LW    = $clog2(IN_DEPTH) + 1;         // its level, 0..IN_DEPTH + 1
   // Virtual rows that push a frame's tail out: the row delays of every stage
-  // (rectify R+1, census, aggregation, DP 2, band filter BAND_K, medians 2+1+2) plus their
-  // column delays (DP skew DISP/2 and the stage pipelines, < DISP/2 + 64 beats, and the
-  // band filter's 1 beat) counted in rows of the narrowest line (16). Extra virtual rows
+  // (rectify R+1, census, aggregation, DP 2, band filter BAND_K, medians 2+1+2, smoothing
+  // 2) plus their column delays (DP skew DISP/2 and the stage pipelines, < DISP/2 + 64
+  // beats, the band filter's 1 beat and the smoothing's 7) counted in rows of the
+  // narrowest line (16). Extra virtual rows
   // only cost idle time.
-  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 +
-                          (DISP / 2 + 64 + 1 + 15) / 16 + 1;
+  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 + 2 +
+                          (DISP / 2 + 64 + 1 + 7 + 15) / 16 + 1;
 
 
   // ---------------------------------------------------------------- registers
@@ -103,6 +104,7 @@ module sm_top #(
   wire [7:0]    cfg_obj_near, cfg_obj_tol;
   wire [15:0]   cfg_obj_min_pixels;
   wire [48:0]   cfg_out;
+  wire [6:0]    cfg_smooth;
   wire          grid_we;
   wire [31:0]   grid_wdata;
   wire [GAW-1:0] grid_waddr;  // {camera, bank, point}
@@ -160,7 +162,7 @@ module sm_top #(
       .cfg_grid_bank(cfg_grid_bank), .cfg_occ(cfg_occ), .cfg_occ_edge(cfg_occ_edge),
       .cfg_edge_t(cfg_edge_t), .cfg_sw_table(cfg_sw_table),
       .cfg_filter_enable(cfg_filter_enable), .cfg_obj_near(cfg_obj_near), .cfg_obj_tol(cfg_obj_tol),
-      .cfg_obj_min_pixels(cfg_obj_min_pixels), .cfg_out(cfg_out),
+      .cfg_obj_min_pixels(cfg_obj_min_pixels), .cfg_out(cfg_out), .cfg_smooth(cfg_smooth),
       .obj_rd_idx(obj_rd_idx), .obj_rd_data(obj_rd_data_q),
       .grid_we(grid_we), .grid_waddr(grid_waddr), .grid_wdata(grid_wdata)
   );
@@ -226,8 +228,9 @@ module sm_top #(
   localparam P_OBJ  = P_FILT + 4;      // object near, tol, min pixels, then the height
   localparam P_H    = P_OBJ + 32;
   localparam P_OUT  = P_H + YW;        // the output stage's registers (sm_outfields' s_cfg)
-  localparam PW     = P_OUT + 49;
-  wire [PW-1:0]   fr_par = {cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
+  localparam P_SMO  = P_OUT + 49;      // smoothing: enable, then the threshold
+  localparam PW     = P_SMO + 7;
+  wire [PW-1:0]   fr_par = {cfg_smooth, cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
                             cfg_edge_t, cfg_occ_edge, cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
   wire [4*PW-1:0] fr_hist;
   sm_frame_hist #(.PW(PW)) u_fhist (
@@ -427,9 +430,22 @@ module sm_top #(
   end
 
   // ---------------------------------------------------------------- output
+  // Smoothing of the words' Q.4 values (docs/algorithm.md 9.7); the labeller above reads
+  // them as formed. Its registers: those of the frame whose first centre it takes next.
+  wire [`SM_SIDE_W-1:0] sm_side;
+  wire [31:0] sm_word;
+  wire [6:0]  par_smooth;
+  sm_frame_sel #(.PW(PW), .LSB(P_SMO), .W(7), .NEXT(1)) u_fsel_smooth (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(sm_side), .hist(fr_hist), .par(par_smooth)
+  );
+  sm_out_smooth #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_smooth (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_smooth[0]), .thr(par_smooth[6:1]),
+      .s_side(out_side), .s_word(out_word), .m_side(sm_side), .m_word(sm_word)
+  );
+
   sm_outfmt #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT)) u_out (
       .clk(aclk), .rst_n(host_rst_n), .restart(!rst_n), .ce(ce), .width(width), .height(frame_height),
-      .in_side(out_side), .in_word(out_word), .room(out_room), .err_overflow(out_overflow),
+      .in_side(sm_side), .in_word(sm_word), .room(out_room), .err_overflow(out_overflow),
       .m_axis_tdata(m_axis_tdata), .m_axis_tuser(m_axis_tuser), .m_axis_tlast(m_axis_tlast),
       .m_axis_tvalid(m_axis_tvalid), .m_axis_tready(m_axis_tready)
   );

@@ -33,3 +33,13 @@ sm_rtl_test(NAME tb_outfields_paper TOP sm_outfields SOURCES ${CMAKE_CURRENT_LIS
 if(TARGET sm_output_bound)
   sm_unit_test(test_output_bound LIBS sm_output_bound DISCOVER)
 endif()
+
+# The output words' smoothing (sm_out_smooth) against the model's smooth_output: DISP 16 at
+# odd and tiny widths, DISP 10 (not a power of two), the paper's DISP 128 at its width.
+sm_rtl_test(NAME tb_out_smooth TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_smooth.cpp
+            PARAMS MAX_WIDTH=64 DISP=16 ARGS --widths 37,3,64 --height 9)
+sm_rtl_test(NAME tb_out_smooth_odd TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_smooth.cpp
+            PARAMS MAX_WIDTH=50 DISP=10 ARGS --widths 23,4 --height 7)
+sm_rtl_test(NAME tb_out_smooth_paper TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_smooth.cpp
+            PARAMS MAX_WIDTH=320 DISP=128 ARGS --widths 320,67 --height 6)
+sm_unit_test(test_smooth_model LIBS sm_model DISCOVER)

@@ -745,14 +745,16 @@ class ResetPhases {
     begin(Scn::kFrame);
     const size_t n = tb_.queued();
     const int before = tb_.frames_out();
-    for (int64_t c = 1; c < 400000 && e.obj_valid < 0; ++c) {
+    // (the object packet may leave before the frame's last pixel: the labeller reads the
+    // words ahead of the output smoothing's two rows)
+    for (int64_t c = 1; c < 400000 && (e.obj_valid < 0 || e.last_out < 0); ++c) {
       const size_t q = tb_.queued();
       tb_.cycle();
       if (q > tb_.queued() && q == n) e.first_in = c;
       if (q > tb_.queued() && q == n / 2) e.mid_in = c;
       if (q > tb_.queued() && q == 1) e.last_in = c;
       if (tb_.frames_out() > before && e.last_out < 0) e.last_out = c;
-      if (tb_.top().m_axis_obj_tvalid) e.obj_valid = c;
+      if (tb_.top().m_axis_obj_tvalid && e.obj_valid < 0) e.obj_valid = c;
     }
     tb_.drain();
     if (e.first_in < 0 || e.mid_in < 0 || e.last_in < 0 || e.last_out < 0 || e.obj_valid < 0)

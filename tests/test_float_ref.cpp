@@ -135,7 +135,8 @@ TEST_CASE("float reference with every simplification on equals the bit-exact mod
     CHECK(sm::fref::run(l, r, p, 4.0 * occ) == model.post);
     // The sub-pixel output: the model's dense output word by word.
     const sm::DispImage dp = sm::fref::trellis(fa, 4.0 * occ, p);
-    const std::vector<float> sub = sm::fref::subpix(fa, dp, sm::fref::post(dp, p), p);
+    const std::vector<float> sub =
+        sm::fref::smooth(sm::fref::subpix(fa, dp, sm::fref::post(dp, p), p), sp.width, sp.height, p);
     const cv::Mat want = sm::tools::out_to_float(model.out);
     size_t off = 0, fractions = 0;
     for (int y = 0; y < sp.height; ++y)

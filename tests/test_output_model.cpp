@@ -14,6 +14,7 @@
 #include "confidence.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
+#include "smooth.hpp"
 #include "subpix.hpp"
 #include "validity.hpp"
 
@@ -316,12 +317,12 @@ TEST_CASE("no phantom surfaces in the built-in scene's occluded spans", "[unit][
   fill.fill_bg = 1;
   classic.fill_bg = 0;
   long n = 0;
-  const long before = count_phantoms(sc, make_output(census_only.evidence, census_only.post, 128, classic), n);
+  const long before = count_phantoms(sc, stream_words(census_only.evidence, census_only.post, 128, classic), n);
   INFO("classic fill, census only: " << before << " of " << n << " checked occluded pixels are phantoms");
   CHECK(n > 5000);
   CHECK(before > n / 20);  // the bars are there without the rules
   for (const OutputRegs& r : {OutputRegs{}, fill}) {
-    const long ph = count_phantoms(sc, make_output(res.evidence, res.post, 128, r), n);
+    const long ph = count_phantoms(sc, stream_words(res.evidence, res.post, 128, r), n);
     INFO("occ_en " << int(r.occ_en) << " fill_bg " << int(r.fill_bg) << ": " << ph << " phantoms");
     CHECK(ph <= n / 400);
   }

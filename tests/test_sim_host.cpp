@@ -315,7 +315,7 @@ TEST_CASE("output registers: random values every frame, each frame bit-exact wit
   const Scenes sc;
   const fs::path d = kTmp / "outregs";
   fs::create_directories(d);
-  // Every register of the output stage (SUBPIX .. TEX_T) drawn each frame (fixed seed):
+  // Every register of the output stage (SUBPIX .. SMOOTH_T) drawn each frame (fixed seed):
   // thresholds small a quarter of the time (rules that fail) and anywhere in 0..255
   // otherwise, over enough frames that every register bit rises and falls more than once
   // on its way to the pipeline (toggle coverage counts a transition seen twice).
@@ -334,6 +334,7 @@ TEST_CASE("output registers: random values every frame, each frame bit-exact wit
     o.occ_en = coin(), o.occ_t = thr(), o.fill_bg = coin();
     o.lr_en = coin(), o.lr_t = thr(), o.agree_en = coin(), o.agree_t = thr();
     o.uniq_en = coin(), o.uniq_t = thr(), o.tex_en = coin(), o.tex_t = thr();
+    o.smooth_en = static_cast<uint8_t>(rng() % 4 != 0), o.smooth_t = static_cast<uint8_t>(rng() % 64);
     outs.push_back(o);
     const json j = {{"subpix", o.subpix_en ? o.subpix_src : 0},
                     {"subpix_fit", o.subpix_fit},
@@ -347,7 +348,9 @@ TEST_CASE("output registers: random values every frame, each frame bit-exact wit
                     {"uniq_en", o.uniq_en},
                     {"uniq_t", o.uniq_t},
                     {"tex_en", o.tex_en},
-                    {"tex_t", o.tex_t}};
+                    {"tex_t", o.tex_t},
+                    {"smooth_en", o.smooth_en},
+                    {"smooth_t", o.smooth_t}};
     const fs::path p = d / ("f" + std::to_string(f) + ".json");
     write_json(p, j);
     args += f == 0 ? " --regs \"" + p.string() + "\"" : " --regs-at " + std::to_string(f) + "=\"" + p.string() + "\"";

@@ -18,6 +18,7 @@
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "outword.hpp"
+#include "smooth.hpp"
 #include "pipeline.hpp"
 #include "sm_chessboard_rig.hpp"
 #include "sm_cmd.hpp"
@@ -430,8 +431,8 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
       INFO(r.err);
       REQUIRE(r.rc == 0);
       const sm::OutImage word =
-          sm::make_output(res.evidence, res.post, 16,
-                          std::string(mode) == "dense" ? sm::dense_mode(sm::OutputRegs{}) : sm::OutputRegs{});
+          sm::stream_words(res.evidence, res.post, 16,
+                           std::string(mode) == "dense" ? sm::dense_mode(sm::OutputRegs{}) : sm::OutputRegs{});
       cv::Mat want(ref.size(), CV_16UC1), conf(ref.size(), CV_8UC1);
       for (int y = 0; y < ref.rows; ++y)
         for (int x = 0; x < ref.cols; ++x) {

@@ -38,6 +38,7 @@
 #include "toolio/sm_scenegen.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
+#include "smooth.hpp"
 #include "sm_defs.hpp"
 
 namespace {
@@ -126,13 +127,13 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
   return from_fixed16(d);
 }
 
-// The model's output stage (model/outword.hpp) in its two modes: dense (every pixel valid,
+// The model's output words (model/outword.hpp, smoothed: model/smooth.hpp) in its two modes: dense (every pixel valid,
 // the DP's fill, the Q.4 fraction) with its confidence, and checked (the registers' rules).
 void add_output_modes(const sm::PipelineResult& res, int levels, const sm::OutputRegs& regs, MethodOut& o) {
-  const sm::OutImage dense = sm::make_output(res.evidence, res.post, levels, sm::dense_mode(regs));
+  const sm::OutImage dense = sm::stream_words(res.evidence, res.post, levels, sm::dense_mode(regs));
   o.disp.push_back(sm::tools::out_to_float(dense));
   o.conf.push_back(sm::tools::out_to_conf(dense));
-  o.disp.push_back(sm::tools::out_to_float(sm::make_output(res.evidence, res.post, levels, regs)));
+  o.disp.push_back(sm::tools::out_to_float(sm::stream_words(res.evidence, res.post, levels, regs)));
   o.conf.emplace_back();
 }
 

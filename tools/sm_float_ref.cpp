@@ -28,11 +28,11 @@ using json = nlohmann::json;
 bool is_classic(const std::string& n) { return n == "cones" || n == "teddy" || n == "tsukuba" || n == "venus"; }
 
 // The disparity of one penalty as float pixels: the post filters' integer output, or with
-// `subpix` the sub-pixel output after them.
+// `subpix` the sub-pixel output after them, smoothed.
 cv::Mat scored_output(const sm::fref::CostVol& vol, double penalty, const sm::fref::Params& p, bool subpix) {
   const sm::DispImage dp = sm::fref::trellis(vol, penalty, p), out = sm::fref::post(dp, p);
   if (!subpix) return sm::tools::disp_to_float(out);
-  std::vector<float> v = sm::fref::subpix(vol, dp, out, p);
+  std::vector<float> v = sm::fref::smooth(sm::fref::subpix(vol, dp, out, p), vol.w, vol.h, p);
   return cv::Mat(vol.h, vol.w, CV_32F, v.data()).clone();
 }
 cv::Mat scored_output(const sm::Image8& l, const sm::Image8& r, const sm::fref::Params& p, double penalty,
@@ -72,6 +72,10 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--ad-max", p.ad_max, "the intensity term's cap (0: census only)")
       ->check(sm::tools::int_in(0, 15))
+      ->capture_default_str();
+  app.add_option("--smooth-t", p.smooth_t,
+                 "with --subpix: smoothing threshold in pixels (docs/algorithm.md 9.7; 0: off)")
+      ->check(sm::tools::finite_in(0, 4))
       ->capture_default_str();
   app.add_option("--gc", p.gc, "float weights: intensity scale")
       ->check(sm::tools::finite_in(1e-6, 1e6))
@@ -126,6 +130,7 @@ int run(int argc, char** argv) {
                     {"cost_shift", p.cost_shift},
                     {"ad_shift", p.ad_shift},
                     {"ad_max", p.ad_max},
+                    {"smooth_t", p.smooth_t},
                     {"gc", p.gc},
                     {"gp", p.gp},
                     {"post", post},

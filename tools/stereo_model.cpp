@@ -34,6 +34,7 @@
 #include "toolio/sm_regs_json.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
+#include "smooth.hpp"
 #include "sm_defs.hpp"
 
 namespace {
@@ -240,8 +241,8 @@ int run(int argc, char** argv) {
   const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
   const sm::OutImage word =
       mode == "integer" ? sm::OutImage{}
-                        : sm::make_output(res.evidence, res.post, hw.disp,
-                                          mode == "dense" ? sm::dense_mode(sm::output_regs(r)) : sm::output_regs(r));
+                        : sm::stream_words(res.evidence, res.post, hw.disp,
+                                           mode == "dense" ? sm::dense_mode(sm::output_regs(r)) : sm::output_regs(r));
   const cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;

@@ -75,6 +75,7 @@ Params Params::defaults() {
   p.ad_shift = hw.ad_shift;
   p.ad_max = hw.ad_max;
   p.sw_table = Regs::defaults(hw).sw_table;
+  p.smooth_t = Regs::defaults(hw).smooth_t / 16.0;
   return p;
 }
 
@@ -318,6 +319,26 @@ std::vector<float> subpix(const CostVol& a, const DispImage& dp, const DispImage
       v[static_cast<size_t>(y) * a.w + x] = static_cast<float>(o + f);
     }
   return v;
+}
+
+std::vector<float> smooth(const std::vector<float>& v, int w, int h, const Params& p) {
+  if (p.smooth_t <= 0) return v;
+  std::vector<float> o(v.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double c = v[static_cast<size_t>(y) * w + x];
+      double s = 0;
+      int k = 0;
+      for (int yy = std::max(0, y - 2); yy <= std::min(h - 1, y + 2); ++yy)
+        for (int xx = std::max(0, x - 2); xx <= std::min(w - 1, x + 2); ++xx) {
+          const double d = v[static_cast<size_t>(yy) * w + xx] - c;
+          if (std::abs(d) <= p.smooth_t) s += d, ++k;
+        }
+      // the rounded Q.4 value: the mean's offset in 1/16 px, floor(16 s / k + 1/2)
+      const double off = p.simp.frac_q4 ? std::floor(16 * s / k + 0.5) / 16 : s / k;
+      o[static_cast<size_t>(y) * w + x] = static_cast<float>(c + off);
+    }
+  return o;
 }
 
 DispImage run(const Image8& left, const Image8& right, const Params& p, double penalty_raw) {

@@ -63,10 +63,11 @@ struct Params {
   double gc = 10;                      // intensity scale of the float weights
   double gp = 10;                      // spatial scale of the float weights
   std::array<uint8_t, 32> sw_table{};  // used when simp.weight_table (model codes)
+  double smooth_t = 1.5;               // smoothing threshold in pixels (the model's SMOOTH_T / 16)
   Simplify simp;
   Post post = Post::chain;
-  // Model defaults for census, sw, levels, cost_shift, ad_shift, ad_max and sw_table (HwConfig{},
-  // Regs::defaults); gc = gp = 10 (the float twin of issue 21).
+  // Model defaults for census, sw, levels, cost_shift, ad_shift, ad_max, sw_table and smooth_t
+  // (HwConfig{}, Regs::defaults); gc = gp = 10 (the float twin of issue 21).
   static Params defaults();
 };
 
@@ -108,6 +109,12 @@ DispImage post(const DispImage& dp, const Params& p);
 // filters kept d (`out` = post(dp)); else the output's level. Real-valued, or the model's
 // Q.4 value with simp.frac_q4 (equal to the model's dense output on integer costs).
 std::vector<float> subpix(const CostVol& a, const DispImage& dp, const DispImage& out, const Params& p);
+
+// The sub-pixel output smoothed (docs/algorithm.md 9.7): every pixel of v (w x h, all valid)
+// becomes the mean of the pixels of its 5x5 window inside the image within p.smooth_t of it
+// (0: v unchanged). Real-valued, or rounded to 1/16 with simp.frac_q4 (the values then
+// Q.4 already: the model's smooth_output).
+std::vector<float> smooth(const std::vector<float>& v, int w, int h, const Params& p);
 
 // Whole pipeline for one penalty (raw Hamming scale).
 DispImage run(const Image8& left, const Image8& right, const Params& p, double penalty_raw);

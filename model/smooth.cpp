@@ -1,0 +1,77 @@
+#include "smooth.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "parallel.hpp"
+
+namespace sm {
+
+namespace {
+
+// A value no Q.4 disparity (0 .. 16 * 255 + 15) comes within any threshold (< 256) of:
+// invalid pixels and columns outside the frame.
+constexpr int16_t kFar = -8192;
+
+// The frame as Q.4 values, kSmoothR far columns on both sides of each row (stride w + 2R).
+std::vector<int16_t> padded_values(const OutImage& in) {
+  const size_t pw = static_cast<size_t>(in.w + 2 * kSmoothR);
+  std::vector<int16_t> q(pw * static_cast<size_t>(in.h), kFar);
+  for (int y = 0; y < in.h; ++y)
+    for (int x = 0; x < in.w; ++x) {
+      const uint32_t v = in.at(x, y);
+      q[static_cast<size_t>(y) * pw + static_cast<size_t>(x + kSmoothR)] =
+          out_valid(v) ? static_cast<int16_t>(out_q4(v)) : kFar;
+    }
+  return q;
+}
+
+// Rows y0..y1-1 of smooth_output into out; q = padded_values(in).
+void smooth_rows(const OutImage& in, const std::vector<int16_t>& q, int t, int y0, int y1, OutImage& out) {
+  const int w = in.w, h = in.h;
+  const size_t pw = static_cast<size_t>(w + 2 * kSmoothR);
+  std::vector<int16_t> s(static_cast<size_t>(w)), k(static_cast<size_t>(w));
+  for (int y = y0; y < y1; ++y) {
+    const int16_t* ctr = &q[static_cast<size_t>(y) * pw + kSmoothR];
+    std::fill(s.begin(), s.end(), int16_t{0});
+    std::fill(k.begin(), k.end(), int16_t{0});
+    for (int yy = std::max(0, y - kSmoothR); yy <= std::min(h - 1, y + kSmoothR); ++yy)
+      for (int dx = 0; dx <= 2 * kSmoothR; ++dx) {
+        const int16_t* nb = &q[static_cast<size_t>(yy) * pw + static_cast<size_t>(dx)];
+        for (int x = 0; x < w; ++x) {  // (the compiler's vector loop: 16-bit lanes)
+          const int d = nb[x] - ctr[x];
+          const bool m = d >= -t && d <= t;
+          s[static_cast<size_t>(x)] = static_cast<int16_t>(s[static_cast<size_t>(x)] + (m ? d : 0));
+          k[static_cast<size_t>(x)] = static_cast<int16_t>(k[static_cast<size_t>(x)] + (m ? 1 : 0));
+        }
+      }
+    for (int x = 0; x < w; ++x) {
+      const uint32_t v = in.at(x, y);
+      out.at(x, y) = out_valid(v)
+                         ? (v & ~0xffffu) | static_cast<uint32_t>(ctr[x] + smooth_offset(s[static_cast<size_t>(x)],
+                                                                                         k[static_cast<size_t>(x)]))
+                         : v;
+    }
+  }
+}
+
+}  // namespace
+
+int smooth_offset(int s, int k) {
+  const int num = 2 * s + k, den = 2 * k;  // floor(num / den), num of either sign
+  return num >= 0 ? num / den : -((-num + den - 1) / den);
+}
+
+OutImage smooth_output(const OutImage& in, int smooth_en, int smooth_t, int threads) {
+  if (!smooth_en) return in;
+  OutImage out(in.w, in.h);
+  const std::vector<int16_t> q = padded_values(in);
+  parallel_bands(in.h, threads, [&](int y0, int y1, int) { smooth_rows(in, q, smooth_t, y0, y1, out); });
+  return out;
+}
+
+OutImage stream_words(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int threads) {
+  return smooth_output(make_output(ev, post, nd, r, 0, threads), r.smooth_en, r.smooth_t, threads);
+}
+
+}  // namespace sm

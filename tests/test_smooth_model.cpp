@@ -1,0 +1,76 @@
+// The output words' smoothing (model/smooth.hpp, docs/algorithm.md 9.7) against independent
+// truth: the rounding against double arithmetic for every sum and count a window can give,
+// known answers on small word images (planes, depth steps, invalid pixels, frame borders),
+// and a noisy plane whose error the mean must lower.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "smooth.hpp"
+
+using namespace sm;
+
+namespace {
+OutImage words_of(int w, int h, unsigned (*q)(int, int)) {
+  OutImage m(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) m.at(x, y) = make_out_word(true, static_cast<unsigned>(x + 7 * y) & 0xff, q(x, y));
+  return m;
+}
+}  // namespace
+
+TEST_CASE("smooth_offset is the mean rounded half up for every window sum and count", "[unit][smooth]") {
+  CHECK(smooth_offset(0, 1) == 0);
+  CHECK(smooth_offset(1, 2) == 1);    // +0.5 rounds up
+  CHECK(smooth_offset(-1, 2) == 0);   // -0.5 rounds up too
+  CHECK(smooth_offset(-3, 2) == -1);  // -1.5
+  CHECK(smooth_offset(5, 3) == 2);    // 1.67
+  CHECK(smooth_offset(-5, 3) == -2);  // -1.67
+  long bad = 0;
+  for (int k = 1; k <= 25; ++k)
+    for (int s = -63 * (k - 1); s <= 63 * (k - 1); ++s)
+      bad += smooth_offset(s, k) != static_cast<int>(std::floor(static_cast<double>(s) / k + 0.5));
+  CHECK(bad == 0);
+}
+
+TEST_CASE("smoothing keeps planes of one value, depth steps and invalid pixels", "[unit][smooth]") {
+  const OutImage flat = words_of(9, 7, [](int, int) { return 16u * 40 + 5; });
+  CHECK(smooth_output(flat, 1, 24).px == flat.px);
+  // two surfaces 2 px apart (32 > 24 in 1/16 px): neither takes the other's values
+  const OutImage step = words_of(9, 7, [](int x, int) { return x < 4 ? 16u * 40 : 16u * 42; });
+  CHECK(smooth_output(step, 1, 24).px == step.px);
+  // an invalid word stays 0 and is left out of its neighbours' means
+  OutImage holes = words_of(9, 7, [](int, int) { return 16u * 40; });
+  holes.at(4, 3) = 0;
+  holes.at(2, 2) = make_out_word(true, 9, 16u * 41);  // within 24 of its neighbours
+  const OutImage o = smooth_output(holes, 1, 24);
+  CHECK(o.at(4, 3) == 0u);
+  // (2, 2): 24 neighbours at 640 (one invalid: 23) and itself at 656: 656 + floor(-368/24 + 1/2)
+  CHECK(static_cast<int>(out_q4(o.at(2, 2))) == 656 + static_cast<int>(std::floor(-16.0 * 23 / 24 + 0.5)));
+  CHECK(out_conf(o.at(2, 2)) == 9u);  // the confidence passes
+  // (0, 0): its window inside the frame is 3 x 3, (2, 2) among it: 640 + round(16 / 9)
+  CHECK(out_q4(o.at(0, 0)) == 640u + 2u);
+  CHECK(smooth_output(holes, 0, 24).px == holes.px);  // SMOOTH_EN 0
+  CHECK(smooth_output(holes, 1, 0).px == holes.px);   // SMOOTH_T 0: equal values only
+}
+
+TEST_CASE("smoothing lowers the error of a noisy slanted plane, for any thread count", "[unit][smooth]") {
+  std::mt19937 rng(7);
+  const int w = 41, h = 23;
+  OutImage m(w, h);
+  auto truth = [](int x, int y) { return 16.0 * 30 + 0.75 * x + 0.5 * y; };  // in 1/16 px
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int noise = static_cast<int>(rng() % 17) - 8;
+      m.at(x, y) = make_out_word(true, 0, static_cast<unsigned>(std::lround(truth(x, y)) + noise));
+    }
+  const OutImage o = smooth_output(m, 1, 24);
+  double before = 0, after = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      before += std::abs(out_q4(m.at(x, y)) - truth(x, y));
+      after += std::abs(out_q4(o.at(x, y)) - truth(x, y));
+    }
+  CHECK(after < 0.5 * before);
+  CHECK(smooth_output(m, 1, 24, 3).px == o.px);
+}
