@@ -26,15 +26,16 @@ std::vector<int16_t> padded_values(const OutImage& in) {
   return q;
 }
 
-// Rows y0..y1-1 of smooth_output into out; q = padded_values(in).
-void smooth_rows(const OutImage& in, const std::vector<int16_t>& q, int t, int y0, int y1, OutImage& out) {
+// Rows y0..y1-1 of smooth_output into out; q = padded_values(in), en = smooth_en.
+void smooth_rows(const OutImage& in, const std::vector<int16_t>& q, bool en, int t, int y0, int y1, OutImage& out) {
   const int w = in.w, h = in.h;
   const size_t pw = static_cast<size_t>(w + 2 * kSmoothR);
-  std::vector<int16_t> s(static_cast<size_t>(w)), k(static_cast<size_t>(w));
+  std::vector<int16_t> s(static_cast<size_t>(w)), k(static_cast<size_t>(w)), kn(static_cast<size_t>(w));
   for (int y = y0; y < y1; ++y) {
     const int16_t* ctr = &q[static_cast<size_t>(y) * pw + kSmoothR];
     std::fill(s.begin(), s.end(), int16_t{0});
     std::fill(k.begin(), k.end(), int16_t{0});
+    std::fill(kn.begin(), kn.end(), int16_t{0});
     for (int yy = std::max(0, y - kSmoothR); yy <= std::min(h - 1, y + kSmoothR); ++yy)
       for (int dx = 0; dx <= 2 * kSmoothR; ++dx) {
         const int16_t* nb = &q[static_cast<size_t>(yy) * pw + static_cast<size_t>(dx)];
@@ -43,14 +44,19 @@ void smooth_rows(const OutImage& in, const std::vector<int16_t>& q, int t, int y
           const bool m = d >= -t && d <= t;
           s[static_cast<size_t>(x)] = static_cast<int16_t>(s[static_cast<size_t>(x)] + (m ? d : 0));
           k[static_cast<size_t>(x)] = static_cast<int16_t>(k[static_cast<size_t>(x)] + (m ? 1 : 0));
+          const bool near = d >= -kSupportNear && d <= kSupportNear;
+          kn[static_cast<size_t>(x)] = static_cast<int16_t>(kn[static_cast<size_t>(x)] + (near ? 1 : 0));
         }
       }
     for (int x = 0; x < w; ++x) {
       const uint32_t v = in.at(x, y);
-      out.at(x, y) = out_valid(v)
-                         ? (v & ~0xffffu) | static_cast<uint32_t>(ctr[x] + smooth_offset(s[static_cast<size_t>(x)],
-                                                                                         k[static_cast<size_t>(x)]))
-                         : v;
+      if (!out_valid(v)) {
+        out.at(x, y) = v;
+        continue;
+      }
+      const size_t i = static_cast<size_t>(x);
+      const int qo = en ? ctr[x] + smooth_offset(s[i], k[i]) : ctr[x];
+      out.at(x, y) = make_out_word(true, support_confidence(out_conf(v), k[i], kn[i]), static_cast<unsigned>(qo));
     }
   }
 }
@@ -63,10 +69,10 @@ int smooth_offset(int s, int k) {
 }
 
 OutImage smooth_output(const OutImage& in, int smooth_en, int smooth_t, int threads) {
-  if (!smooth_en) return in;
   OutImage out(in.w, in.h);
   const std::vector<int16_t> q = padded_values(in);
-  parallel_bands(in.h, threads, [&](int y0, int y1, int) { smooth_rows(in, q, smooth_t, y0, y1, out); });
+  parallel_bands(in.h, threads,
+                 [&](int y0, int y1, int) { smooth_rows(in, q, smooth_en != 0, smooth_t, y0, y1, out); });
   return out;
 }
 

@@ -1,11 +1,14 @@
 `default_nettype none
 `include "sm_defs.vh"
-// Edge-preserving smoothing of the output word's Q.4 disparity (docs/algorithm.md 9.7,
-// model/smooth.cpp). A valid centre's value q becomes q + floor(S / K + 1/2): K counts the
-// valid pixels of its 5x5 window inside the frame whose value is within thr of q (the
-// centre among them), S sums their differences from q. A single pixel's fraction is
-// noisy; its neighbours on the same surface average the noise out, and the threshold keeps
-// the mean from crossing a depth edge. The valid bit and the confidence pass unchanged.
+// The output words' window stage (docs/algorithm.md 9.7, model/smooth.cpp): edge-preserving
+// smoothing of the Q.4 disparity and the stream's confidence. A valid centre's value q
+// becomes q + floor(S / K + 1/2): K counts the valid pixels of its 5x5 window inside the
+// frame whose value is within thr of q (the centre among them), S sums their differences
+// from q. A single pixel's fraction is noisy; its neighbours on the same surface average
+// the noise out, and the threshold keeps the mean from crossing a depth edge. How many
+// neighbours agree is evidence too: the confidence byte e of the word (9.3) becomes
+// 16 (e[7] + e[6] + e[5]) + e[4:0] + 3 K + 2 K8, K8 the window pixels within 8 (1/2 px).
+// The valid bit passes unchanged; invalid words pass as they are.
 //
 // The division is a multiplication: floor(U / 2K) = (U * ceil(2^19 / 2K)) >> 19 for every
 // U below 2^13 and K <= 25, with U = 2S + K + 128K > 0 (the bias 64 * 2K makes the
@@ -22,7 +25,7 @@ module sm_out_smooth #(
     input  wire                  rst_n,
     input  wire                  ce,
     input  wire [XW-1:0]         width,   // active width
-    input  wire                  enable,  // 0: the words pass unchanged (same latency)
+    input  wire                  enable,  // 0: the Q.4 values pass unchanged (same latency)
     input  wire [5:0]            thr,     // greatest |difference| (1/16 px) a window pixel may have
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [31:0]           s_word,  // {valid, 7'b0, confidence, Q.4 disparity}
@@ -108,6 +111,7 @@ module sm_out_smooth #(
   wire [PW-1:0] ctr = nwin[C];
   wire [N*TB-1:0] nterm;  // biased kept differences (63 when left out); the centre's unused
   wire [N-1:0]    nkeep;
+  wire [N-1:0]    nnear;  // kept by the confidence's second count: within 8
   genvar r, j;
   generate
     for (j = 0; j <= R; j = j + 1) begin : g_cw
@@ -128,30 +132,34 @@ module sm_out_smooth #(
         wire [QW:0] d   = {1'b0, nwin[r*NR + j][QW-1:0]} - {1'b0, ctr[QW-1:0]};
         wire [QW:0] dt  = d + {{(QW - 5) {1'b0}}, thr_f};
         wire        in  = dt <= {{(QW - 6) {1'b0}}, thr_f, 1'b0};
-        wire        ok  = row_ok_q[r] & col_ok_q[j] & nwin[r*NR + j][QW] & in;
+        wire        avail = row_ok_q[r] & col_ok_q[j] & nwin[r*NR + j][QW];
+        wire        ok  = avail & in;
+        wire [QW:0] d8  = d + 8;
         wire [QW:0] b   = d + 63;
         assign nkeep[r*NR + j] = ok;
+        assign nnear[r*NR + j] = avail & (d8 <= 16);
         assign nterm[(r*NR + j)*TB +: TB] = ok ? b[TB-1:0] : 7'd63;
         wire unused_b = ^b[QW:TB];
       end
     end
   endgenerate
-  wire unused_ctr_term = ^{nterm[C*TB +: TB], nkeep[C]};
+  wire unused_ctr_term = ^{nterm[C*TB +: TB], nkeep[C], nnear[C]};
 
-  // the N - 1 neighbours' terms and keep bits, centre left out
+  // the N - 1 neighbours' terms, keep bits and near bits, centre left out
   reg [(N-1)*TB-1:0] term_q;
-  reg [N-2:0]        keep_q;
+  reg [N-2:0]        keep_q, near_q;
   // the centre word {en, valid, confidence, q} beside each later stage
   localparam CTW = 1 + 1 + 8 + QW;
   reg [CTW-1:0] ctr1_q, ctr2_q, ctr3_q, ctr4_q;
 
   // ---- stage 3: sum of the terms and the pixel count --------------------------------
   wire [SW-1:0] sum_n;
-  wire [KW-1:0] cnt_n;
+  wire [KW-1:0] cnt_n, near_n;
   sm_sw_addtree #(.N(N - 1), .IW(TB), .OW(SW)) u_sum (.terms(term_q), .sum(sum_n));
   sm_sw_addtree #(.N(N - 1), .IW(1), .OW(KW)) u_cnt (.terms(keep_q), .sum(cnt_n));
+  sm_sw_addtree #(.N(N - 1), .IW(1), .OW(KW)) u_near (.terms(near_q), .sum(near_n));
   reg [SW-1:0] sum_q;
-  reg [KW-1:0] k_q;  // with the centre
+  reg [KW-1:0] k_q, kn_q;  // with the centre
 
   // ---- stage 4: numerator U = 2S + 129K (S = sum - 63 (N-1)) and the reciprocal -------
   wire [RCW-1:0] rtab [0:31];
@@ -171,6 +179,11 @@ module sm_out_smooth #(
   /* verilator lint_on WIDTH */
   reg [UW-1:0]  u_q;
   reg [RCW-1:0] rc_q;
+  // the stream's confidence: at most 48 + 31 + 75 + 50 = 204
+  wire [7:0] e2 = ctr2_q[QW +: 8];
+  wire [1:0] flags = {1'b0, e2[7]} + {1'b0, e2[6]} + {1'b0, e2[5]};
+  wire [7:0] conf_n = {2'b00, flags, 4'b0000} + {3'b000, e2[4:0]} + {2'b00, k_q, 1'b0} + {3'b000, k_q}
+                    + {2'b00, kn_q, 1'b0};
 
   // ---- stage 5: the product; its bits 25:19 are floor(U / 2K) = offset + 64 ---------
   reg [UW+RCW-1:0] p_q;
@@ -196,13 +209,15 @@ module sm_out_smooth #(
       for (e = 0; e <= R; e = e + 1) cw[e] <= ncw[e];
       term_q   <= {nterm[N*TB-1:(C+1)*TB], nterm[C*TB-1:0]};
       keep_q   <= {nkeep[N-1:C+1], nkeep[C-1:0]};
+      near_q   <= {nnear[N-1:C+1], nnear[C-1:0]};
       ctr1_q <= {en_f, ctr[QW], ncw[0], ctr[QW-1:0]};
       sum_q  <= sum_n;
       k_q    <= cnt_n + 1'b1;
+      kn_q   <= near_n + 1'b1;
       ctr2_q <= ctr1_q;
       u_q    <= u_n;
       rc_q   <= rtab[k_q];
-      ctr3_q <= ctr2_q;
+      ctr3_q <= {ctr2_q[CTW-1 -: 2], conf_n, ctr2_q[QW-1:0]};
       p_q    <= u_q * rc_q;
       ctr4_q <= ctr3_q;
       m_word <= !c4_valid ? 32'd0

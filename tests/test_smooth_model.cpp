@@ -1,10 +1,12 @@
-// The output words' smoothing (model/smooth.hpp, docs/algorithm.md 9.7) against independent
-// truth: the rounding against double arithmetic for every sum and count a window can give,
-// known answers on small word images (planes, depth steps, invalid pixels, frame borders),
-// and a noisy plane whose error the mean must lower.
+// The output words' window stage (model/smooth.hpp, docs/algorithm.md 9.7) against
+// independent truth: the rounding against double arithmetic for every sum and count a
+// window can give, known answers on small word images (planes, depth steps, invalid pixels,
+// frame borders) for the mean and the confidence, and a noisy plane whose error the mean
+// must lower.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "smooth.hpp"
 
@@ -16,6 +18,12 @@ OutImage words_of(int w, int h, unsigned (*q)(int, int)) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) m.at(x, y) = make_out_word(true, static_cast<unsigned>(x + 7 * y) & 0xff, q(x, y));
   return m;
+}
+// The Q.4 values of the words (invalid: -1), the confidence aside.
+std::vector<int> q4s(const OutImage& m) {
+  std::vector<int> v;
+  for (const uint32_t w : m.px) v.push_back(out_valid(w) ? static_cast<int>(out_q4(w)) : -1);
+  return v;
 }
 }  // namespace
 
@@ -35,10 +43,10 @@ TEST_CASE("smooth_offset is the mean rounded half up for every window sum and co
 
 TEST_CASE("smoothing keeps planes of one value, depth steps and invalid pixels", "[unit][smooth]") {
   const OutImage flat = words_of(9, 7, [](int, int) { return 16u * 40 + 5; });
-  CHECK(smooth_output(flat, 1, 24).px == flat.px);
+  CHECK(q4s(smooth_output(flat, 1, 24)) == q4s(flat));
   // two surfaces 2 px apart (32 > 24 in 1/16 px): neither takes the other's values
   const OutImage step = words_of(9, 7, [](int x, int) { return x < 4 ? 16u * 40 : 16u * 42; });
-  CHECK(smooth_output(step, 1, 24).px == step.px);
+  CHECK(q4s(smooth_output(step, 1, 24)) == q4s(step));
   // an invalid word stays 0 and is left out of its neighbours' means
   OutImage holes = words_of(9, 7, [](int, int) { return 16u * 40; });
   holes.at(4, 3) = 0;
@@ -47,11 +55,30 @@ TEST_CASE("smoothing keeps planes of one value, depth steps and invalid pixels",
   CHECK(o.at(4, 3) == 0u);
   // (2, 2): 24 neighbours at 640 (one invalid: 23) and itself at 656: 656 + floor(-368/24 + 1/2)
   CHECK(static_cast<int>(out_q4(o.at(2, 2))) == 656 + static_cast<int>(std::floor(-16.0 * 23 / 24 + 0.5)));
-  CHECK(out_conf(o.at(2, 2)) == 9u);  // the confidence passes
   // (0, 0): its window inside the frame is 3 x 3, (2, 2) among it: 640 + round(16 / 9)
   CHECK(out_q4(o.at(0, 0)) == 640u + 2u);
-  CHECK(smooth_output(holes, 0, 24).px == holes.px);  // SMOOTH_EN 0
-  CHECK(smooth_output(holes, 1, 0).px == holes.px);   // SMOOTH_T 0: equal values only
+  CHECK(q4s(smooth_output(holes, 0, 24)) == q4s(holes));  // SMOOTH_EN 0
+  CHECK(q4s(smooth_output(holes, 1, 0)) == q4s(holes));   // SMOOTH_T 0: equal values only
+}
+
+TEST_CASE("the stream's confidence adds the window's support to the evidence byte", "[unit][smooth]") {
+  CHECK(support_confidence(0xff, 25, 25) == 204);  // every cue and the whole window agree
+  CHECK(support_confidence(0x00, 1, 1) == 5);      // nothing but the pixel itself
+  CHECK(support_confidence(0xa3, 10, 4) == 16 + 16 + 3 + 30 + 8);
+  // a plane of one value: the whole window within 1/2 px (K = K_near = 25 inside, 9 at a
+  // corner); the evidence byte of words_of is (x + 7 y) & 0xff
+  const OutImage flat = words_of(9, 7, [](int, int) { return 16u * 40; });
+  const OutImage o = smooth_output(flat, 1, 24);
+  CHECK(out_conf(o.at(4, 3)) == 25u + 3 * 25 + 2 * 25);  // e = 25: ratio 25, no flag
+  CHECK(out_conf(o.at(0, 0)) == 0u + 3 * 9 + 2 * 9);
+  // one pixel a pixel above the rest: 24 of its window within SMOOTH_T, none within 1/2 px
+  OutImage bump = flat;
+  bump.at(4, 3) = make_out_word(true, 0x80, 16u * 41);
+  const OutImage b = smooth_output(bump, 1, 24);
+  CHECK(out_conf(b.at(4, 3)) == 16u + 3 * 25 + 2 * 1);
+  CHECK(out_conf(smooth_output(bump, 1, 12).at(4, 3)) == 16u + 3 * 1 + 2 * 1);  // K follows SMOOTH_T
+  // the confidence does not depend on SMOOTH_EN
+  CHECK(out_conf(smooth_output(bump, 0, 24).at(4, 3)) == out_conf(b.at(4, 3)));
 }
 
 TEST_CASE("smoothing lowers the error of a noisy slanted plane, for any thread count", "[unit][smooth]") {
