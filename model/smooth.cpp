@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "kernels.hpp"
 #include "parallel.hpp"
 
 namespace sm {
@@ -26,6 +27,22 @@ std::vector<int16_t> padded_values(const OutImage& in) {
   return q;
 }
 
+// One window row's 5 columns into the sums of the w centres: s the kept differences, k the
+// kept pixels (within t), kn those within kSupportNear. nb: the row's padded values.
+// (16-bit lanes and masks instead of branches: the compiler's vector loop.)
+SM_HOT void add_window_row(const int16_t* nb, const int16_t* ctr, int w, int16_t t, int16_t* s, int16_t* k,
+                           int16_t* kn) {
+  for (int dx = 0; dx <= 2 * kSmoothR; ++dx)
+    for (int x = 0; x < w; ++x) {
+      const int16_t d = static_cast<int16_t>(nb[x + dx] - ctr[x]);
+      const int16_t m = static_cast<int16_t>(-((d >= -t) & (d <= t)));
+      const int16_t mn = static_cast<int16_t>(-((d >= -kSupportNear) & (d <= kSupportNear)));
+      s[x] = static_cast<int16_t>(s[x] + (d & m));
+      k[x] = static_cast<int16_t>(k[x] - m);
+      kn[x] = static_cast<int16_t>(kn[x] - mn);
+    }
+}
+
 // Rows y0..y1-1 of smooth_output into out; q = padded_values(in), en = smooth_en.
 void smooth_rows(const OutImage& in, const std::vector<int16_t>& q, bool en, int t, int y0, int y1, OutImage& out) {
   const int w = in.w, h = in.h;
@@ -37,17 +54,7 @@ void smooth_rows(const OutImage& in, const std::vector<int16_t>& q, bool en, int
     std::fill(k.begin(), k.end(), int16_t{0});
     std::fill(kn.begin(), kn.end(), int16_t{0});
     for (int yy = std::max(0, y - kSmoothR); yy <= std::min(h - 1, y + kSmoothR); ++yy)
-      for (int dx = 0; dx <= 2 * kSmoothR; ++dx) {
-        const int16_t* nb = &q[static_cast<size_t>(yy) * pw + static_cast<size_t>(dx)];
-        for (int x = 0; x < w; ++x) {  // (the compiler's vector loop: 16-bit lanes)
-          const int d = nb[x] - ctr[x];
-          const bool m = d >= -t && d <= t;
-          s[static_cast<size_t>(x)] = static_cast<int16_t>(s[static_cast<size_t>(x)] + (m ? d : 0));
-          k[static_cast<size_t>(x)] = static_cast<int16_t>(k[static_cast<size_t>(x)] + (m ? 1 : 0));
-          const bool near = d >= -kSupportNear && d <= kSupportNear;
-          kn[static_cast<size_t>(x)] = static_cast<int16_t>(kn[static_cast<size_t>(x)] + (near ? 1 : 0));
-        }
-      }
+      add_window_row(&q[static_cast<size_t>(yy) * pw], ctr, w, static_cast<int16_t>(t), s.data(), k.data(), kn.data());
     for (int x = 0; x < w; ++x) {
       const uint32_t v = in.at(x, y);
       if (!out_valid(v)) {

@@ -15,8 +15,8 @@
 // numerator positive for thr <= 63). One small multiplier (a DSP) instead of a divider.
 //
 // Latency: the output beat after the ce of input beat n is the pixel of input beat
-// n - (2*width + 2) - 5 (window delay; line-buffer read, window, sum, numerator, product,
-// word).
+// n - (2*width + 2) - 5 (window delay; line-buffer read, window, sums, numerator and
+// confidence, product, word).
 module sm_out_smooth #(
     parameter MAX_WIDTH = 320,  // widest active line
     parameter DISP      = 128   // disparity levels (the Q.4 value's width)
@@ -152,7 +152,7 @@ module sm_out_smooth #(
   localparam CTW = 1 + 1 + 8 + QW;
   reg [CTW-1:0] ctr1_q, ctr2_q, ctr3_q, ctr4_q;
 
-  // ---- stage 3: sum of the terms and the pixel count --------------------------------
+  // ---- stage 3: sum of the terms and the two pixel counts ---------------------------
   wire [SW-1:0] sum_n;
   wire [KW-1:0] cnt_n, near_n;
   sm_sw_addtree #(.N(N - 1), .IW(TB), .OW(SW)) u_sum (.terms(term_q), .sum(sum_n));
@@ -161,7 +161,7 @@ module sm_out_smooth #(
   reg [SW-1:0] sum_q;
   reg [KW-1:0] k_q, kn_q;  // with the centre
 
-  // ---- stage 4: numerator U = 2S + 129K (S = sum - 63 (N-1)) and the reciprocal -------
+  // ---- stage 4: numerator U = 2S + 129K (S = sum - 63 (N-1)), reciprocal, confidence --
   wire [RCW-1:0] rtab [0:31];
   genvar t;
   generate
