@@ -128,12 +128,13 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
 }
 
 // The model's output words (model/outword.hpp, smoothed: model/smooth.hpp) in its two modes: dense (every pixel valid,
-// the DP's fill, the Q.4 fraction) with its confidence, and checked (the registers' rules).
+// the DP's fill, the Q.4 fraction) with its confidence, and checked (the registers' rules: res.out, which run_pipeline
+// made at the registers regs come from).
 void add_output_modes(const sm::PipelineResult& res, int levels, const sm::OutputRegs& regs, MethodOut& o) {
   const sm::OutImage dense = sm::stream_words(res.evidence, res.post, levels, sm::dense_mode(regs));
   o.disp.push_back(sm::tools::out_to_float(dense));
   o.conf.push_back(sm::tools::out_to_conf(dense));
-  o.disp.push_back(sm::tools::out_to_float(sm::stream_words(res.evidence, res.post, levels, regs)));
+  o.disp.push_back(sm::tools::out_to_float(res.out));
   o.conf.emplace_back();
 }
 

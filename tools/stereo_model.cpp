@@ -239,10 +239,11 @@ int run(int argc, char** argv) {
     throw ToolError(fmt::format("bad configuration: {}", e.what()));
   }
   const sm::DispImage& d = stage == "dp" ? res.dp : res.post;
-  const sm::OutImage word =
-      mode == "integer" ? sm::OutImage{}
-                        : sm::stream_words(res.evidence, res.post, hw.disp,
-                                           mode == "dense" ? sm::dense_mode(sm::output_regs(r)) : sm::output_regs(r));
+  // checked: the words run_pipeline made at these registers; dense: the same stages without the rules
+  const sm::OutImage word = mode == "integer" ? sm::OutImage{}
+                            : mode == "dense"
+                                ? sm::stream_words(res.evidence, res.post, hw.disp, sm::dense_mode(sm::output_regs(r)))
+                                : res.out;
   const cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;
