@@ -430,8 +430,9 @@ module sm_top #(
   end
 
   // ---------------------------------------------------------------- output
-  // Smoothing of the words' Q.4 values (docs/algorithm.md 9.7); the labeller above reads
-  // them as formed. Its registers: those of the frame whose first centre it takes next.
+  // The words' window stage (docs/algorithm.md 9.7): their Q.4 values smoothed, the stream's
+  // confidence from the window's support; the labeller above reads them as formed. Its
+  // registers: those of the frame whose first centre it takes next.
   wire [`SM_SIDE_W-1:0] sm_side;
   wire [31:0] sm_word;
   wire [6:0]  par_smooth;

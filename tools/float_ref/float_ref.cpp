@@ -13,6 +13,7 @@
 #include "census.hpp"
 #include "dp.hpp"
 #include "post.hpp"
+#include "smooth.hpp"
 
 namespace sm::fref {
 
@@ -329,8 +330,8 @@ std::vector<float> smooth(const std::vector<float>& v, int w, int h, const Param
       const double c = v[static_cast<size_t>(y) * w + x];
       double s = 0;
       int k = 0;
-      for (int yy = std::max(0, y - 2); yy <= std::min(h - 1, y + 2); ++yy)
-        for (int xx = std::max(0, x - 2); xx <= std::min(w - 1, x + 2); ++xx) {
+      for (int yy = std::max(0, y - kSmoothR); yy <= std::min(h - 1, y + kSmoothR); ++yy)
+        for (int xx = std::max(0, x - kSmoothR); xx <= std::min(w - 1, x + kSmoothR); ++xx) {
           const double d = v[static_cast<size_t>(yy) * w + xx] - c;
           if (std::abs(d) <= p.smooth_t) s += d, ++k;
         }
