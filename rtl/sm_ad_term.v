@@ -29,32 +29,61 @@ module sm_ad_term #(
     `SM_BAD_PARAM(g_bad_l, L < 1, ("sm_ad_term: L (%0d) must be at least 1", L))
   endgenerate
 
-  genvar l, k;
+  genvar l, k, i;
   generate
     for (l = 0; l < L; l = l + 1) begin : g_lane
       wire [7:0] bl = b[8*l +: 8];
-      // Two subtractions side by side, picked by the compare: no negation after the
-      // subtraction, so the carry chains run in parallel. Only the bits the shift keeps go
-      // on, and the term is TW bits wide: no wire here is constant by construction.
-      wire [7:0]     diff = (a >= bl) ? a - bl : bl - a;
-      wire [SHW-1:0] sh   = diff[7:AD_SHIFT];
+      // One subtraction (one carry chain, 8 LUTs, instead of a - b and b - a side by
+      // side): d = a - b; where it is negative its low byte inverted is m = |d| - 1, so
+      // |d| >> AD_SHIFT = (m >> AD_SHIFT) + c, c = 1 exactly when the low AD_SHIFT bits
+      // of m are all ones (the + 1 carries past them). |d| <= 255 keeps the sum in SHW
+      // bits. Only the bits the shift keeps go on, and the term is TW bits wide: no wire
+      // here is constant by construction.
+      wire [8:0]     d    = {1'b0, a} - {1'b0, bl};
+      wire           neg  = d[8];
+      wire [7:0]     m    = neg ? ~d[7:0] : d[7:0];  // |d| - neg
+      wire           c;
+      if (AD_SHIFT > 0) begin : g_carry
+        assign c = neg && (&m[AD_SHIFT-1:0]);
+      end else begin : g_inc
+        assign c = neg;
+      end
+      wire [SHW-1:0] q    = m[7:AD_SHIFT];
       wire [TW-1:0]  term;
       if ((1 << SHW) - 1 > AD_MAX) begin : g_cap  // then SHW >= TW: AD_MAX >= 2^(TW-1)
+        // min(q + c, AD_MAX) without an SHW-bit adder: q + c > AD_MAX exactly when
+        // 2q + c > 2 AD_MAX, and below the cap only the TW low bits of q + c are kept, an
+        // increment written as gates (a carry chain would stop the LUT mapper from
+        // merging it with the select).
         /* verilator lint_off WIDTH */
-        localparam [SHW-1:0] MAX_V = AD_MAX;
+        localparam [SHW:0] MAX2_V = 2 * AD_MAX;
+        localparam [TW-1:0] MAX_V = AD_MAX;
         /* verilator lint_on WIDTH */
-        assign term = (sh > MAX_V) ? MAX_V[TW-1:0] : sh[TW-1:0];
-      end else if (TW > SHW) begin : g_wide  // the shifted difference never exceeds the cap
-        assign term = {{(TW - SHW) {1'b0}}, sh};
-      end else begin : g_fit
-        assign term = sh;
+        wire          over = {q, c} > MAX2_V;
+        wire [TW-1:0] inc;
+        for (i = 0; i < TW; i = i + 1) begin : g_inc_bit
+          if (i == 0) begin : g_b0
+            assign inc[0] = q[0] ^ c;
+          end else begin : g_bi
+            assign inc[i] = q[i] ^ (c && (&q[i-1:0]));
+          end
+        end
+        assign term = over ? MAX_V : inc;
+        if (SHW > TW) begin : g_hi
+          wire unused_hi = |q[SHW-1:TW];  // read by the compare only
+        end
+      end else begin : g_nocap  // the shifted difference never exceeds the cap
+        wire [SHW-1:0] sh = q + {{(SHW - 1) {1'b0}}, c};
+        if (TW > SHW) begin : g_wide
+          assign term = {{(TW - SHW) {1'b0}}, sh};
+        end else begin : g_fit
+          assign term = sh;
+        end
       end
       for (k = 0; k < TW; k = k + 1) begin : g_bit
         assign t[k*L + l] = term[k];
       end
-      if (AD_SHIFT > 0) begin : g_low
-        wire unused_low = |diff[AD_SHIFT-1:0];  // below the term's resolution
-      end
+
     end
   endgenerate
 endmodule

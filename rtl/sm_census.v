@@ -55,10 +55,11 @@ module sm_census #(
 
   // ---- stage 1: line-buffer read of the entering column ----------------------------
   wire [(C-1)*16-1:0] lb_dout;  // rows live-1 .. live-(C-1), {right, left} each
+  wire [15:0]         lb_live;  // the entering pixel, aligned with the line-buffer read
   sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(16), .ROWS(C - 1)) u_lb (
-      .clk(clk), .ce(ce), .col(s_x), .din({s_right, s_left}), .dout(lb_dout)
+      .clk(clk), .ce(ce), .col(s_x), .din({s_right, s_left}), .dout(lb_dout),
+      .live(lb_live)
   );
-  reg [15:0]  live_q;  // the entering pixel, aligned with the line-buffer read
   reg [C-1:0] row_ok_q, row_ok_q2;
   reg [C-1:0] col_ok_q, col_ok_q2;
 
@@ -74,7 +75,7 @@ module sm_census #(
     for (r = 0; r < C - 1; r = r + 1) begin : g_newrow
       assign newcol[r*16 +: 16] = lb_dout[(C-2-r)*16 +: 16];
     end
-    assign newcol[(C-1)*16 +: 16] = live_q;
+    assign newcol[(C-1)*16 +: 16] = lb_live;
     for (j = 0; j < C; j = j + 1) begin : g_col
       assign win[j*CWW +: CWW] = awin[(C-1-j)*CWW +: CWW];
     end
@@ -126,7 +127,6 @@ module sm_census #(
 
   always @(posedge clk) begin
     if (ce) begin
-      live_q    <= {s_right, s_left};
       row_ok_q  <= row_ok;
       col_ok_q  <= col_ok;
       row_ok_q2 <= row_ok_q;

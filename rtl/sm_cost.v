@@ -2,7 +2,10 @@
 `include "sm_defs.vh"
 // Matching cost: Hamming distance of the left census vector with the right vectors
 // of the DISP previous beats, plus the intensity term of the centre pixels (sm_ad_term),
-// capped at CB (sm_cost_addsat; docs/algorithm.md, section 4). The right vectors and
+// capped at CB (sm_cost_addsat; docs/algorithm.md, section 4), leaving at the
+// aggregation's scale: C = that >> COST_SHIFT, CW = HW - COST_SHIFT planes, the only
+// bits sm_sw_aggregate reads (the low planes would be registered here for nothing: 256
+// flip-flops at the paper configuration, 768 at zynq's hold registers). The right vectors and
 // pixels of the last beats sit in delay lines; since rows are exactly width beats, the
 // beat d back in the same row is the right pixel x - d. A thermometer of the column
 // (reset by sol) marks the levels with x - d < 0, which get CB.
@@ -45,12 +48,13 @@ module sm_cost #(
     input  wire [7:0]         s_left,  // left centre pixel, passed through
     input  wire [7:0]         s_right, // right centre pixel
     output wire [`SM_SIDE_W-1:0] m_side,
-    output reg  [HW*DISP-1:0] m_cost,  // bit-plane order: bit f of level d at [f*DISP + d]
+    output reg  [CW*DISP-1:0] m_cost,  // C in bit-plane order: bit f of level d at [f*DISP + d]
     output reg  [7:0]         m_left
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam CB = CENSUS * CENSUS - 1;
   localparam HW = $clog2(CB + 1);
+  localparam CW = $clog2((CB >> COST_SHIFT) + 1);  // C's width, HW - COST_SHIFT
   localparam F  = DISP / PU;                  // clocks per beat
   localparam GW = (F > 1) ? $clog2(F) : 1;    // sub-step counter
   localparam TW = (AD_MAX > 0) ? $clog2(AD_MAX + 1) : 1;  // intensity term
@@ -70,7 +74,7 @@ module sm_cost #(
   // ok[d] = (x >= d) for the entering beat: all ones shifted in since the row start.
   reg  [DISP-1:0] ok_q;
   wire [DISP-1:0] ok = s_side[`SM_SIDE_SOL] ? {{(DISP - 1) {1'b0}}, 1'b1} : {ok_q[DISP-2:0], 1'b1};
-  wire unused_ok_top = ok_q[DISP-1];  // shifted out
+  wire unused_ok_top = ok_q[DISP-1];  // shifted out (g_par reads it into okt_q)
 
   // Control and pass-through data along the three ce stages.
   sm_side_delay #(.DEPTH(3)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(s_side), .q(m_side));
@@ -121,6 +125,7 @@ module sm_cost #(
       // the intensity terms, registered on the next ce beside the popcount result.
       reg  [8*DISP-1:0]  rpx_q;
       reg  [TW*DISP-1:0] t_q;  // bit-plane order
+      reg  [DISP-1:0]    okt_q;  // the thermometer of t_q's beat
       wire [TW*DISP-1:0] t_c;
       always @(posedge clk) if (ce) rpx_q <= {rpx_q[8*(DISP-1)-1:0], s_right};
       if (AD_MAX > 0) begin : g_ad
@@ -129,23 +134,22 @@ module sm_cost #(
         assign t_c = {TW*DISP{1'b0}};
         wire unused_rpx = ^rpx_q;
       end
-      always @(posedge clk) if (ce) t_q <= t_c;
+      always @(posedge clk) begin
+        if (ce) begin
+          t_q   <= t_c;
+          okt_q <= ok_q;
+        end
+      end
 
       // Output costs: the count plus the term, capped at CB, and CB where x - d < 0. They
       // stay in bit-plane order, the order sm_sw_aggregate sums them in: a transpose to
       // level order and back would be wiring in hardware but two thousand bit moves a
-      // clock in Verilator.
-      reg  [DISP-1:0]    ok_q2, ok_q3;
-      wire [HW*DISP-1:0] cost_p;  // bit-plane order
+      // clock in Verilator. ok_q is the beat's thermometer while t_c is formed, so one
+      // register beside t_q carries it on.
+      wire [CW*DISP-1:0] cost_p;  // bit-plane order
       sm_cost_addsat #(.L(DISP), .HW(HW), .TW(TW), .COST_SHIFT(COST_SHIFT), .CB(CB)) u_sum (
-          .h(pc), .t(t_q), .ok(ok_q3), .cost(cost_p));
-      always @(posedge clk) begin
-        if (ce) begin
-          ok_q2  <= ok;
-          ok_q3  <= ok_q2;
-          m_cost <= cost_p;
-        end
-      end
+          .h(pc), .t(t_q), .ok(okt_q), .cost(cost_p));
+      always @(posedge clk) if (ce) m_cost <= cost_p;
     end else begin : g_fold
       /* verilator lint_off WIDTH */
       localparam [GW-1:0] G_LAST = F - 1;
@@ -242,13 +246,13 @@ module sm_cost #(
         sub_p1 <= sub_q;
         sub_p2 <= sub_p1;
       end
-      wire [HW*PU-1:0] cost_l;  // bit-plane order
+      wire [CW*PU-1:0] cost_l;  // bit-plane order
       sm_cost_addsat #(.L(PU), .HW(HW), .TW(TW), .COST_SHIFT(COST_SHIFT), .CB(CB)) u_sum (
           .h(pc), .t(t_p2), .ok(ok_p2), .cost(cost_l));
 
-      // Collect: sub-step g's lanes at [g*HW*PU +: HW*PU]. Sub-steps repeated while the
+      // Collect: sub-step g's lanes at [g*CW*PU +: CW*PU]. Sub-steps repeated while the
       // counter waits at F - 1 rewrite the same values.
-      localparam GB = HW * PU;
+      localparam GB = CW * PU;
       reg [F*GB-1:0] col_q;
       always @(posedge clk) begin : a_col
         integer s;
@@ -265,14 +269,14 @@ module sm_cost #(
       end
       // The hold registers in the output's bit-plane order (fixed wiring from the collect:
       // level d = F*j + g + 1 of sub-step g, lane j; level 0 of sub-step F-1, lane PU-1).
-      reg [HW*DISP-1:0] hold_q, hold2_q;
+      reg [CW*DISP-1:0] hold_q, hold2_q;
       always @(posedge clk) begin : a_hold
         integer d, b, s, l;
         if (ce_p[2]) begin
           for (d = 0; d < DISP; d = d + 1) begin
             s = (d == 0) ? F - 1 : (d - 1) % F;
             l = (d == 0) ? PU - 1 : (d - 1) / F;
-            for (b = 0; b < HW; b = b + 1) hold_q[b*DISP + d] <= col_q[s*GB + b*PU + l];
+            for (b = 0; b < CW; b = b + 1) hold_q[b*DISP + d] <= col_q[s*GB + b*PU + l];
           end
           hold2_q <= hold_q;
         end

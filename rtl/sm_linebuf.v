@@ -15,7 +15,11 @@ module sm_linebuf #(
     input  wire                   ce,
     input  wire [XW-1:0]          col,   // column of the entering beat (sm_win_ctrl.s_x)
     input  wire [DATA_W-1:0]      din,   // the entering beat's value (live row)
-    output wire [ROWS*DATA_W-1:0] dout   // after the ce: row (live - 1 - k) at k*DATA_W
+    output wire [ROWS*DATA_W-1:0] dout,  // after the ce: row (live - 1 - k) at k*DATA_W
+    // After the ce: the entering beat's value, the live row of the column in dout. It is
+    // the register the write-back needs anyway; a stage that takes its live row from here
+    // does not hold a second copy (at the paper configuration the aggregation's is 776 bits).
+    output wire [DATA_W-1:0]      live
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam WW = ROWS * DATA_W;  // memory word
@@ -63,5 +67,6 @@ module sm_linebuf #(
   end
 
   assign dout = rd_q;
+  assign live = din_q;
 endmodule
 `default_nettype wire

@@ -73,13 +73,14 @@ module sm_out_smooth #(
   wire unused_word = ^{s_word[30:24], s_word[15:QW]};
   wire [PW*(NR-1)-1:0] lb_dout;  // rows live-1 .. live-4
   wire [15:0]          lbc_dout;  // confidence of rows live-1, live-2
+  wire [PW-1:0]        lb_live;   // the live row, aligned with the line-buffer read
   sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(PW), .ROWS(NR - 1)) u_lb (
-      .clk(clk), .ce(ce), .col(s_x), .din(s_pix), .dout(lb_dout)
+      .clk(clk), .ce(ce), .col(s_x), .din(s_pix), .dout(lb_dout), .live(lb_live)
   );
+  wire [7:0] lbc_live;  // the live row's confidence: only the centre's is used
   sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(8), .ROWS(R)) u_lbc (
-      .clk(clk), .ce(ce), .col(s_x), .din(s_word[23:16]), .dout(lbc_dout)
+      .clk(clk), .ce(ce), .col(s_x), .din(s_word[23:16]), .dout(lbc_dout), .live(lbc_live)
   );
-  reg  [PW-1:0] live_q;
   wire [PW*NR-1:0] col_in;  // the entering column, row NR-1 = live row
   genvar a;
   generate
@@ -87,9 +88,9 @@ module sm_out_smooth #(
       assign col_in[PW*(NR-2-a) +: PW] = lb_dout[PW*a +: PW];
     end
   endgenerate
-  assign col_in[PW*(NR-1) +: PW] = live_q;
+  assign col_in[PW*(NR-1) +: PW] = lb_live;
   wire [7:0] conf_in = lbc_dout[8 +: 8];  // the centre row's confidence
-  wire unused_lbc = ^lbc_dout[7:0];
+  wire unused_lbc = ^{lbc_dout[7:0], lbc_live};
   reg [NR-1:0] row_ok_q, col_ok_q;
 
   // ---- stage 2: the window, win[r*NR + j] = row (centre + r - R), column (centre + j - R);
@@ -202,7 +203,6 @@ module sm_out_smooth #(
   integer e;
   always @(posedge clk) begin
     if (ce) begin
-      live_q   <= s_pix;
       row_ok_q <= row_ok;
       col_ok_q <= col_ok;
       for (e = 0; e < N; e = e + 1) win[e] <= nwin[e];

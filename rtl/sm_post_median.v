@@ -63,12 +63,12 @@ module sm_post_median #(
   wire [PW-1:0] s_pix = {s_disp[15], s_disp[DW-1:0]};
   wire unused_mid = ^s_disp[14:DW];
   wire [PW*NR-1:0] col_in;  // the entering column, row NR-1 = live row
-  reg  [PW-1:0]    live_q;
+  wire [PW-1:0]    lb_live;  // the entering beat, aligned with the line-buffer read
   generate
     if (RY > 0) begin : g_lb
       wire [PW*(NR-1)-1:0] lb_dout;  // rows live-1 .. live-(NR-1)
       sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(PW), .ROWS(NR - 1)) u_lb (
-          .clk(clk), .ce(ce), .col(s_x), .din(s_pix), .dout(lb_dout)
+          .clk(clk), .ce(ce), .col(s_x), .din(s_pix), .dout(lb_dout), .live(lb_live)
       );
       genvar a;
       for (a = 0; a < NR - 1; a = a + 1) begin : g_rows
@@ -76,9 +76,12 @@ module sm_post_median #(
       end
     end else begin : g_no_lb
       wire unused_sx = &s_x;  // single row: no line buffer to address
+      reg [PW-1:0] live_q;
+      always @(posedge clk) if (ce) live_q <= s_pix;
+      assign lb_live = live_q;
     end
   endgenerate
-  assign col_in[PW*(NR-1) +: PW] = live_q;
+  assign col_in[PW*(NR-1) +: PW] = lb_live;
 
   reg [NR-1:0] row_ok_q;
   reg [NC-1:0] col_ok_q;
@@ -206,7 +209,6 @@ module sm_post_median #(
   integer a2;
   always @(posedge clk) begin
     if (ce) begin
-      live_q    <= s_pix;
       row_ok_q  <= row_ok;
       col_ok_q  <= col_ok;
       // shift the window one column left; the entering column lands at j = NC-1

@@ -12,7 +12,7 @@
 // multiplier (sm_sw_level).
 //
 // Pipeline, counted in ce from the one on which beat (x+R, y+R) enters (ce 0); the
-// output of pixel (x, y) is on m_side/m_agg after ce 5 (latency 6 beats after the
+// output of pixel (x, y) is on m_side/m_agg after ce 4 (latency 5 beats after the
 // window delay of R rows and R columns; `SM_AGG_PIPE_BEATS, which sm_top's edge-flag
 // delay and the block test use):
 //   ce 0  line-buffer read of the entering column; window-controller masks registered;
@@ -23,8 +23,7 @@
 //         bit heap, per level the sum of its two rows; weight sum and RECIP(weight sum)
 //         from the ROM, once per pixel
 //   ce 3  per level: A_raw * RECIP
-//   ce 4  per level: round, shift by 12, saturate to CW bits
-//   ce 5  per level: output register
+//   ce 4  per level: round, shift by 12, saturate to CW bits (the output register)
 //
 // Resources: the window of SW x SW x DISP costs is the block's largest state. It lives
 // in LUT-RAM (sm_colwin), written once per beat and read at SW addresses, instead of
@@ -49,11 +48,11 @@
 //                 buffer and into the window (sm_sw_foldwin: LUT-RAM at {slot, g});
 //                 the window's SW-1 previous columns of group g read from it; bit
 //                 heap of PU lanes; per level A_raw
-//   c0+3+g .. c0+6+g  sm_sw_level (multiply, round, saturate, output register)
-//   end of c0+6+g the group's results into the output ring (sm_sw_foldout), read on
-//                 ce 5 into m_agg (the last group is written by clock c0 + F + 5, at
-//                 most 5 * F clocks after ce 0)
-// So the latency is the same as above: pixel (x, y) on m_side/m_agg after ce 5.
+//   c0+3+g .. c0+5+g  sm_sw_level (multiply, round and saturate into its register)
+//   end of c0+5+g the group's results into the output ring (sm_sw_foldout), read on
+//                 ce 4 into m_agg (the last group is written by clock c0 + F + 4, before
+//                 ce 4, which comes 4 * F clocks after ce 0 at the earliest)
+// So the latency is the same as above: pixel (x, y) on m_side/m_agg after ce 4.
 module sm_sw_aggregate #(
     parameter MAX_WIDTH  = 320,  // widest active line
     parameter DISP       = 128,  // disparity levels
@@ -68,14 +67,13 @@ module sm_sw_aggregate #(
     input  wire [XW-1:0]        width,     // active width
     input  wire [63:0]          sw_table,  // code of |dI| >> 3 = k at [2k +: 2]
     input  wire [`SM_SIDE_W-1:0] s_side,
-    input  wire [HW*DISP-1:0]   s_cost,    // raw Hamming costs, bit b of level d at [b*DISP + d]
+    input  wire [CW*DISP-1:0]   s_cost,    // C = cost >> COST_SHIFT (sm_cost), bit b of level d at [b*DISP + d]
     input  wire [7:0]           s_left,    // left rectified pixel of the same beat
     output wire [`SM_SIDE_W-1:0] m_side,
     output wire [DISP*CW-1:0]   m_agg      // aggregated cost of level d at [d*CW +: CW]
 );
   localparam XW    = `SM_COUNT_W(MAX_WIDTH);
   localparam CB    = CENSUS * CENSUS - 1;           // census bits = largest raw cost
-  localparam HW    = $clog2(CB + 1);                // raw cost width
   localparam CMAX  = CB >> COST_SHIFT;              // largest shifted cost
   localparam CW    = $clog2(CMAX + 1);              // shifted / aggregated cost width
   localparam R     = (SW - 1) / 2;                  // window radius
@@ -119,25 +117,20 @@ module sm_sw_aggregate #(
 
   // The costs arrive and are kept in bit-plane order (plane b holds bit b of every
   // level, at [b*DISP +: DISP]): the weighted sums are then one bit heap for all levels
-  // (below). Only the shifted cost is stored: CW + COST_SHIFT == HW, so it is the top
-  // CW planes of each raw cost and the low COST_SHIFT planes are dropped here.
-  wire [LVW-1:0] cost_in = s_cost[COST_SHIFT*DISP +: LVW];
-  generate
-    if (COST_SHIFT > 0) begin : g_drop
-      wire [COST_SHIFT*DISP-1:0] unused_low = s_cost[0 +: COST_SHIFT*DISP];
-    end
-  endgenerate
+  // (below). They arrive shifted (sm_cost drops the low COST_SHIFT planes).
+  wire [LVW-1:0] cost_in = s_cost;
   genvar d, k, c;
 
-  reg [LVW-1:0] live_cost_q;  // live row of the entering column, beside the line buffer
-  reg [7:0]     live_pix_q;
+  // Live row of the entering column, beside the line buffer's rows: the line buffer's
+  // own register of its input (g_par: costs and pixel; g_fold: the pixel's buffer, and
+  // a register for the costs, whose buffer is written by steps).
+  wire [LVW-1:0] live_cost;
+  wire [7:0]     live_pix;
   reg [2*R:0]   row_ok_q, col_ok_q;
   reg [63:0]    table_q;      // weight codes of the frame whose pixels are centred now
 
   always @(posedge clk) begin
     if (ce) begin
-      live_cost_q <= cost_in;
-      live_pix_q  <= s_left;
       row_ok_q    <= row_ok;
       col_ok_q    <= col_ok;
       // The codes of the sof centre are formed on the next ce, after this latch.
@@ -151,7 +144,7 @@ module sm_sw_aggregate #(
   // column come from the line buffer of the datapath (g_par: pixels beside the costs;
   // g_fold: a line buffer of pixels alone).
   wire [SW*8-1:0] col_pix;
-  assign col_pix[0 +: 8] = live_pix_q;
+  assign col_pix[0 +: 8] = live_pix;
 
   // Left pixels of columns 0..SW-2 only: the oldest column is needed just once, for the
   // weights computed while the window forms.
@@ -248,11 +241,12 @@ module sm_sw_aggregate #(
 
       wire [(SW-1)*LBW-1:0] lb_dout;  // rows live-1 .. live-(SW-1) of the entering column
       sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(LBW), .ROWS(SW - 1)) u_lb (
-          .clk(clk), .ce(ce), .col(s_x), .din({s_left, cost_in}), .dout(lb_dout)
+          .clk(clk), .ce(ce), .col(s_x), .din({s_left, cost_in}), .dout(lb_dout),
+          .live({live_pix, live_cost})
       );
 
       wire [COLW-1:0] col_cost;
-      assign col_cost[0 +: LVW] = live_cost_q;
+      assign col_cost[0 +: LVW] = live_cost;
       for (k = 1; k < SW; k = k + 1) begin : g_col
         assign col_cost[k*LVW +: LVW] = lb_dout[(k-1)*LBW +: LVW];
         assign col_pix[k*8 +: 8]      = lb_dout[(k-1)*LBW + LVW +: 8];
@@ -326,8 +320,11 @@ module sm_sw_aggregate #(
       // Left pixels: a line buffer of their own, on ce as in g_par.
       wire [(SW-1)*8-1:0] lbp_dout;
       sm_linebuf #(.MAX_WIDTH(MAX_WIDTH), .DATA_W(8), .ROWS(SW - 1)) u_lbp (
-          .clk(clk), .ce(ce), .col(s_x), .din(s_left), .dout(lbp_dout)
+          .clk(clk), .ce(ce), .col(s_x), .din(s_left), .dout(lbp_dout), .live(live_pix)
       );
+      reg [LVW-1:0] live_cost_q;
+      always @(posedge clk) if (ce) live_cost_q <= cost_in;
+      assign live_cost = live_cost_q;
       for (k = 1; k < SW; k = k + 1) begin : g_colp
         assign col_pix[k*8 +: 8] = lbp_dout[(k-1)*8 +: 8];
       end
@@ -345,7 +342,7 @@ module sm_sw_aggregate #(
       wire [LVW-1:0] live_gm;
       for (gi = 0; gi < F; gi = gi + 1) begin : g_lgrp
         for (pl = 0; pl < CW; pl = pl + 1) begin : g_lpl
-          assign live_gm[gi*GW + pl*PU +: PU] = live_cost_q[pl*DISP + gi*PU +: PU];
+          assign live_gm[gi*GW + pl*PU +: PU] = live_cost[pl*DISP + gi*PU +: PU];
         end
       end
       reg [GW-1:0] live_sel;
@@ -366,19 +363,18 @@ module sm_sw_aggregate #(
           .col(col_g)
       );
 
-      // Steps through the datapath: 1 window and heap, 2..5 sm_sw_level, 5 result.
-      reg [5:1]     act_q;
-      reg [FGW-1:0] grp_q [1:5];
+      // Steps through the datapath: 1 window and heap, 2..4 sm_sw_level, 4 result.
+      reg [4:1]     act_q;
+      reg [FGW-1:0] grp_q [1:4];
       always @(posedge clk) begin
-        if (!rst_n) act_q <= 5'd0;
-        else act_q <= {act_q[4:1], act0_q};
+        if (!rst_n) act_q <= 4'd0;
+        else act_q <= {act_q[3:1], act0_q};
       end
       always @(posedge clk) begin
         grp_q[1] <= grp0_q;
         grp_q[2] <= grp_q[1];
         grp_q[3] <= grp_q[2];
         grp_q[4] <= grp_q[3];
-        grp_q[5] <= grp_q[4];
       end
 
       // Window: the entering column's group from the line buffer, the SW-1 previous
@@ -404,7 +400,7 @@ module sm_sw_aggregate #(
       sm_plane2lane #(.P(AW), .L(PU)) u_ta (.planes(row_a), .lanes(lane_a));
       sm_plane2lane #(.P(AW), .L(PU)) u_tb (.planes(row_b), .lanes(lane_b));
 
-      // The levels run every clock (a pipeline of four registers); RECIP holds for the
+      // The levels run every clock (a pipeline of three registers); RECIP holds for the
       // F steps of its beat.
       wire [GW-1:0] agg_g;  // level l of the group at [l*CW +: CW]
       for (d = 0; d < PU; d = d + 1) begin : g_lvl
@@ -413,15 +409,15 @@ module sm_sw_aggregate #(
             .recip(recip_q), .agg(agg_g[d*CW +: CW]));
       end
 
-      // Results: group g of the beat of ce 0 leaves sm_sw_level on clock c0 + 6 + g;
-      // ring slots until ce 5 presents the beat.
-      sm_sw_foldout #(.W(GW), .F(F), .DELAY(5)) u_out (
-          .clk(clk), .rst_n(rst_n), .ce(ce), .en(act_q[5]), .grp(grp_q[5]), .din(agg_g),
+      // Results: group g of the beat of ce 0 leaves sm_sw_level on clock c0 + 5 + g;
+      // ring slots until ce 4 presents the beat.
+      sm_sw_foldout #(.W(GW), .F(F), .DELAY(4)) u_out (
+          .clk(clk), .rst_n(rst_n), .ce(ce), .en(act_q[4]), .grp(grp_q[4]), .din(agg_g),
           .dout(m_agg)
       );
     end
   endgenerate
 
-  sm_side_delay #(.DEPTH(6)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(m_side));
+  sm_side_delay #(.DEPTH(`SM_AGG_PIPE_BEATS)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(m_side));
 endmodule
 `default_nettype wire

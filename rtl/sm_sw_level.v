@@ -6,11 +6,12 @@
 // weighted sums of all levels are one bit heap there (sm_bitheap), which leaves two
 // numbers per level, added here. The reciprocal is per pixel and shared by every level.
 //
-// Latency 4 ce from row_a/row_b to agg (registers araw_q, prod_q, sat_q, agg):
+// Latency 3 ce from row_a/row_b to agg (registers araw_q, prod_q, agg):
 //   ce a  A_raw = row_a + row_b          (a carry chain)
 //   ce b  A_raw * RECIP                  (recip arrives one ce after the rows)
-//   ce c  round, shift by 12, saturate
-//   ce d  output register
+//   ce c  round, shift by 12, saturate: the output register
+// (A fourth, delay-only output register would cost CW flip-flops a level, 768 at the
+// paper configuration; the saturation's register already ends the path.)
 module sm_sw_level #(
     parameter CW = 6,   // shifted / aggregated cost width
     parameter SW = 5,   // window side: SW * SW positions
@@ -44,7 +45,6 @@ module sm_sw_level #(
 
   reg  [AW-1:0]    araw_q;
   reg  [PRW-1:0]   prod_q;
-  reg  [CW-1:0]    sat_q;
   wire [AW+RW-1:0] prod = araw_q * recip;
   wire [PRW:0]     rnd = {1'b0, prod_q} + 2048;
   wire [QW-1:0]    qv = rnd[PRW:12];
@@ -55,8 +55,7 @@ module sm_sw_level #(
     if (ce) begin
       araw_q <= araw;
       prod_q <= prod[PRW-1:0];
-      sat_q  <= (qv > OMAX) ? OMAX[CW-1:0] : qv[CW-1:0];
-      agg    <= sat_q;
+      agg    <= (qv > OMAX) ? OMAX[CW-1:0] : qv[CW-1:0];
     end
   end
 endmodule

@@ -68,7 +68,6 @@ module sm_top #(
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam YW = `SM_COUNT_W(MAX_HEIGHT);
   localparam CB = CENSUS * CENSUS - 1;
-  localparam HW = $clog2(CB + 1);
   localparam CW = $clog2((CB >> COST_SHIFT) + 1);
   // Register-file port widths (rtl/regmap.json): grid point = {gy, gx} with a
   // power-of-two row of points, object list word index.
@@ -279,7 +278,7 @@ module sm_top #(
   );
 
   wire [`SM_SIDE_W-1:0] ct_side;
-  wire [HW*DISP-1:0] ct_cost;  // bit-plane order: bit f of level d at [f*DISP + d]
+  wire [CW*DISP-1:0] ct_cost;  // C in bit-plane order: bit f of level d at [f*DISP + d]
   wire [7:0]         ct_left;
   sm_cost #(
       .MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .PU(PUE), .COST_SHIFT(COST_SHIFT),

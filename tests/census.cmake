@@ -28,7 +28,8 @@ sm_rtl_test(NAME tb_cost_paper TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_
             PARAMS MAX_WIDTH=320 DISP=128 CENSUS=15 ARGS --width 301 --heights 20 3 5 --max-cost-frame LABELS rtl slow)
 
 # The cost's intensity term (sm_ad_term), every pixel pair: the default, no shift with the
-# widest cap, the widest shift with a cap of 1, and one the shifted difference never reaches.
+# widest cap, the widest shift with a cap of 1, one the shifted difference never reaches,
+# and a cap that is not all ones (5 at shift 3).
 sm_rtl_test(NAME tb_ad_term TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ad_term.cpp
             PARAMS L=3 AD_SHIFT=2 AD_MAX=7)
 sm_rtl_test(NAME tb_ad_term_wide TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ad_term.cpp
@@ -37,14 +38,19 @@ sm_rtl_test(NAME tb_ad_term_narrow TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_D
             PARAMS L=1 AD_SHIFT=7 AD_MAX=1)
 sm_rtl_test(NAME tb_ad_term_uncapped TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ad_term.cpp
             PARAMS L=1 AD_SHIFT=7 AD_MAX=15)
+sm_rtl_test(NAME tb_ad_term_odd_cap TOP sm_ad_term SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_ad_term.cpp
+            PARAMS L=2 AD_SHIFT=3 AD_MAX=5)
 # Count plus term, capped (sm_cost_addsat): the paper (CB 224 in 8 bits, a cap below 2^HW - 1),
-# a term wider than the count (CENSUS 3: CB 8 in 4 bits, 7 << 2 = 28), and CB = 2^HW - 1.
+# a term wider than the count (CENSUS 3: CB 8 in 4 bits, 7 << 2 = 28), CB = 2^HW - 1 unshifted,
+# and three dropped planes under a cap of 48 >> 3 = 6.
 sm_rtl_test(NAME tb_cost_addsat TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
             PARAMS L=128 HW=8 TW=3 COST_SHIFT=2 CB=224)
 sm_rtl_test(NAME tb_cost_addsat_small TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
             PARAMS L=5 HW=4 TW=3 COST_SHIFT=2 CB=8)
 sm_rtl_test(NAME tb_cost_addsat_full TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
             PARAMS L=7 HW=6 TW=4 COST_SHIFT=0 CB=63)
+sm_rtl_test(NAME tb_cost_addsat_shift3 TOP sm_cost_addsat SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost_addsat.cpp
+            PARAMS L=9 HW=6 TW=4 COST_SHIFT=3 CB=48)
 
 # The census-only cost (AD_MAX 0: no intensity term), unfolded and folded.
 sm_rtl_test(NAME tb_cost_census_only TOP sm_cost SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_cost.cpp

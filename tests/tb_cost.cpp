@@ -1,4 +1,5 @@
-// Block test of sm_cost against the model's matching_cost. The census inputs come from
+// Block test of sm_cost against the model's matching_cost, at the scale sm_cost outputs
+// it (C = cost >> COST_SHIFT, the bits the aggregation reads). The census inputs come from
 // the model's census images of random image pairs (the right image a shifted copy of
 // the left with noise, so low costs occur), the centre pixels from the images; virtual
 // beats and idle cycles carry garbage. Every level of every real output pixel is compared. Folded (SM_P_PU defined,
@@ -52,8 +53,7 @@ int main(int argc, char** argv) {
   }
   const int fold = kDisp / pu;  // clocks per beat
   const int cb = hw.census_bits();
-  int hwb = 0;  // HW = clog2(CB + 1)
-  while ((1 << hwb) < cb + 1) ++hwb;
+  const int cw = hw.cost_bits();  // C's planes
 
   std::mt19937 rng(4321);
   std::vector<sm::Image8> left, right;
@@ -161,8 +161,8 @@ int main(int argc, char** argv) {
     if (t->m_left != left[p->frame].at(p->x, p->y))
       what = fmt::format("left expected {} got {}", left[p->frame].at(p->x, p->y), t->m_left);
     for (int d = 0; d < kDisp && what.empty(); ++d) {
-      const unsigned got = sm::test::plane_bits(t->m_cost, d, hwb, kDisp);
-      const unsigned exp = cost[p->frame].at(p->x, p->y, d);
+      const unsigned got = sm::test::plane_bits(t->m_cost, d, cw, kDisp);
+      const unsigned exp = cost[p->frame].at(p->x, p->y, d) >> hw.cost_shift;
       if (got != exp) what = fmt::format("d {}: expected {} got {}", d, exp, got);
     }
     t.check(what.empty(), [&] { return fmt::format("frame {} x {} y {} {}", p->frame, p->x, p->y, what); });

@@ -1,6 +1,7 @@
 // Direct test of sm_cost_addsat (the matching cost from the Hamming count and the
-// intensity term) against the definition model/census.hpp gives matching_cost:
-// min(h + (t << COST_SHIFT), CB), or CB where ok is low. Every (h, t) pair with h <= CB
+// intensity term, at the aggregation's scale) against the definition model/census.hpp
+// gives matching_cost, shifted as the aggregation shifts it: min(h + (t << COST_SHIFT),
+// CB) >> COST_SHIFT, or CB >> COST_SHIFT where ok is low. Every (h, t) pair with h <= CB
 // (the counts sm_popcount can give) and ok both ways, in the lanes of one vector, at
 // random lane positions from a fixed seed.
 #include <fmt/format.h>
@@ -21,6 +22,8 @@ int main(int argc, char** argv) {
     int h, t;
     bool ok;
   };
+  int cw = 0;  // the output's planes: clog2((CB >> COST_SHIFT) + 1)
+  while ((1 << cw) < (kCb >> kShift) + 1) ++cw;
   std::vector<Case> cases;
   for (int h = 0; h <= kCb; ++h)
     for (int tv = 0; tv < (1 << kTw); ++tv)
@@ -37,8 +40,8 @@ int main(int argc, char** argv) {
     t->eval();
     for (int l = 0; l < kL; ++l) {
       const Case& c = cases[(i + l) % cases.size()];
-      const unsigned want = c.ok ? std::min(c.h + (c.t << kShift), kCb) : kCb;
-      const unsigned got = sm::test::plane_bits(t->cost, l, kHw, kL);
+      const unsigned want = (c.ok ? std::min(c.h + (c.t << kShift), kCb) : kCb) >> kShift;
+      const unsigned got = sm::test::plane_bits(t->cost, l, cw, kL);
       t.check(got == want,
               [&] { return fmt::format("h {} t {} ok {} lane {}: cost {}, want {}", c.h, c.t, c.ok, l, got, want); });
     }

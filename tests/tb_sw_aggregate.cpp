@@ -6,8 +6,9 @@
 // (SM_P_PU < SM_P_DISP, F = DISP / PU clocks per beat): ce is low on the F - 1 clocks
 // after every high one (sm_top's pacing) and the next beat's input is held from the
 // clock after a ce up to its own ce, as the previous stage's output register would be.
-// --max-cost-frame appends a frame whose raw costs all sit at the port's maximum
-// (2^HW - 1): the widest weighted terms and sums, and -- where the cost width allows it --
+// The port takes C = raw >> COST_SHIFT (sm_cost's output), the model the raw costs.
+// --max-cost-frame appends a frame whose raw costs all sit at 2^HW - 1 (C at the port's
+// maximum 2^CW - 1): the widest weighted terms and sums, and -- where the cost width allows it --
 // windows whose normalised cost rounds above 2^CW - 1 and must saturate (sm_sw_level).
 #include SM_VTOP_H
 
@@ -195,7 +196,7 @@ int main(int argc, char** argv) {
   auto& tb = t.tb();
   t.ce_schedule(seed * 7919u + 1u, idle, kFold);
   std::mt19937& grng = t.ce_rng();
-  const int cost_bits = kDisp * hwid, agg_bits = kDisp * cw;
+  const int cost_bits = kDisp * cw, agg_bits = kDisp * cw;
   Bits cost_in = make_bits(cost_bits);
 
   auto garbage = [&]() {
@@ -221,7 +222,8 @@ int main(int argc, char** argv) {
       if (b.x == 0 && b.y == 0) table_now = pack_table(f.table);
       // bit-plane order: bit i of level d at i*DISP + d
       for (int d = 0; d < kDisp; ++d)
-        for (int i = 0; i < hwid; ++i) put_field(cost_in, i * kDisp + d, 1, (f.raw.at(b.x, b.y, d) >> i) & 1u);
+        for (int i = 0; i < cw; ++i)
+          put_field(cost_in, i * kDisp + d, 1, (f.raw.at(b.x, b.y, d) >> (kCostShift + i)) & 1u);
       sm::test::set_port_words(tb->s_cost, cost_in, cost_bits);
       tb->s_left = f.left.at(b.x, b.y);
     } else {
