@@ -109,22 +109,9 @@ module sm_right_wta #(
       // ---- one beat per clock: R'[k] from R[k-1] for every level ------------------
       // Entries 0..DISP-2 are kept; R'[DISP-1] only gives m_lr. Datapath: no reset
       // (the entries of the beats before the first sol after reset never leave as real).
-      // R[k]'s level is at most k, so its register holds clog2(k + 1) level bits and the
-      // rest are constant 0 (120 flip-flops and their selects fewer at DISP 128).
-      wire [(DISP-1)*EW-1:0] r_q;  // R[k] at [k*EW +: EW]
+      reg  [(DISP-1)*EW-1:0] r_q;  // R[k] at [k*EW +: EW]
       wire [DISP*EW-1:0]     nx;   // R'[k] at [k*EW +: EW]
       genvar k;
-      for (k = 0; k < DISP - 1; k = k + 1) begin : g_ent
-        localparam LB = (k == 0) ? 1 : $clog2(k + 1);  // level bits that can be 1
-        reg [1+CW+LB-1:0] e_q;  // {v, cost, level[LB-1:0]}
-        always @(posedge clk) if (ce) e_q <= {nx[k*EW+DW +: 1+CW], nx[k*EW +: LB]};
-        if (LB < DW) begin : g_trim
-          assign r_q[k*EW +: EW] = {e_q[LB +: 1+CW], {(DW-LB){1'b0}}, e_q[LB-1:0]};
-          wire unused_hi = |nx[k*EW+LB +: DW-LB];  // 0 by the bound
-        end else begin : g_full
-          assign r_q[k*EW +: EW] = e_q;
-        end
-      end
       for (k = 0; k < DISP; k = k + 1) begin : g_lvl
         wire [CW-1:0] a = s_cost[k*CW +: CW];
         if (k == 0) begin : g_first
@@ -140,7 +127,12 @@ module sm_right_wta #(
           assign nx[k*EW +: EW] = {pv, take ? a : p[DW +: CW], take ? LV : p[DW-1:0]};
         end
       end
-      always @(posedge clk) if (ce) m_lr <= nx[(DISP-1)*EW +: DW];
+      always @(posedge clk) begin
+        if (ce) begin
+          r_q  <= nx[(DISP-1)*EW-1:0];
+          m_lr <= nx[(DISP-1)*EW +: DW];
+        end
+      end
       wire unused_top = &nx[DISP*EW-1 : (DISP-1)*EW+DW];  // v and cost of R'[DISP-1]
     end else begin : g_fold
       // ---- folded: PU lanes, groups g = F-1 .. 0 on the F clocks after a ce --------
