@@ -207,7 +207,8 @@ module sm_top #(
 
   // Per-frame parameters: every stage after the brightness control reads the shadow
   // values of its own frame from a four-frame history indexed by frame tag (a frame can
-  // be more than one frame deep in the pipeline). The four tags must outlast the
+  // be more than one frame deep in the pipeline), each stage's field in its
+  // sm_frame_sel, written with the frame's first beat (beat_side). The four tags must outlast the
   // pipeline: FLUSH_ROWS rows of 16 beats bound its latency, four frames last at least
   // 4 x 16 rows.
   // Every parameter inside its range of rtl/defs.json (the ranges HwConfig::validate()
@@ -229,12 +230,8 @@ module sm_top #(
   localparam P_OUT  = P_H + YW;        // the output stage's registers (sm_outfields' s_cfg)
   localparam P_SMO  = P_OUT + 49;      // smoothing: enable, then the threshold
   localparam PW     = P_SMO + 7;
-  wire [PW-1:0]   fr_par = {cfg_smooth, cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
-                            cfg_edge_t, cfg_occ_edge, cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
-  wire [4*PW-1:0] fr_hist;
-  sm_frame_hist #(.PW(PW)) u_fhist (
-      .clk(aclk), .ce(ce), .s_side(beat_side), .s_par(fr_par), .hist(fr_hist)
-  );
+  wire [PW-1:0] fr_par = {cfg_smooth, cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
+                          cfg_edge_t, cfg_occ_edge, cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
 
   // ---------------------------------------------------------------- pre-processing
   wire [`SM_SIDE_W-1:0] br_side;
@@ -251,7 +248,7 @@ module sm_top #(
   wire [GAW-2:0] grid_addr_cam = grid_waddr[GAW-2:0];  // {bank, gy, gx}
   wire [1:0] par_rect;  // {grid bank, enable}
   sm_frame_sel #(.PW(PW), .LSB(P_RECT), .W(2), .NEXT(1)) u_fsel_rect (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(rl_side), .hist(fr_hist), .par(par_rect)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(rl_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_rect)
   );
   sm_rectify #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .RECT_RADIUS(RECT_RADIUS)) u_rect_l (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_rect[0]),
@@ -293,7 +290,7 @@ module sm_top #(
   wire [DISP*CW-1:0] ag_cost;
   wire [63:0]        par_swt;
   sm_frame_sel #(.PW(PW), .LSB(P_SWT), .W(64), .NEXT(1)) u_fsel_agg (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ag_side), .hist(fr_hist), .par(par_swt)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ag_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_swt)
   );
   sm_sw_aggregate #(
       .MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CENSUS(CENSUS), .SW(SW), .COST_SHIFT(COST_SHIFT), .PU(PUE)
@@ -308,7 +305,7 @@ module sm_top #(
   wire [7:0] par_edge_t;
   wire       dp_edge;
   sm_frame_sel #(.PW(PW), .LSB(P_EDGT), .W(8), .NEXT(1)) u_fsel_edge (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ct_side), .hist(fr_hist), .par(par_edge_t)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ct_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_edge_t)
   );
   sm_edge_flag #(.MAX_WIDTH(MAX_WIDTH), .ROWS((SW - 1) / 2), .COLS((SW - 1) / 2 + `SM_AGG_PIPE_BEATS)) u_edge (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .edge_t(par_edge_t),
@@ -322,7 +319,7 @@ module sm_top #(
   wire [7:0]  dp_gap;
   wire [DWD-1:0] dp_fill_bg;
   sm_frame_sel #(.PW(PW), .LSB(P_OCC), .W(16), .NEXT(1)) u_fsel_dp (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(dp_side), .hist(fr_hist), .par(par_occ)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(dp_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_occ)
   );
   sm_dp #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW), .PU(PUE)) u_dp (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width),
@@ -341,7 +338,7 @@ module sm_top #(
   generate
     for (fi = 0; fi < 4; fi = fi + 1) begin : g_fsel_post
       sm_frame_sel #(.PW(PW), .LSB(P_FILT + fi), .W(1), .NEXT(1)) u_fsel (
-          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[`SM_SIDE_W*fi +: `SM_SIDE_W]), .hist(fr_hist),
+          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[`SM_SIDE_W*fi +: `SM_SIDE_W]), .wr_side(beat_side), .wr_par(fr_par),
           .par(par_filt[fi])
       );
     end
@@ -369,7 +366,7 @@ module sm_top #(
   // DP's input (ag_side) sees that frame's start two rows before.
   wire [48:0] par_out;
   sm_frame_sel #(.PW(PW), .LSB(P_OUT), .W(49), .NEXT(0)) u_fsel_out (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ag_side), .hist(fr_hist), .par(par_out)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(ag_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_out)
   );
   wire [`SM_SIDE_W-1:0] out_side, obj_side;
   wire [31:0] out_word;
@@ -396,7 +393,7 @@ module sm_top #(
   // its delay of 2W + 3 beats.
   wire [32+YW-1:0] par_obj;  // {height, min pixels, tol, near}
   sm_frame_sel #(.PW(PW), .LSB(P_OBJ), .W(32 + YW), .NEXT(0)) u_fsel_obj (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(f2_side), .hist(fr_hist), .par(par_obj)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(f2_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_obj)
   );
   wire [YW-1:0] frame_height = par_obj[32 +: YW];
   sm_objects #(
@@ -436,7 +433,7 @@ module sm_top #(
   wire [31:0] sm_word;
   wire [6:0]  par_smooth;
   sm_frame_sel #(.PW(PW), .LSB(P_SMO), .W(7), .NEXT(1)) u_fsel_smooth (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(sm_side), .hist(fr_hist), .par(par_smooth)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(sm_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_smooth)
   );
   sm_out_smooth #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_smooth (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_smooth[0]), .thr(par_smooth[6:1]),
