@@ -338,8 +338,8 @@ module sm_top #(
   generate
     for (fi = 0; fi < 4; fi = fi + 1) begin : g_fsel_post
       sm_frame_sel #(.PW(PW), .LSB(P_FILT + fi), .W(1), .NEXT(1)) u_fsel (
-          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[`SM_SIDE_W*fi +: `SM_SIDE_W]), .wr_side(beat_side), .wr_par(fr_par),
-          .par(par_filt[fi])
+          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(filt_ev[`SM_SIDE_W*fi +: `SM_SIDE_W]),
+          .wr_side(beat_side), .wr_par(fr_par), .par(par_filt[fi])
       );
     end
   endgenerate
