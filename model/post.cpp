@@ -16,11 +16,6 @@
 namespace sm {
 
 namespace {
-int clog2(long v) {  // as Verilog's $clog2
-  int n = 0;
-  while ((1L << n) < v) ++n;
-  return n;
-}
 // the level bits of a stream word: the low clog2(DISP)
 unsigned level_mask(const HwConfig& hw) { return (1u << clog2(hw.disp)) - 1; }
 }  // namespace

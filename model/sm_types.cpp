@@ -5,16 +5,9 @@
 #include <cctype>
 
 #include "sm_regmap.hpp"  // generated from rtl/regmap.json: the SW_TABLE reset values
+#include "lower_case.hpp"
 
 namespace sm {
-
-namespace {
-int clog2(long v) {  // ceil(log2(v)), as Verilog's $clog2
-  int n = 0;
-  while ((1L << n) < v) ++n;
-  return n;
-}
-}  // namespace
 
 int HwConfig::cost_bits() const { return clog2((census_bits() >> cost_shift) + 1); }
 
@@ -62,8 +55,7 @@ void HwConfig::validate() const {
   const auto params = parameters();
   for (const auto& l : defs::kLimits) {
     const int v = params.at(l.name);
-    std::string name = l.name;  // the HwConfig field (and tool option) is the lower-case name
-    for (auto& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string name = lower_case(l.name);  // the HwConfig field (and tool option)
     const bool parity_ok = l.parity == defs::Parity::kAny || (v % 2 == 0) == (l.parity == defs::Parity::kEven);
     if (v < l.min || v > l.max || !parity_ok)
       bad(fmt::format("{} {} must be {}{}..{} ({})", name, v,

@@ -15,6 +15,13 @@
 
 namespace sm {
 
+// ceil(log2(v)) for v >= 1, as Verilog's $clog2: the RTL's derived widths.
+constexpr int clog2(long v) {
+  int n = 0;
+  while ((1L << n) < v) ++n;
+  return n;
+}
+
 // A W x H plane of one integer type, row-major.
 template <typename T>
 struct Plane {

@@ -13,6 +13,7 @@
 #include "toolio/sm_reg_options.hpp"
 #include "sm_sim_shards.hpp"
 #include "sm_wave_names.hpp"
+#include "lower_case.hpp"
 
 namespace fs = std::filesystem;
 
@@ -213,8 +214,7 @@ void check_wave_options(const ModelInfo& info, SimOptions& opt) {
 }
 
 void check_disp_file_option(const SimOptions& opt) {
-  std::string ext = fs::path(opt.disp_file).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(opt.disp_file);
   if (ext != ".pfm" && ext != ".png") fail(fmt::format("{}: --disp-file must end in .pfm or .png", opt.disp_file));
 }
 

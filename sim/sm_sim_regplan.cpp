@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <tuple>
 
 #include "calib_file.hpp"
 #include "pipeline.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "sm_sim_preflight.hpp"
+#include "lower_case.hpp"
 
 namespace sm::simapp {
 
@@ -19,20 +19,10 @@ namespace {
 
 // The compile-time keys of a register file (`got`) must be this simulator's (`hw`).
 void check_hw_keys(const std::string& path, const HwConfig& got, const HwConfig& hw) {
-  const std::vector<std::tuple<const char*, int, int>> hw_keys = {{"max_width", got.max_width, hw.max_width},
-                                                                  {"max_height", got.max_height, hw.max_height},
-                                                                  {"disp", got.disp, hw.disp},
-                                                                  {"census", got.census, hw.census},
-                                                                  {"sw", got.sw, hw.sw},
-                                                                  {"rect_radius", got.rect_radius, hw.rect_radius},
-                                                                  {"cost_shift", got.cost_shift, hw.cost_shift},
-                                                                  {"ad_shift", got.ad_shift, hw.ad_shift},
-                                                                  {"ad_max", got.ad_max, hw.ad_max},
-                                                                  {"max_objects", got.max_objects, hw.max_objects},
-                                                                  {"label_slots", got.label_slots, hw.label_slots},
-                                                                  {"band_k", got.band_k, hw.band_k}};
-  for (const auto& [k, g, want] : hw_keys)
-    if (g != want) fail(fmt::format("{}: '{}' = {}, but this simulator is built with {}", path, k, g, want));
+  const auto want = hw.parameters();
+  for (const auto& [name, g] : got.parameters())
+    if (g != want.at(name))
+      fail(fmt::format("{}: '{}' = {}, but this simulator is built with {}", path, lower_case(name), g, want.at(name)));
 }
 
 // A calibration file this IP can hold; a folder named as the file gets

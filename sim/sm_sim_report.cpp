@@ -14,6 +14,7 @@
 #include "sm_regmap.hpp"
 #include "sm_regs_io.hpp"
 #include "sm_sim_preflight.hpp"
+#include "lower_case.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -26,8 +27,7 @@ namespace {
 json regs_json(const Regs& r, int grid_bank) {
   json j;
   for (const RegWord& w : register_words(r)) {
-    std::string k = w.name;
-    std::transform(k.begin(), k.end(), k.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string k = lower_case(w.name);
     j[k] = (k == "offset_l" || k == "offset_r") ? json(static_cast<int32_t>(w.value)) : json(w.value);
   }
   j["grid_bank"] = grid_bank;

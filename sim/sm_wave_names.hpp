@@ -13,6 +13,8 @@
 
 #include <fmt/format.h>
 
+#include "lower_case.hpp"
+
 #if VM_TRACE_FST
 #include <gtkwave/fstapi.h>
 #endif
@@ -23,9 +25,7 @@ inline std::string wave_extension(const std::string& path) {
   const size_t dot = path.find_last_of('.');
   const size_t slash = path.find_last_of('/');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
+  return lower_case(path.substr(dot + 1));
 }
 
 namespace detail {

@@ -16,8 +16,7 @@ int main(int argc, char** argv) {
   sm::HwConfig hw;
   hw.ad_shift = SM_P_AD_SHIFT;
   hw.ad_max = SM_P_AD_MAX;
-  int tw = 0;  // TW = clog2(AD_MAX + 1)
-  while ((1 << tw) < hw.ad_max + 1) ++tw;
+  const int tw = sm::clog2(hw.ad_max + 1);  // TW
   for (int a = 0; a < 256; ++a)
     for (int b = 0; b < 256; ++b) {
       t->a = static_cast<uint8_t>(a);

@@ -420,11 +420,7 @@ int main(int argc, char** argv) {
   // rectifier's grid address {gy, gx} with a power-of-two row (model/calib_file.hpp).
   const int gw_pts = sm::RectGrid::points_w(hw.max_width), gh_pts = sm::RectGrid::points_h(hw.max_height);
   const int gwmax = sm::grid_gwmax(hw.max_width), ghmax = sm::grid_ghmax(hw.max_height);
-  const int pb = [&] {
-    int b = 0;
-    while ((1 << b) < gwmax * ghmax) ++b;
-    return b;
-  }();
+  const int pb = sm::clog2(gwmax * ghmax);
   auto point_of = [&](int gx, int gy) { return gy * gwmax + gx; };
   for (int i = 0; i < 200; ++i) {
     const int cam = static_cast<int>(rng() % 2), bank = static_cast<int>(rng() % 2);

@@ -22,8 +22,7 @@ int main(int argc, char** argv) {
     int h, t;
     bool ok;
   };
-  int cw = 0;  // the output's planes: clog2((CB >> COST_SHIFT) + 1)
-  while ((1 << cw) < (kCb >> kShift) + 1) ++cw;
+  const int cw = sm::clog2((kCb >> kShift) + 1);  // the output's planes
   std::vector<Case> cases;
   for (int h = 0; h <= kCb; ++h)
     for (int tv = 0; tv < (1 << kTw); ++tv)

@@ -96,8 +96,7 @@ int main(int argc, char** argv) {
   t.option("--width", w, "row width").range(2, hw.max_width);
   t.option("--height", h, "rows per frame").range(1, 4096);
   if (auto rc = t.parse(argc, argv)) return *rc;
-  int dw = 0;
-  while ((1 << dw) < hw.disp) ++dw;
+  const int dw = sm::clog2(hw.disp);
   std::mt19937 rng(0xf1e1d + hw.disp);
   const std::vector<int> heights{h, 1, h + 1};
   std::vector<Frame> frames;

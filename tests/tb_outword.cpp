@@ -64,8 +64,7 @@ int main(int argc, char** argv) {
   t.option("--widths", widths, "active widths, one frame group each").delimiter(',').range(2, hw.max_width);
   t.option("--height", h, "rows of the frames").range(1, 4096);
   if (auto rc = t.parse(argc, argv)) return *rc;
-  int dw = 0;
-  while ((1 << dw) < hw.disp) ++dw;
+  const int dw = sm::clog2(hw.disp);
   std::mt19937 rng(0x0a7d + hw.disp);
 
   auto& tb = t.tb();

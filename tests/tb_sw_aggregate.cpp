@@ -42,12 +42,6 @@ constexpr int kFold = 1;
 #endif
 constexpr int kPipe = sm::defs::kAggPipeBeats;  // beats from the window's entering beat to the output, inclusive
 
-int clog2(int v) {
-  int n = 0;
-  while ((1 << n) < v) ++n;
-  return n;
-}
-
 // A bit vector of the given width as 32-bit words (bit b at word b / 32), as
 // sm::test::set_port_words / get_port_words take them.
 using Bits = std::vector<uint32_t>;
@@ -149,7 +143,7 @@ int main(int argc, char** argv) {
   hw.sw = kSw;
   hw.cost_shift = kCostShift;
   const int cb = hw.census_bits();
-  const int hwid = clog2(cb + 1);
+  const int hwid = sm::clog2(cb + 1);
   const int cw = hw.cost_bits();
 
   std::mt19937 rng(seed);

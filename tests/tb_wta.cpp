@@ -38,15 +38,10 @@ constexpr int kPu = SM_P_DISP;
 constexpr int kF = kDisp / kPu;  // clocks per beat
 constexpr int kCmax = (1 << kCw) - 1;
 
-constexpr int clog2(int n) {
-  int b = 0;
-  while ((1 << b) < n) ++b;
-  return b;
-}
 // rtl/sm_wta.v's LATENCY: the tree's NS = ceil(clog2(DISP) / 2) register stages at
 // PU = DISP; folded, the ring's floor(D / F) + 1 slots (D = ceil(clog2(PU) / 2) + 2) and
 // the output registers.
-constexpr int kStages = (clog2(kPu) + 1) / 2;
+constexpr int kStages = (sm::clog2(kPu) + 1) / 2;
 constexpr int kLatency = kF == 1 ? kStages : (kStages + 2) / kF + 2;
 
 // Pack DISP CW-bit costs, level k at bit k*CW.

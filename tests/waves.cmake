@@ -13,7 +13,7 @@ if(SM_WAVE_PAPER)
   set(_sm_wave_deps stereo_sim_wave)
   set(_sm_wave_timeout 1800)
 endif()
-sm_unit_test(test_sim_waves TEST system_waves LIBS fmt::fmt INCLUDES ${CMAKE_SOURCE_DIR}/tests/common ${CMAKE_SOURCE_DIR}/sim
+sm_unit_test(test_sim_waves TEST system_waves LIBS fmt::fmt INCLUDES ${CMAKE_SOURCE_DIR}/tests/common ${CMAKE_SOURCE_DIR}/sim ${CMAKE_SOURCE_DIR}/model
              DEFINES SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/sim_waves_tmp" SM_GTKW_DIR="${CMAKE_SOURCE_DIR}/waves/gtkw"
                      SM_STEREO_SIM_SMALL="$<TARGET_FILE:stereo_sim_small>"
                      SM_STEREO_SIM_SMALL_WAVE="$<TARGET_FILE:stereo_sim_small_wave>" ${_sm_wave_defs}

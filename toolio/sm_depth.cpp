@@ -12,16 +12,11 @@
 
 #include "sm_io.hpp"
 #include "sm_outputs.hpp"
+#include "lower_case.hpp"
 
 namespace sm::tools {
 
 namespace {
-
-std::string lower_ext(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
@@ -68,13 +63,13 @@ std::vector<CloudPoint> depth_to_cloud(const cv::Mat& depth, const cv::Mat& grey
 }
 
 bool is_depth_file_name(const std::string& path) {
-  const std::string e = lower_ext(path);
+  const std::string e = lower_extension(path);
   return e == ".pfm" || e == ".png";
 }
 
 void write_depth_file(const std::string& path, const cv::Mat& depth) {
   CV_Assert(depth.type() == CV_32FC1);
-  const std::string ext = lower_ext(path);
+  const std::string ext = lower_extension(path);
   if (ext == ".pfm") {
     cv::Mat pfm = depth.clone();
     for (auto it = pfm.begin<float>(); it != pfm.end<float>(); ++it)
@@ -94,7 +89,7 @@ void write_depth_file(const std::string& path, const cv::Mat& depth) {
 }
 
 cv::Mat read_depth_file(const std::string& path) {
-  const std::string ext = lower_ext(path);
+  const std::string ext = lower_extension(path);
   if (ext != ".pfm" && ext != ".png")
     throw ToolError(fmt::format("{}: unknown depth format '{}' (use .pfm or .png)", path, ext));
   const cv::Mat m = read_image(path, cv::IMREAD_UNCHANGED);

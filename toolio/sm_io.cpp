@@ -22,6 +22,7 @@
 
 #include "sm_signal_cleanup.hpp"
 #include "sm_cli.hpp"
+#include "lower_case.hpp"
 
 namespace fs = std::filesystem;
 
@@ -216,17 +217,9 @@ cv::Mat disp_to_colour(const cv::Mat& disp_f, int levels) {
   return c;
 }
 
-namespace {
-std::string lower_ext(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-}  // namespace
-
 void write_disparity_file(const std::string& path, const cv::Mat& disp_f) {
   CV_Assert(disp_f.type() == CV_32FC1);
-  const std::string ext = lower_ext(path);
+  const std::string ext = lower_extension(path);
   if (ext == ".png") {
     // KITTI-style: round(d * 16), 0 = invalid; saturate_cast clips at 65535.
     cv::Mat png(disp_f.size(), CV_16UC1);
@@ -248,7 +241,7 @@ void write_disparity_file(const std::string& path, const cv::Mat& disp_f) {
 }
 
 cv::Mat read_disparity_file(const std::string& path, double png_scale) {
-  const std::string ext = lower_ext(path);
+  const std::string ext = lower_extension(path);
   if (ext != ".png" && ext != ".pfm")
     throw ToolError(fmt::format("{}: unknown disparity format '{}' (use .png or .pfm)", path, ext));
   if (!(png_scale > 0)) throw ToolError(fmt::format("{}: PNG disparity scale must be > 0", path));

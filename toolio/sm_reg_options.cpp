@@ -2,17 +2,18 @@
 
 #include <fmt/format.h>
 
-#include <cctype>
+#include <algorithm>
 
 #include "sm_regs_json.hpp"
+#include "lower_case.hpp"
 
 namespace sm::tools {
 
 namespace {
 
 std::string option_name(const std::string& reg) {
-  std::string o = "--";
-  for (char c : reg) o += c == '_' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string o = "--" + lower_case(reg);
+  std::replace(o.begin(), o.end(), '_', '-');
   return o;
 }
 

@@ -11,6 +11,7 @@
 #include "sm_io.hpp"
 #include "sm_json_file.hpp"
 #include "sm_regmap.hpp"
+#include "lower_case.hpp"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -20,11 +21,6 @@ namespace sm::tools {
 bool RegsFile::has(const std::string& key) const { return std::find(keys.begin(), keys.end(), key) != keys.end(); }
 
 namespace {
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 std::string upper(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
@@ -138,7 +134,7 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
   // Compile-time parameters first: the registers' ranges depend on them.
   // (the generated limits of rtl/defs.json; HwConfig::validate() checks parity and the rest)
   std::map<std::string, const defs::Limit*> hw_keys;
-  for (const auto& l : defs::kLimits) hw_keys[lower(l.name)] = &l;
+  for (const auto& l : defs::kLimits) hw_keys[lower_case(l.name)] = &l;
   RegsFile out;
   for (auto it = j.begin(); it != j.end(); ++it) {
     out.keys.push_back(it.key());
@@ -174,7 +170,8 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
     }
     // a register: its name in lower case
     const std::string name = upper(k);
-    if (lower(name) != k || !is_value_register(name)) throw ToolError(fmt::format("{}: unknown key '{}'", path, k));
+    if (lower_case(name) != k || !is_value_register(name))
+      throw ToolError(fmt::format("{}: unknown key '{}'", path, k));
     set_register(name, integer(k, v, register_range(*find_register(name), hw)), hw, r, what(k));
   }
   return out;

@@ -31,6 +31,7 @@
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "pre.hpp"
+#include "lower_case.hpp"
 
 namespace fs = std::filesystem;
 
@@ -39,11 +40,6 @@ namespace {
 struct Pair {
   std::string left, right;
 };
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 // A folder of left*/right* images (paired by the rest of the name), or a list file:
 // an OpenCV FileStorage with an "imagelist" sequence (left, right, left, right, ...) or
@@ -55,8 +51,8 @@ std::vector<Pair> find_pairs(const std::string& input) {
     std::map<std::string, Pair> by_key;
     for (const auto& e : fs::directory_iterator(input)) {
       if (!e.is_regular_file()) continue;
-      const std::string name = e.path().filename().string(), l = lower(name);
-      const std::string ext = lower(e.path().extension().string());
+      const std::string name = e.path().filename().string(), l = sm::lower_case(name);
+      const std::string ext = sm::lower_extension(e.path().string());
       if (ext != ".jpg" && ext != ".jpeg" && ext != ".png" && ext != ".bmp" && ext != ".pgm" && ext != ".tif" &&
           ext != ".tiff")
         continue;

@@ -23,6 +23,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "model/lower_case.hpp"
 #include "toolio/sm_cli.hpp"
 #include "toolio/sm_json_file.hpp"
 
@@ -97,12 +98,6 @@ std::string param_expr(const std::string& p) {
 int64_t field_lo(const Field& f) { return f.is_signed ? -(int64_t{1} << (f.width - 1)) : 0; }
 int64_t field_hi(const Field& f) {
   return f.is_signed ? (int64_t{1} << (f.width - 1)) - 1 : (int64_t{1} << f.width) - 1;
-}
-
-std::string lower_name(const std::string& s) {
-  std::string o;
-  for (char c : s) o += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return o;
 }
 
 int64_t parse_num(const json& j, const std::string& what) {
@@ -488,7 +483,7 @@ std::string gen_values_hpp(const Map& m) {
   for (const auto& r : m.regs) {
     if (!is_value_reg(r)) continue;
     const Field& f = r.fields[0];
-    const std::string t = member_type(f), member = lower_name(r.name);
+    const std::string t = member_type(f), member = sm::lower_case(r.name);
     const std::string range = f.min.present ? fmt::format("{}..{}", vval(f.min), vval(f.max)) : "";
     const std::string head =
         fmt::format("{} (0x{:03X}, {} bit{}{}{}, reset {}):", r.name, r.addr, f.width, f.width == 1 ? "" : "s",
@@ -599,7 +594,7 @@ struct Reg {
        "// wherever C++ lists them.\n"
        "#define SM_REGMAP_VALUE_REGS(X)";
   for (const auto& r : m.regs)
-    if (is_value_reg(r)) o << fmt::format(" \\\n  X({}, {})", r.name, lower_name(r.name));
+    if (is_value_reg(r)) o << fmt::format(" \\\n  X({}, {})", r.name, sm::lower_case(r.name));
   o << "\n\n";
   o << "// Object list window (read through the object block's read port).\n";
   o << fmt::format("constexpr uint32_t kObjBase = 0x{:X};\nconstexpr uint32_t kObjSize = 0x{:X};\n", m.obj_base,
@@ -828,7 +823,7 @@ std::string gen_defs_check_vh(const Defs& d) {
        "// Elaboration checks of sm_top's parameters, included inside sm_top.\n"
        "generate\n";
   for (const auto& l : d.limits) {
-    const std::string lower = lower_name(l.name);
+    const std::string lower = sm::lower_case(l.name);
     std::string cond = fmt::format("{0} < `SM_{0}_MIN || {0} > `SM_{0}_MAX", l.name);
     if (l.parity == "even") cond += fmt::format(" || {} % 2 != 0", l.name);
     if (l.parity == "odd") cond += fmt::format(" || {} % 2 != 1", l.name);

@@ -36,6 +36,7 @@
 #include "pipeline.hpp"
 #include "smooth.hpp"
 #include "sm_defs.hpp"
+#include "lower_case.hpp"
 
 namespace {
 
@@ -49,8 +50,7 @@ void check_outputs(const std::string& out, std::string& colour, const std::strin
   if (out.empty() && colour.empty() && disp_file.empty() && objects_json.empty() && conf_png.empty() && !depth.any())
     throw ToolError("no output: give -o, --colour, --disp-file, --objects-json, --depth-file and/or --cloud");
   if (!disp_file.empty()) {
-    std::string ext = std::filesystem::path(disp_file).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const std::string ext = sm::lower_extension(disp_file);
     if (ext != ".pfm" && ext != ".png")
       throw ToolError(fmt::format("{}: --disp-file must end in .pfm or .png", disp_file));
   }
@@ -115,21 +115,25 @@ int run(int argc, char** argv) {
   app.add_option("--confidence", conf_png, "write the 8-bit confidence of --mode dense/checked as a grey PNG");
   app.add_option("--regs", regs_json, "JSON file of HwConfig/Regs fields (keys = field names)");
   app.add_option("--calib", calib, "calibration JSON (model/calib_file.hpp): rectification grids");
-  auto* o_mw = app.add_option("--max-width", hw.max_width, "MAX_WIDTH (default: image width)");
-  auto* o_mh = app.add_option("--max-height", hw.max_height, "MAX_HEIGHT (default: image height)");
-  std::vector<CLI::Option*> hw_opts = {
-      app.add_option("--disp", hw.disp, "DISP: disparity levels")->capture_default_str(),
-      app.add_option("--census", hw.census, "CENSUS: census window side")->capture_default_str(),
-      app.add_option("--sw", hw.sw, "SW: support-weight window side")->capture_default_str(),
-      app.add_option("--rect-radius", hw.rect_radius, "RECT_RADIUS")->capture_default_str(),
-      app.add_option("--cost-shift", hw.cost_shift, "COST_SHIFT")->capture_default_str(),
-      app.add_option("--max-objects", hw.max_objects, "MAX_OBJECTS")->capture_default_str(),
-      app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str(),
-      app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str(),
-      app.add_option("--ad-shift", hw.ad_shift, "AD_SHIFT: the cost's intensity term is |L - R| >> AD_SHIFT")
-          ->capture_default_str(),
-      app.add_option("--ad-max", hw.ad_max, "AD_MAX: the intensity term's cap (0: census only)")
-          ->capture_default_str()};
+  // each option by the sm_top parameter it sets (HwConfig::field)
+  const std::vector<std::pair<const char*, CLI::Option*>> hw_opts = {
+      {"MAX_WIDTH", app.add_option("--max-width", hw.max_width, "MAX_WIDTH (default: image width)")},
+      {"MAX_HEIGHT", app.add_option("--max-height", hw.max_height, "MAX_HEIGHT (default: image height)")},
+      {"DISP", app.add_option("--disp", hw.disp, "DISP: disparity levels")->capture_default_str()},
+      {"CENSUS", app.add_option("--census", hw.census, "CENSUS: census window side")->capture_default_str()},
+      {"SW", app.add_option("--sw", hw.sw, "SW: support-weight window side")->capture_default_str()},
+      {"RECT_RADIUS", app.add_option("--rect-radius", hw.rect_radius, "RECT_RADIUS")->capture_default_str()},
+      {"COST_SHIFT", app.add_option("--cost-shift", hw.cost_shift, "COST_SHIFT")->capture_default_str()},
+      {"MAX_OBJECTS", app.add_option("--max-objects", hw.max_objects, "MAX_OBJECTS")->capture_default_str()},
+      {"LABEL_SLOTS", app.add_option("--label-slots", hw.label_slots, "LABEL_SLOTS")->capture_default_str()},
+      {"BAND_K",
+       app.add_option("--band-k", hw.band_k, "BAND_K: look-ahead rows of the band filter F0")->capture_default_str()},
+      {"AD_SHIFT", app.add_option("--ad-shift", hw.ad_shift,
+                                  "AD_SHIFT: the cost's intensity term is |L - R| >> "
+                                  "AD_SHIFT")
+                       ->capture_default_str()},
+      {"AD_MAX", app.add_option("--ad-max", hw.ad_max, "AD_MAX: the intensity term's cap (0: census only)")
+                     ->capture_default_str()}};
   // the value registers (the active size comes from the images, RECT_ENABLE is --no-rect)
   // ranges in --help at the default configuration (--disp, ... may change them)
   const sm::tools::RegOptions reg_opts(app, r, hw, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
@@ -181,18 +185,8 @@ int run(int argc, char** argv) {
   }
   const sm::Image8 L = sm::tools::to_image8(left_m);
   const sm::Image8 R = sm::tools::to_image8(right_m);
-  if (o_mw->count()) hw.max_width = cli_hw.max_width;
-  if (o_mh->count()) hw.max_height = cli_hw.max_height;
-  if (hw_opts[0]->count()) hw.disp = cli_hw.disp;
-  if (hw_opts[1]->count()) hw.census = cli_hw.census;
-  if (hw_opts[2]->count()) hw.sw = cli_hw.sw;
-  if (hw_opts[3]->count()) hw.rect_radius = cli_hw.rect_radius;
-  if (hw_opts[4]->count()) hw.cost_shift = cli_hw.cost_shift;
-  if (hw_opts[5]->count()) hw.max_objects = cli_hw.max_objects;
-  if (hw_opts[6]->count()) hw.label_slots = cli_hw.label_slots;
-  if (hw_opts[7]->count()) hw.band_k = cli_hw.band_k;
-  if (hw_opts[8]->count()) hw.ad_shift = cli_hw.ad_shift;
-  if (hw_opts[9]->count()) hw.ad_max = cli_hw.ad_max;
+  for (const auto& [name, opt] : hw_opts)
+    if (opt->count()) *hw.field(name) = *cli_hw.field(name);
   try {
     hw.validate();
   } catch (const std::invalid_argument& e) {
