@@ -12,8 +12,8 @@
 // the head B (if any) and gets
 //   disparity  min(d_A, d_B) (the left-occlusion fill), d_A after the last match, d_B
 //              before the first, 0 when the line had no match;
-//   gap        |d_B - d_A| capped at 254, 255 when A or B does not exist (run_gaps in
-//              model/evidence.cpp; the cap never acts while DISP <= 254);
+//   gap        |d_B - d_A| (at most 253), 255 when A or B does not exist (run_gaps in
+//              model/evidence.cpp, whose cap at 254 never acts while DISP <= 254);
 //   fill_bg    min(d_A, every match right of A) = rmin_A, rmin_B before the first
 //              match, 0 when the line had no match (fill_background).
 // d_A and rmin_A are remembered when A is popped; min(d_A, d_B) and |d_B - d_A| share
@@ -234,8 +234,12 @@ module sm_dp_trace #(
   wire [DW-1:0] dab = ld_q - hd;
   wire          b_lo = dba[DW];
   wire [DW-1:0] fill = (have && b_lo) ? hd : ld_q;  // fill after A: min(d_A, d_B), or d_A
-  wire [8:0]    adiff = {{(9 - DW) {1'b0}}, b_lo ? dab : dba[DW-1:0]};
-  wire [7:0]    run_gap = (adiff > 9'd254) ? 8'd254 : adiff[7:0];
+  // |d_B - d_A| <= DISP - 1 <= 253 (the DISP check above): the model's cap at 254 never
+  // acts, so the gap is the difference itself.
+  wire [DW-1:0] adiff = b_lo ? dab : dba[DW-1:0];
+  /* verilator lint_off WIDTH */  // the difference zero-extended to the gap's 8 bits
+  wire [7:0]    run_gap = adiff;
+  /* verilator lint_on WIDTH */
   wire [DW-1:0] out_d = consume ? hd : any_q ? fill : have ? hd : {DW{1'b0}};
   wire [7:0]    out_gap = consume ? 8'd0 : (any_q && have) ? run_gap : 8'd255;
   wire [DW-1:0] out_bg = consume ? hd : any_q ? rm_q : have ? hr : {DW{1'b0}};

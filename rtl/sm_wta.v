@@ -13,14 +13,17 @@
 //   fl/la i == lo / i == hi
 //   e     least cost over the range's k with |k - i| >= 2 (all ones when none)
 //   xf/xl least cost of the range without its first / last level (all ones when none)
-//   M     greatest cost;  band  A(i - 2 .. i + 2) (a leaf's own five neighbours)
+//   M     greatest cost
 // Merging the adjacent ranges L (left) and R: R wins when R.m < L.m. The levels of the
 // other child that sit next to the winner are L.hi and R.lo only, so
 //   L wins: e = min(L.e, L.la ? R.xf : R.m)     R wins: e = min(R.e, R.fl ? L.xl : L.m)
 //   xf = min(L.xf, R.m), xl = min(L.m, R.xl), M = max(L.M, R.M)
-// and the root's (i, m, e, M, band) is (dw, c1, c2, cmax, band). A merge is about 3 LUT
-// levels (Yosys xc7, CW 6), so a register stage holds two tree levels: the even levels
-// and the root are registered (NS = ceil(clog2(leaves) / 2) stages). The band:
+// and the root's (i, m, e, M) is (dw, c1, c2, cmax). A node holds i relative to lo (l
+// bits at tree level l: lo is fixed by the node's place) and a level-1 node has no e,
+// so no node bit is constant by construction (a constant bit is free in the netlist but
+// a toggle point that no stimulus can cover). A merge is about 3 LUT levels (Yosys xc7,
+// CW 6), so a register stage holds two tree levels: the even levels and the root are
+// registered (NS = ceil(clog2(leaves) / 2) stages). The band:
 // - PU = DISP: no tree node holds it. The costs wait NS ce's beside the tree in a shift
 //   register without reset (SRLs: a LUT per cost bit instead of a 5*CW-bit register in
 //   each registered node, about 1,300 flip-flops at DISP 128), and a select tree on the
@@ -93,42 +96,70 @@ module sm_wta #(
   endgenerate
 
   // ---- tree node layout ----------------------------------------------------------
+  // A node of tree level l >= 2 holds the fields below and, above them at [NB +: l], i as
+  // the level within its range: the higher bits of the level are the node's place in the
+  // tree, and a node keeps no bit that its subtree cannot set. A level-1 node (two
+  // leaves) has no e (a range of two has no level two away): layout P_* below. A leaf is
+  // its cost alone.
   localparam O_M = 0;              // least cost
-  localparam O_I = O_M + CW;       // its lowest level (leaf: local level in the tree)
-  localparam O_FL = O_I + DW;      // i is the range's first level
+  localparam O_FL = O_M + CW;      // i is the range's first level
   localparam O_LA = O_FL + 1;      // i is the range's last level
   localparam O_E = O_LA + 1;       // least cost at distance >= 2 from i
   localparam O_XF = O_E + CW;      // least cost without the first level
   localparam O_XL = O_XF + CW;     // least cost without the last level
   localparam O_MX = O_XL + CW;     // greatest cost
-  localparam O_B = O_MX + CW;      // band A(i - 2 .. i + 2)
-  localparam NW = O_B + 5 * CW;
+  localparam NB = O_MX + CW;       // the fields; i above them
+  localparam P_XF = O_LA + 1;      // level-1 node: m, fl, la as above, then xf,
+  localparam P_XL = P_XF + CW;     //   xl,
+  localparam P_MX = P_XL + CW;     //   greatest cost,
+  localparam P_I = P_MX + CW;      //   i (one bit)
+  localparam NP = P_I + 1;
   localparam [CW-1:0] ALL1 = {CW{1'b1}};
 
   function [CW-1:0] min2;
     input [CW-1:0] a, b;
     min2 = (b < a) ? b : a;
   endfunction
+  function [CW-1:0] max2;
+    input [CW-1:0] a, b;
+    max2 = (b > a) ? b : a;
+  endfunction
 
-  // The node of the adjacent ranges l (left) and r (right).
-  function [NW-1:0] merge;
-    input [NW-1:0] l, r;
-    reg rw;  // r wins: strictly less (ties keep the lower level)
+  // The level-1 node of the leaves of costs lc (left) and rc: the general merge below of
+  // two leaves (m = M = the cost, fl = la = 1, e = xf = xl = none).
+  function [NP-1:0] pair;
+    input [CW-1:0] lc, rc;
+    reg rw;
+    begin
+      rw = rc < lc;
+      pair = {rw, max2(lc, rc), lc, rc, rw, ~rw, rw ? rc : lc};
+    end
+  endfunction
+
+  // A level-1 node's fields in the general layout (e: none).
+  function [NB-1:0] unpair;
+    input [NP-1:0] p;
+    unpair = {p[P_MX +: CW], p[P_XL +: CW], p[P_XF +: CW], ALL1, p[O_LA], p[O_FL], p[O_M +: CW]};
+  endfunction
+
+  // The fields of the adjacent ranges l (left) and r merged, and above them (bit NB)
+  // whether r wins: strictly less, ties keep the lower level.
+  function [NB:0] merge;
+    input [NB-1:0] l, r;
+    reg rw;
     reg [CW-1:0] el, er;
     begin
       rw = r[O_M +: CW] < l[O_M +: CW];
       el = min2(l[O_E +: CW], l[O_LA] ? r[O_XF +: CW] : r[O_M +: CW]);
       er = min2(r[O_E +: CW], r[O_FL] ? l[O_XL +: CW] : l[O_M +: CW]);
+      merge[NB] = rw;
       merge[O_M +: CW] = rw ? r[O_M +: CW] : l[O_M +: CW];
-      merge[O_I +: DW] = rw ? r[O_I +: DW] : l[O_I +: DW];
       merge[O_FL] = ~rw & l[O_FL];
       merge[O_LA] = rw & r[O_LA];
       merge[O_E +: CW] = rw ? er : el;
       merge[O_XF +: CW] = min2(l[O_XF +: CW], r[O_M +: CW]);
       merge[O_XL +: CW] = min2(l[O_M +: CW], r[O_XL +: CW]);
-      merge[O_MX +: CW] = (r[O_MX +: CW] > l[O_MX +: CW]) ? r[O_MX +: CW] : l[O_MX +: CW];
-      // (used by the folded accumulator; a registered tree node selects its own band)
-      merge[O_B +: 5*CW] = rw ? r[O_B +: 5*CW] : l[O_B +: 5*CW];
+      merge[O_MX +: CW] = max2(l[O_MX +: CW], r[O_MX +: CW]);
     end
   endfunction
 
@@ -151,122 +182,156 @@ module sm_wta #(
     end
   endfunction
 
-  // Nodes of tree level l (level 0: the leaves) and the first node of level l in the
-  // flat vector of levels 1..NL.
+  // Nodes of tree level l (level 0: the leaves); registered levels: the even ones and
+  // the root (two merges, about 6 LUT levels, per stage).
   function integer lvl_n;
     input integer l;
     lvl_n = (N0 + (1 << l) - 1) >> l;
   endfunction
-  function integer lvl_base;
+  function integer is_reg;
+    input integer l;
+    is_reg = (l % 2 == 0 || l == NL) ? 1 : 0;
+  endfunction
+  // A node's width at level l, and a registered node's segment of tr: the node and,
+  // folded, its band above it.
+  function integer nwl;
+    input integer l;
+    nwl = (l == 1) ? NP : NB + l;
+  endfunction
+  function integer segw;
+    input integer l;
+    segw = nwl(l) + ((F > 1) ? 5 * CW : 0);
+  endfunction
+  // The first bit of level l's nodes in tr (registered) and tc (the others).
+  function integer off_r;
     input integer l;
     integer k;
     begin
-      lvl_base = 0;
-      for (k = 1; k < l; k = k + 1) lvl_base = lvl_base + lvl_n(k);
+      off_r = 0;
+      for (k = 1; k < l; k = k + 1) if (is_reg(k) != 0) off_r = off_r + lvl_n(k) * segw(k);
     end
   endfunction
-  localparam TOT = lvl_base(NL + 1);
-
-  // ---- leaves: the costs of the N0 levels in view, with two neighbours on each side --
-  // win[j*CW +: CW] = A(base + j - 2), j = 0..N0+3 (base = 0, or g*PU when folded).
-  wire [(N0+4)*CW-1:0] win;
-  wire [N0*NW-1:0] leaf;
-  genvar j, l, t;
-  generate
-    for (j = 0; j < N0; j = j + 1) begin : g_leaf
-      /* verilator lint_off WIDTH */  // the level number, truncated to DW bits
-      localparam [DW-1:0] IDX = j;
-      /* verilator lint_on WIDTH */
-      assign leaf[j*NW +: NW] = {win[j*CW +: 5*CW], win[(j+2)*CW +: CW], ALL1, ALL1, ALL1, 2'b11, IDX, win[(j+2)*CW +: CW]};
+  function integer off_c;
+    input integer l;
+    integer k;
+    begin
+      off_c = 0;
+      for (k = 1; k < l; k = k + 1) if (is_reg(k) == 0) off_c = off_c + lvl_n(k) * nwl(k);
     end
-  endgenerate
+  endfunction
+  localparam TRW = off_r(NL + 1);
+  localparam TCW0 = off_c(NL + 1);           // 0 for a one-level tree (N0 = 2)
+  localparam TCW = (TCW0 > 0) ? TCW0 : 1;
+  localparam RNW = nwl(NL);                  // the root's width
+  localparam RI = (NL == 1) ? P_I : NB;      // its i
+
+  // ---- leaves: the costs of the N0 levels in view, folded with two neighbours on each
+  // side for the leaves' bands: win[j*CW +: CW] = A(base + j - WP), j = 0..N0+2*WP-1
+  // (base = 0, or g*PU when folded).
+  localparam WP = (F > 1) ? 2 : 0;
+  wire [(N0+2*WP)*CW-1:0] win;
 
   // ---- the tree: level l node n from level l-1 nodes 2n, 2n+1 -------------------------
-  // Registered: the even levels and the root (two merges, about 6 LUT levels, per stage).
-  // A registered node takes its band not through the merges' band selects (two 2:1
-  // selects per level, each on its own compare) but from its winner's descendant at the
-  // registered level below (or the leaves): one 4:1 (2:1 at an odd root) select on the
-  // winner's level bits, a LUT6 per bit. The unregistered level's band is then unused.
+  // A registered node takes its band (folded only: the accumulator merges the groups'
+  // bands) not through band selects in the merges (two 2:1 selects per level, each on
+  // its own compare) but from its winner's descendant at the registered level below (or
+  // the leaves): one 4:1 (2:1 at an odd root) select on the winner's level bits, a LUT6
+  // per bit.
   wire          tree_en = (F > 1) ? 1'b1 : ce;  // folded: every clock
-  // Every node of levels 1..NL as the level above reads it, in two vectors so that no
-  // signal is both read and driven by the combinational part of the tree: tr the
-  // registered nodes (a flip-flop each), tc the others (the other vector's segment 0).
-  wire [TOT*NW-1:0] tr, tc;
+  // The nodes as the level above reads them, in two vectors so that no signal is both
+  // read and driven by the combinational part of the tree: tr the registered nodes (a
+  // flip-flop each), tc the others.
+  wire [TRW-1:0] tr;
+  wire [TCW-1:0] tc;
+  genvar j, l, t;
   generate
+    if (TCW0 == 0) begin : g_no_tc
+      assign tc = 1'b0;
+      wire unused_tc = tc[0];
+    end
     for (l = 1; l <= NL; l = l + 1) begin : g_lvl
       for (j = 0; j < lvl_n(l); j = j + 1) begin : g_node
-        localparam OUT = (lvl_base(l) + j) * NW;
-        wire [NW-1:0] a, b, mg;
-        if (l == 1) begin : g_from_leaf
-          assign a = leaf[(2*j)*NW +: NW];
-          if (2 * j + 1 < N0) begin : g_b
-            assign b = leaf[(2*j+1)*NW +: NW];
-          end else begin : g_nob
-            assign b = a;
+        localparam W = nwl(l);
+        wire [W-1:0] mg;
+        if (l == 1) begin : g_pair  // N0 is even: every level-1 node has two leaves
+          assign mg = pair(win[(2*j+WP)*CW +: CW], win[(2*j+WP+1)*CW +: CW]);
+        end else begin : g_merge
+          localparam CN = nwl(l - 1);  // a child's width and place
+          localparam CA = (is_reg(l - 1) != 0) ? off_r(l - 1) + 2 * j * segw(l - 1)
+                                               : off_c(l - 1) + 2 * j * CN;
+          localparam CS = (is_reg(l - 1) != 0) ? segw(l - 1) : CN;
+          wire [CN-1:0] a;
+          if (is_reg(l - 1) != 0) begin : g_a_r
+            assign a = tr[CA +: CN];
+          end else begin : g_a_c
+            assign a = tc[CA +: CN];
           end
-        end else begin : g_from_lvl
-          // level l-1 is registered when even (the root is the top level)
-          wire [TOT*NW-1:0] src = ((l - 1) % 2 == 0) ? tr : tc;
-          assign a = src[(lvl_base(l - 1) + 2 * j) * NW +: NW];
-          if (2 * j + 1 < lvl_n(l - 1)) begin : g_b
-            assign b = src[(lvl_base(l - 1) + 2 * j + 1) * NW +: NW];
-          end else begin : g_nob
-            assign b = a;
-          end
-        end
-        if (2 * j + 1 < lvl_n(l - 1)) begin : g_merge
-          assign mg = merge(a, b);
-        end else begin : g_pass  // odd count: the last node passes through
-          assign mg = a;
-          wire unused_b = ^b;
-        end
-        if (l % 2 == 0 || l == NL) begin : g_reg
-          localparam LP = (l % 2 == 0) ? l - 2 : l - 1;  // registered level below (0: leaves)
-          localparam NT = 1 << (l - LP);                 // descendants there: 4 or 2
-          wire [NT*5*CW-1:0] cand;                       // their bands
-          for (t = 0; t < NT; t = t + 1) begin : g_cand
-            if (j * NT + t >= lvl_n(LP)) begin : g_none  // past an odd count: never wins
-              assign cand[t*5*CW +: 5*CW] = {(5 * CW) {1'b0}};
-            end else if (LP == 0) begin : g_leaf
-              assign cand[t*5*CW +: 5*CW] = win[(j*NT+t)*CW +: 5*CW];
-            end else begin : g_node
-              assign cand[t*5*CW +: 5*CW] = tr[(lvl_base(LP) + j * NT + t) * NW + O_B +: 5 * CW];
+          if (2 * j + 1 < lvl_n(l - 1)) begin : g_two
+            wire [CN-1:0] b;
+            if (is_reg(l - 1) != 0) begin : g_b_r
+              assign b = tr[CA + CS +: CN];
+            end else begin : g_b_c
+              assign b = tc[CA + CS +: CN];
+            end
+            wire rw;  // b wins
+            if (l == 2) begin : g_l2
+              assign {rw, mg[NB-1:0]} = merge(unpair(a), unpair(b));
+              assign mg[NB +: 2] = {rw, rw ? b[P_I] : a[P_I]};
+            end else begin : g_ln
+              assign {rw, mg[NB-1:0]} = merge(a[NB-1:0], b[NB-1:0]);
+              assign mg[NB +: l] = {rw, rw ? b[NB +: l-1] : a[NB +: l-1]};
+            end
+          end else begin : g_pass  // odd count: the last node passes through
+            if (l == 2) begin : g_l2
+              assign mg = {1'b0, a[P_I], unpair(a)};
+            end else begin : g_ln
+              assign mg = {1'b0, a};
             end
           end
-          wire [5*CW-1:0] bs;
-          if (NT == 2) begin : g_sel2
-            assign bs = mg[O_I+LP] ? cand[5*CW +: 5*CW] : cand[0 +: 5*CW];
-          end else begin : g_sel4
-            wire [1:0] w = mg[O_I+LP +: 2];
-            assign bs = w[1] ? (w[0] ? cand[15*CW +: 5*CW] : cand[10*CW +: 5*CW])
-                             : (w[0] ? cand[5*CW +: 5*CW] : cand[0 +: 5*CW]);
-          end
-          wire unused_mb = ^mg[O_B +: 5*CW];
-          reg [O_B-1:0] q;
+        end
+        if (is_reg(l) != 0) begin : g_reg
+          localparam OUT = off_r(l) + j * segw(l);
+          reg [W-1:0] q;
           always @(posedge clk) begin
-            if (tree_en) q <= mg[O_B-1:0];
+            if (tree_en) q <= mg;
           end
-          if (F > 1) begin : g_band  // folded: the accumulator merges the groups' bands
+          if (F > 1) begin : g_band
+            localparam LP = (l % 2 == 0) ? l - 2 : l - 1;  // registered level below (0: leaves)
+            localparam NT = 1 << (l - LP);                 // descendants there: 4 or 2
+            localparam IB = (l == 1) ? P_I : NB;           // mg's i
+            wire [NT*5*CW-1:0] cand;                       // their bands
+            for (t = 0; t < NT; t = t + 1) begin : g_cand
+              if (j * NT + t >= lvl_n(LP)) begin : g_none  // past an odd count: never wins
+                assign cand[t*5*CW +: 5*CW] = {(5 * CW) {1'b0}};
+              end else if (LP == 0) begin : g_leaf
+                assign cand[t*5*CW +: 5*CW] = win[(j*NT+t)*CW +: 5*CW];
+              end else begin : g_node
+                assign cand[t*5*CW +: 5*CW] = tr[off_r(LP) + (j * NT + t) * segw(LP) + nwl(LP) +: 5 * CW];
+              end
+            end
+            wire [5*CW-1:0] bs;
+            if (NT == 2) begin : g_sel2
+              assign bs = mg[IB+LP] ? cand[5*CW +: 5*CW] : cand[0 +: 5*CW];
+            end else begin : g_sel4
+              wire [1:0] w = mg[IB+LP +: 2];
+              assign bs = w[1] ? (w[0] ? cand[15*CW +: 5*CW] : cand[10*CW +: 5*CW])
+                               : (w[0] ? cand[5*CW +: 5*CW] : cand[0 +: 5*CW]);
+            end
             reg [5*CW-1:0] b_q;
             always @(posedge clk) begin
               b_q <= bs;
             end
-            assign tr[OUT +: NW] = {b_q, q};
-          end else begin : g_noband  // one beat per clock: the band is taken at the root
-            wire unused_bs = ^bs;
-            assign tr[OUT +: NW] = {{(5 * CW) {1'b0}}, q};
+            assign tr[OUT +: W+5*CW] = {b_q, q};
+          end else begin : g_noband
+            assign tr[OUT +: W] = q;
           end
-          assign tc[OUT +: NW] = {NW{1'b0}};
-          wire unused_tc = ^tc[OUT +: NW];
         end else begin : g_comb
-          assign tc[OUT +: NW] = mg;
-          assign tr[OUT +: NW] = {NW{1'b0}};
-          wire unused_tr = ^tr[OUT +: NW];
+          assign tc[off_c(l) + j * W +: W] = mg;
         end
       end
     end
   endgenerate
-  wire [NW-1:0] root = tr[(TOT-1)*NW +: NW];
+  wire [RNW-1:0] root = tr[off_r(NL) +: RNW];
 
   // Record: {band, cmax, c2, c1, dw}
   localparam RW = 8 * CW + DW;
@@ -276,7 +341,7 @@ module sm_wta #(
   generate
     if (F == 1) begin : g_par
       // ---- one beat per clock: the leaves read s_cost, the root is the output --------
-      assign win = {{2*CW{1'b0}}, s_cost, {2*CW{1'b0}}};
+      assign win = s_cost;
       // The band is not carried through the tree (a 5*CW register in each of its
       // registered nodes): the costs wait NS ce's beside the tree, a shift register
       // without reset (SRLs, LUTs instead of flip-flops), and the root's level selects
@@ -291,10 +356,10 @@ module sm_wta #(
           if (ce) cd_q <= s_cost;
         end
       end
-      wire [(DISP+4)*CW-1:0] pad = {{2*CW{1'b0}}, cd_q[(NS-1)*DISP*CW +: DISP*CW], {2*CW{1'b0}}};
-      wire [5*CW-1:0] band = band_at(pad, root[O_I +: DW]);
-      assign rec = {band, root[O_MX +: CW], root[O_E +: CW], root[O_M +: CW], root[O_I +: DW]};
-      wire unused_root = ^{root[O_FL], root[O_LA], root[O_XF +: CW], root[O_XL +: CW], root[O_B +: 5*CW], rst_n};
+      // (N0 = DISP >= 4: the root is a level >= 2 node and its i, NL = DW bits, is dw)
+      wire [5*CW-1:0] band = band_at({{2*CW{1'b0}}, cd_q[(NS-1)*DISP*CW +: DISP*CW], {2*CW{1'b0}}}, root[NB +: DW]);
+      assign rec = {band, root[O_MX +: CW], root[O_E +: CW], root[O_M +: CW], root[NB +: DW]};
+      wire unused_root = ^{root[O_FL], root[O_LA], root[O_XF +: CW], root[O_XL +: CW], rst_n};
     end else begin : g_fold
       // ---- folded: group g of the held beat on the g-th clock after a ce ---------------
       localparam GW = $clog2(F);
@@ -321,7 +386,7 @@ module sm_wta #(
       // the ends), one F:1 selection from the held beat.
       // (An AND-OR over the groups: Yosys made the indexed part-select pad[g*PU*CW +: ..]
       // a barrel shifter over every bit of pad.)
-      wire [(DISP+4)*CW-1:0] pad = {{2*CW{1'b0}}, s_cost, {2*CW{1'b0}}};
+      wire [(DISP+4)*CW-1:0] pad = {{2*CW{1'b0}}, s_cost, {2*CW{1'b0}}};  // (every bit read)
       reg  [(N0+4)*CW-1:0] win_nx;
       reg  [(N0+4)*CW-1:0] win_q;
       integer gi;
@@ -347,13 +412,30 @@ module sm_wta #(
         tb_q <= {tb_q[NS*DW-1:0], gb_q};
       end
 
-      // Accumulator: the groups so far, the root's local level made global.
-      wire [NW-1:0] grp = {root[NW-1:O_I+DW], root[O_I +: DW] + tb_q[NS*DW +: DW], root[O_M +: CW]};
-      reg  [NW-1:0] acc_q;
-      always @(posedge clk) begin
-        if (tv_q[NS]) acc_q <= tf_q[NS] ? grp : merge(acc_q, grp);
+      // Accumulator: the groups so far; the root's level within the group made global.
+      wire [NB-1:0] grp_f;
+      wire [NL-1:0] grp_li;
+      if (NL == 1) begin : g_root1
+        assign grp_f = unpair(root);
+      end else begin : g_rootn
+        assign grp_f = root[NB-1:0];
       end
-      wire unused_acc = ^{acc_q[O_FL], acc_q[O_LA], acc_q[O_XF +: CW], acc_q[O_XL +: CW]};
+      assign grp_li = root[RI +: NL];
+      wire [DW-1:0] grp_i = {{(DW - NL) {1'b0}}, grp_li} + tb_q[NS*DW +: DW];
+      wire [5*CW-1:0] grp_b = tr[off_r(NL) + RNW +: 5*CW];
+      reg  [NB-1:0] acc_q;
+      reg  [DW-1:0] acc_i_q;
+      reg  [5*CW-1:0] acc_b_q;
+      wire [NB:0] am = merge(acc_q, grp_f);  // am[NB]: the group wins
+      always @(posedge clk) begin
+        if (tv_q[NS]) begin
+          acc_q <= tf_q[NS] ? grp_f : am[NB-1:0];
+          if (tf_q[NS] || am[NB]) begin
+            acc_i_q <= grp_i;
+            acc_b_q <= grp_b;
+          end
+        end
+      end
 
       // The ce's slot travels D clocks beside the beat's last groups; on the D-th clock
       // after the ce the accumulator holds that beat complete and is copied to the slot.
@@ -376,7 +458,7 @@ module sm_wta #(
       always @(posedge clk) begin
         if (cv_q[D-1])
           ring_q[ca_q[(D-1)*AW +: AW]*RW +: RW] <=
-              {acc_q[O_B +: 5*CW], acc_q[O_MX +: CW], acc_q[O_E +: CW], acc_q[O_M +: CW], acc_q[O_I +: DW]};
+              {acc_b_q, acc_q[O_MX +: CW], acc_q[O_E +: CW], acc_q[O_M +: CW], acc_i_q};
         if (ce) out_q <= ring_q[wc_q*RW +: RW];
       end
       assign rec = out_q;
