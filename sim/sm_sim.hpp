@@ -42,7 +42,11 @@ struct CameraTiming {
   double core_hz = 0;
   int idle_percent = 0;          // random extra idle cycles on the input (tests)
   int backpressure_percent = 0;  // random tready=0 on the outputs (tests)
-  int clocks_per_pixel = 1;      // the IP's DISP / PU (bounds the run's cycle limit)
+  // m_axis_obj_tready held low until output frame n has sent its first row (tests: with
+  // n = 2, frame 0's packet is still waiting when frame 1's list is published, so that
+  // list's packet is lost and frame 2's packet carries the lost bit)
+  int obj_hold_frames = 0;
+  int clocks_per_pixel = 1;  // the IP's DISP / PU (bounds the run's cycle limit)
   uint32_t seed = 1;
   double clock_hz(int w, int h) const {
     if (pixel_clock_hz > 0) return pixel_clock_hz;
@@ -306,6 +310,8 @@ class SimEngine {
         !(timing.backpressure_percent > 0 && static_cast<int>(s.rng() % 100) < timing.backpressure_percent);
     t.m_axis_obj_tready =
         !(timing.backpressure_percent > 0 && static_cast<int>(s.rng() % 100) < timing.backpressure_percent);
+    const auto hold = static_cast<size_t>(timing.obj_hold_frames);
+    if (s.oframe < hold || (s.oframe == hold && hold > 0 && s.oy == 0)) t.m_axis_obj_tready = 0;
   }
 
   // One clock of the streams and the host: drive, sample before the edge, tick, take.

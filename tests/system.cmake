@@ -39,8 +39,12 @@ add_test(NAME system_zynq_budget COMMAND tb_top_zynq --scene ${SM_SCENE_DIR} --m
 # frames/s camera timing, on the slowest core clock the pacing rule allows (16 x the
 # camera's pixel clock).
 add_test(NAME system_vga_frame COMMAND tb_top_vga --scene ${SM_SCENE_VGA_DIR} --mode frame)
+# A lost object packet: the object stream held until frame 2's output, so frame 1's list
+# is published while frame 0's packet still waits (sm_objects' pkt_lost).
+add_test(NAME system_small_lost COMMAND tb_top_small --scene ${SM_SCENE_SMALL_DIR} --mode lost)
+add_test(NAME system_small_fold_lost COMMAND tb_top_small_fold --scene ${SM_SCENE_SMALL_DIR} --mode lost)
 set_tests_properties(system_small_stress system_small_vcd system_small_budget system_small_calib
-                     system_small_fold_stress system_small_fold_budget
+                     system_small_fold_stress system_small_fold_budget system_small_lost system_small_fold_lost
                      PROPERTIES LABELS "system" TIMEOUT 600)
 set_tests_properties(system_paper_budget system_zynq_budget system_vga_frame PROPERTIES LABELS "system;slow"
                      TIMEOUT 1800)

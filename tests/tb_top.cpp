@@ -14,11 +14,15 @@
 //              (the one-frame check of a large configuration)
 //   vcd      : writes a windowed VCD to --vcd and checks it holds the stream signals
 //   calib    : loads the calibration JSON --calib into the registers first
+//   lost     : 3 frames with the object stream held until frame 2's output: frame 1's
+//              packet is dropped (its list was published while frame 0's still waited)
+//              and frame 2's carries the lost bit; the disparity stays bit-exact
 #include <fmt/format.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include "calib_file.hpp"
@@ -39,12 +43,16 @@ double max_bad_percent(const sm::HwConfig& hw) { return hw.census >= 15 ? 8.0 : 
 
 using Bench = sm::test::BlockTest<SM_VTOP>;
 
-// Compares the IP's frames with the model; returns the number of differing pixels.
+// Compares the IP's frames with the model; returns the number of differing pixels. The
+// object packets of the frames in `dropped` are expected lost: the next packet carries
+// the lost bit.
 int compare(Bench& t, const sm::SimResult& res, const std::vector<std::pair<sm::Image8, sm::Image8>>& frames,
-            const std::vector<sm::Regs>& regs, const sm::HwConfig& hw) {
+            const std::vector<sm::Regs>& regs, const sm::HwConfig& hw, const std::set<size_t>& dropped = {}) {
   int bad = 0;
   t.check(res.framing_error.empty(), "output framing: " + res.framing_error);
   t.check(res.frames.size() == frames.size(), fmt::format("{} frames out of {}", res.frames.size(), frames.size()));
+  std::vector<std::vector<uint32_t>> want_packets;
+  bool lost = false;
   for (size_t f = 0; f < frames.size() && f < res.frames.size(); ++f) {
     const auto m = sm::run_pipeline(frames[f].first, frames[f].second, hw, regs[f], false);
     int n = 0;
@@ -55,11 +63,29 @@ int compare(Bench& t, const sm::SimResult& res, const std::vector<std::pair<sm::
                      res.frames[f].at(x, y));
     t.check(n == 0, fmt::format("frame {} bit-exact ({} pixels differ)", f, n));
     bad += n;
-    const auto want = sm::object_packet(m.objects, false);
-    t.check(f < res.object_packets.size() && res.object_packets[f].words == want,
-            fmt::format("frame {} object packet", f));
+    if (dropped.count(f) != 0) {
+      lost = true;
+    } else {
+      want_packets.push_back(sm::object_packet(m.objects, lost));
+      lost = false;
+    }
   }
+  t.check(res.object_packets.size() == want_packets.size(),
+          fmt::format("{} object packets, {} expected", res.object_packets.size(), want_packets.size()));
+  for (size_t k = 0; k < want_packets.size() && k < res.object_packets.size(); ++k)
+    t.check(res.object_packets[k].words == want_packets[k], fmt::format("object packet {}", k));
   return bad;
+}
+
+// The pair seen in a mirror: the mirrored right image is the new left one.
+std::pair<sm::Image8, sm::Image8> mirrored(const sm::Image8& l, const sm::Image8& r) {
+  sm::Image8 lm = l, rm = r;
+  for (int y = 0; y < l.h; ++y)
+    for (int x = 0; x < l.w; ++x) {
+      lm.at(x, y) = r.at(l.w - 1 - x, y);
+      rm.at(x, y) = l.at(l.w - 1 - x, y);
+    }
+  return {lm, rm};
 }
 
 }  // namespace
@@ -69,7 +95,8 @@ int main(int argc, char** argv) {
   std::string scene, mode = "stress", vcd, calib;
   double mhz = 0.0;
   t.option("--scene", scene, "scene folder (left.png, right.png, ground truth)").required();
-  t.option("--mode", mode, "stress, budget, frame, vcd or calib").one_of({"stress", "budget", "frame", "vcd", "calib"});
+  t.option("--mode", mode, "stress, budget, frame, vcd, calib or lost")
+      .one_of({"stress", "budget", "frame", "vcd", "calib", "lost"});
   t.option("--mhz", mhz, "budget, frame: core clock in MHz (0: the slowest the pacing allows)");
   t.option("--vcd", vcd, "vcd: the VCD file to write");
   t.option("--calib", calib, "calib: the calibration JSON");
@@ -100,13 +127,7 @@ int main(int argc, char** argv) {
 
     if (mode == "stress") {
       // Frame 1 is a different image pair (the scene mirrored) so frame edges mix content.
-      sm::Image8 lm = l, rm = r;
-      for (int y = 0; y < l.h; ++y)
-        for (int x = 0; x < l.w; ++x) {
-          lm.at(x, y) = r.at(l.w - 1 - x, y);
-          rm.at(x, y) = l.at(l.w - 1 - x, y);
-        }
-      frames = {{l, r}, {lm, rm}, {l, r}};
+      frames = {{l, r}, mirrored(l, r), {l, r}};
       per_frame = {regs, regs, regs};
       timing.continuous = true;
       timing.idle_percent = 20;
@@ -203,6 +224,19 @@ int main(int argc, char** argv) {
       timing.continuous = true;
       const auto res = sim.run(frames, l.w, l.h, timing);
       compare(t, res, frames, per_frame, hw);
+    } else if (mode == "lost") {
+      // the dropped frame's objects differ from the others': a packet sent in place of
+      // another would not compare equal
+      frames = {{l, r}, mirrored(l, r), {l, r}};
+      per_frame.assign(3, regs);
+      timing.continuous = true;
+      timing.obj_hold_frames = 2;
+      const auto res = sim.run(frames, l.w, l.h, timing);
+      compare(t, res, frames, per_frame, hw, {1});
+      // the host's decoder of the header (docs/algorithm.md section 8), beside the model's packet
+      t.check(res.object_packets.size() == 2 && !sm::decode_object_packet(res.object_packets[0].words).lost &&
+                  sm::decode_object_packet(res.object_packets[1].words).lost,
+              "the host decodes the lost bit in the second packet only");
     }
   } catch (const std::exception& e) {
     t.fail(fmt::format("error: {}", e.what()));
