@@ -3,7 +3,7 @@
 // Trellis dynamic programming stage (docs/algorithm.md, section 6): a systolic array
 // of DISP processing elements (sm_dp_pe), one per level, linked only to neighbours.
 // Line k runs its forward pass in exactly W ce's (two sites per clock), writing one
-// 2*DISP-bit decision word per clock into a double-buffered block RAM; during the
+// 2*DISP-bit decision word per clock into a block RAM; during the
 // forward pass of line k+1, sm_dp_trace walks line k backwards and stacks its
 // matches; during line k+2's forward pass line k leaves in raster order, filled.
 // Lines follow each other with no gap, virtual rows included.
@@ -12,8 +12,8 @@
 //   PE d sees A(x, d) S - ceil(d/2) beats after it enters, so DP clock t of a line is
 //   the ce on which column S + t enters (mod W, running into the next row); the ce at
 //   x_in = S - 1 ends a line and loads U(0, .).
-//   On forward clock t of line k+1, decision word W-1-t of line k (the other bank;
-//   folded: the row line k+1 rewrites a beat later, see g_fold) is read; the backward
+//   On forward clock t of line k+1, decision word W-1-t of line k (one bank rewritten
+//   in place, lines alternating direction: "Decision rows" below) is read; the backward
 //   step uses it on the next ce, so the last backward step of
 //   line k is at x_in = S, the read-out head is fetched at x_in = S + 1, and pixel x
 //   of line k is registered on the ce at x_in = S + 2 + x (mod W), two rows later.
@@ -91,10 +91,11 @@ module sm_dp #(
   localparam F = (PU > 0) ? DISP / PU : 1;  // clocks per beat
   localparam GW = (F > 1) ? $clog2(F) : 1;  // group index width
   localparam DEC_W = (F > 1) ? 2 * PU + 2 : 2 * DISP;  // decision word
-  // decision address: {bank, t} at PU = DISP; folded {row, g}, one bank rewritten in place
-  localparam DEC_AW = (F > 1) ? AW + GW : AW + 1;
-  // decision words: folded, MAX_WIDTH rows of 2^GW words (g_fold, below)
-  localparam DEC_DEPTH = (F > 1) ? MAX_WIDTH * (1 << GW) : 1 << DEC_AW;
+  localparam RAW = $clog2(MAX_WIDTH + 1);  // a decision row 0..MAX_WIDTH
+  // decision address: the row at PU = DISP; folded {row, g}. One bank rewritten in place.
+  localparam DEC_AW = (F > 1) ? AW + GW : RAW;
+  // decision words: MAX_WIDTH + 1 rows (g_par); folded MAX_WIDTH rows of 2^GW words
+  localparam DEC_DEPTH = (F > 1) ? MAX_WIDTH * (1 << GW) : MAX_WIDTH + 1;
 
   generate
     `SM_BAD_PARAM(g_bad_disp, DISP < `SM_DISP_MIN || DISP > `SM_DISP_MAX || DISP % 2 != 0,
@@ -165,7 +166,7 @@ module sm_dp #(
   wire unused_win = &{c_x, row_ok, col_ok, t_rev};
 
   // ---- control: decision bank, per-frame occ and occ_edge -----------------------
-  reg       fbank_q;     // decision bank the forward pass writes (folded: its direction)
+  reg       fbank_q;     // the line's parity: the direction of its decision rows
   reg       rowfirst_q;  // the row entering is the first of a frame
   reg [7:0] occ_q;
   reg [7:0] occ_edge_q;
@@ -224,6 +225,38 @@ module sm_dp #(
   always @(posedge clk) begin
     if (ce) t_dec_q <= t_rev[AW-1:0];
   end
+
+  // ---- decision rows: one bank, rewritten in place --------------------------------
+  // The trace of line L-1 reads its word W-1-t on DP clock t of line L, so lines
+  // alternate direction: with p the line's parity (fbank_q), word t sits in row t
+  // (p = 0) or W - t (p = 1). On clock t line L writes row t | W - t and reads line
+  // L-1's word W-1-t from row t + 1 | W - 1 - t: never the row it writes, and each row
+  // is read on the clock before it is rewritten. Word 0 alternates between rows 0 and
+  // W (g_par: MAX_WIDTH + 1 rows; folded, word 0 waits in a side store instead, and
+  // rows stay below MAX_WIDTH). Rows from x_in with the direction folded into an XOR
+  // and the constants (c - x = ~x + c + 1), kept in registers that follow fbank_q's
+  // next value (width changes only between frames, while the pipeline is flushed):
+  //   write: p = 0: t = x - S | x + W - S;  p = 1: W - t = W + S - x | S - x
+  //   read:  p = 0: t + 1 = x + 1 - S | x + W + 1 - S;
+  //          p = 1: W - 1 - t = W + S - 1 - x | S - 1 - x   (x >= S | x < S)
+  /* verilator lint_off WIDTH */  // constants modulo 2^RAW; rows are at most MAX_WIDTH
+  localparam [RAW-1:0] R_S = S;
+  localparam [RAW-1:0] R_SP1 = S + 1;
+  localparam [RAW-1:0] R_1MS = 1 - S;
+  wire [RAW-1:0] width_r = width;
+  /* verilator lint_on WIDTH */
+  wire [RAW-1:0] x_r = x_in;  // (XW = RAW: both count to MAX_WIDTH)
+  wire           fbank_nx = rst_n && (fbank_q ^ (ce && line_end));  // fbank_q next
+  reg  [RAW-1:0] wa_q, wb_q, ra_q, rb_q;  // write / read constants for x >= S, x < S
+  always @(posedge clk) begin
+    wa_q <= fbank_nx ? width_r + R_SP1 : -R_S;
+    wb_q <= fbank_nx ? R_SP1 : width_r - R_S;
+    ra_q <= fbank_nx ? width_r + R_S : R_1MS;
+    rb_q <= fbank_nx ? R_S : width_r + R_1MS;
+  end
+  wire [RAW-1:0] x_dir = x_r ^ {RAW{fbank_q}};
+  wire [RAW-1:0] w_row = x_dir + (x_ge_s ? wa_q : wb_q);
+  wire [RAW-1:0] r_row = x_dir + (x_ge_s ? ra_q : rb_q);
 
   generate
     if (F == 1) begin : g_par
@@ -299,10 +332,10 @@ module sm_dp #(
 
       // ---- decisions: written by the forward pass, read back mirrored ------------
       assign dec_we    = ce;
-      assign dec_waddr = {fbank_q, t_f[AW-1:0]};
+      assign dec_waddr = w_row;
       assign dec_wdata = dec;
       assign dec_re    = ce;
-      assign dec_raddr = {~fbank_q, t_rev[AW-1:0]};
+      assign dec_raddr = r_row;
       wire unused_grp = &d_grp;  // one group
     end else begin : g_fold
       // ---- folded array: PU lanes, sub-steps g = 0..F-1 per DP clock ---------------
@@ -482,33 +515,10 @@ module sm_dp #(
       // store of GD words and is copied into row 0 while the next line computes its word
       // 0 (into the side store): the read of row 0 comes on the clock after the line-end
       // ce, the copy's writes from the clock after that.
-      // Rows from x_in with the direction folded into an XOR and the constants (c - x =
-      // ~x + c + 1), kept in registers that follow fbank_q's next value (width changes
-      // only between frames, while the pipeline is flushed):
-      //   write (t >= 1): p = 0: t = x - S | x + W - S;  p = 1: W - t = W + S - x | S - x
-      //   read W-1-t of line L-1 (parity ~p): p = 0: t + 1 (row 0 at t = W-1, the
-      //   line-end ce); p = 1: W - 1 - t = W + S - 1 - x | S - 1 - x   (x >= S | x < S)
-      /* verilator lint_off WIDTH */  // constants modulo 2^AW; rows are below MAX_WIDTH
-      localparam [AW-1:0] R_S = S;
-      localparam [AW-1:0] R_SP1 = S + 1;
-      localparam [AW-1:0] R_1MS = 1 - S;
-      wire [AW-1:0] width_r = width;
-      /* verilator lint_on WIDTH */
-      wire [AW-1:0] x_r = x_in[AW-1:0];
-      if (XW > AW) begin : g_unused_msb
-        wire unused_x_msb = x_in[XW-1];  // a column never reaches MAX_WIDTH
+      // (rows: "decision rows" above; here below MAX_WIDTH, AW bits)
+      if (RAW > AW) begin : g_unused_row_msb
+        wire unused_row_msb = w_row[RAW-1] ^ r_row[RAW-1];
       end
-      wire          fbank_nx = rst_n && (fbank_q ^ (ce && line_end));  // fbank_q next
-      reg  [AW-1:0] wa_q, wb_q, ra_q, rb_q;  // write / read constants for x >= S, x < S
-      always @(posedge clk) begin
-        wa_q <= fbank_nx ? width_r + R_SP1 : -R_S;
-        wb_q <= fbank_nx ? R_SP1 : width_r - R_S;
-        ra_q <= fbank_nx ? width_r + R_S : R_1MS;
-        rb_q <= fbank_nx ? R_S : width_r + R_1MS;
-      end
-      wire [AW-1:0] x_dir = x_r ^ {AW{fbank_q}};
-      wire [AW-1:0] w_row = x_dir + (x_ge_s ? wa_q : wb_q);
-      wire [AW-1:0] r_row = x_dir + (x_ge_s ? ra_q : rb_q);
       reg  [AW-1:0] r_row_q;  // row of the trace's word
       // word 0 of the line: into the side store, its predecessor out of it into row 0
       (* ram_style = "distributed" *)
@@ -524,13 +534,13 @@ module sm_dp #(
           dw_we_q   <= run_q;
           rd_pend_q <= ce;
         end
-        dw_addr_q <= {step_last ? {AW{1'b0}} : w_row, g_q};
+        dw_addr_q <= {step_last ? {AW{1'b0}} : w_row[AW-1:0], g_q};
         // both registered and selected behind the registers: a select in front of them
         // lengthened the lanes' longest path (7 -> 8 LUT levels at vga)
         dw_dec_q      <= dec;
         dw_side_q     <= side[g_q];
         dw_side_sel_q <= step_last;
-        if (ce) r_row_q <= line_end ? {AW{1'b0}} : r_row;
+        if (ce) r_row_q <= line_end ? {AW{1'b0}} : r_row[AW-1:0];
       end
       assign dec_we    = dw_we_q;
       assign dec_waddr = dw_addr_q;
