@@ -17,7 +17,7 @@ set(SM_SYNTH_PAPER_PARAMS ${SM_PAPER_PARAMS})
 set(SM_SYNTH_ZYNQ_PARAMS ${SM_ZYNQ_PARAMS})
 set(SM_SYNTH_TIMEOUT 14400 CACHE STRING "time limit (s) of one Yosys run of the synth targets")
 option(SM_SYNTH_PAPER_BLOCKS
-       "synth_paper maps each block of sm_top in its own Yosys run and sums them" ON)
+       "the whole-core targets map each block of sm_top in its own Yosys run and sum them" ON)
 option(SM_SYNTH_ON_BUILD "regenerate the small-configuration synthesis report on every build"
        OFF)
 
@@ -37,14 +37,16 @@ endfunction()
 
 # Whole IP, the configurations of stereo_sim_small / stereo_sim. The harness reads
 # sm_top_<sim target>.json; the other family gets a _<family> suffix.
-sm_synth_command(c_small_xc7 TOP sm_top CONFIG stereo_sim_small FAMILY xc7
-                 PARAMS ${SM_SYNTH_SMALL_PARAMS})
-sm_synth_command(c_small_xc5v TOP sm_top CONFIG stereo_sim_small_xc5v FAMILY xc5v
-                 PARAMS ${SM_SYNTH_SMALL_PARAMS})
+# Blocks mode elaborates every block on its own, so a block's figures move only with its
+# own RTL (docs/synthesis.md, "Flow").
 set(blocks)
 if(SM_SYNTH_PAPER_BLOCKS)
   set(blocks BLOCKS)
 endif()
+sm_synth_command(c_small_xc7 TOP sm_top CONFIG stereo_sim_small FAMILY xc7
+                 PARAMS ${SM_SYNTH_SMALL_PARAMS} ${blocks})
+sm_synth_command(c_small_xc5v TOP sm_top CONFIG stereo_sim_small_xc5v FAMILY xc5v
+                 PARAMS ${SM_SYNTH_SMALL_PARAMS} ${blocks})
 sm_synth_command(c_paper_xc5v TOP sm_top CONFIG stereo_sim FAMILY xc5v
                  PARAMS ${SM_SYNTH_PAPER_PARAMS} ${blocks})
 sm_synth_command(c_paper_xc7 TOP sm_top CONFIG stereo_sim_xc7 FAMILY xc7

@@ -20,7 +20,9 @@
 #   -B            blocks mode: synthesize every direct submodule of MODULE on its own at
 #                 the parameters MODULE gives it, plus MODULE's own glue logic with the
 #                 submodules as black boxes, and report the sum (for configurations where
-#                 one run of the whole top level takes too long)
+#                 one run of the whole top level takes too long). Each block is
+#                 elaborated in its own Yosys run from its RTL and those parameters, so
+#                 its figures depend only on its own RTL, not on the rest of the design
 #   -O "OPTS"     extra synth_xilinx options
 set -euo pipefail
 
@@ -118,52 +120,91 @@ run_yosys() {
   awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }'
 }
 
-# Elaborate once; every mapping run starts from the elaborated design.
-fill "$here/elab.ys.in" "$work/elab.ys" "INCDIRS=$incdirs" "TOP_FILE=$top_file" "CHPARAM=$chparam" "TOP=$top" \
-  "LIBDIRS=$libargs" "ELAB_IL=$work/elab.il" "ELAB_STAT=$work/elab_stat.json"
-t_elab=$(run_yosys "$work/elab.ys" "$work/elab.log")
+# elab <module> <rtl file> <chparam line> <tag> <lib read lines>: one elaboration run into
+# $work/elab<tag>.il (and its stat); prints its seconds.
+elab() {
+  fill "$here/elab.ys.in" "$work/elab$4.ys" "INCDIRS=$incdirs" "TOP_FILE=$2" "CHPARAM=$3" "TOP=$1" \
+    "LIBDIRS=$libargs" "LIBREAD=$5" "ELAB_IL=$work/elab$4.il" "ELAB_STAT=$work/elab_stat$4.json"
+  local secs
+  secs=$(run_yosys "$work/elab$4.ys" "$work/elab$4.log") || return $?
+  echo "$secs"
+}
+
+# The whole design once: the only run without blocks mode, and in blocks mode the source
+# of the submodules, their instance counts and the parameters each one is given.
+t_elab=$(elab "$top" "$top_file" "$chparam" "" "")
 
 param_args=()
 for p in "${applied[@]+"${applied[@]}"}"; do param_args+=(--param "$p"); done
 common=(--family "$family" --config "$config" "${param_args[@]+"${param_args[@]}"}")
 
-# map <design module> <tag> <blackbox line> <instances>: one synth_xilinx run and its
-# report part.
+# map <design module> <tag> <blackbox line> <instances> <elaborated design>: one
+# synth_xilinx run and its report part.
 map() {
-  local mod=$1 tag=$2 bb=$3 inst=$4 secs
-  fill "$here/synth.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$work/elab.il" "BLACKBOX=$bb" \
+  local mod=$1 tag=$2 bb=$3 inst=$4 il=$5 secs
+  fill "$here/synth.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$il" "BLACKBOX=$bb" \
     "FAMILY=$family" "TOP=$mod" "OPTS=$opts" "STAT=$work/stat_$tag.json" \
     "STAT_TXT=$work/stat_$tag.txt" "NETLIST=$work/net_$tag.json"
   secs=$(run_yosys "$work/synth_$tag.ys" "$work/synth_$tag.log") || return $?
   "$report" report --stat "$work/stat_$tag.json" --netlist "$work/net_$tag.json" \
     --top "$mod" "${common[@]}" --seconds "$secs" --instances "$inst" \
-    --command "yosys -s $work/synth_$tag.ys  (elaborated by $work/elab.ys)" \
+    --command "yosys -s $work/synth_$tag.ys  (elaborated by ${il%.il}.ys)" \
     -o "$work/part_$tag.json" --quiet || return 1
   rm -f "$work/net_$tag.json"  # large; the report keeps what matters
 }
 
+# block_chparam <elaborated module name> <module>: the chparam line that gives <module>
+# the parameters the elaborated design gave that instance (the module's RTLIL `parameter`
+# lines, indented by two; a cell's are indented by four; a vector constant N'bits is
+# written N'bbits for chparam).
+block_chparam() {
+  local line
+  line=$(awk -v m="$1" '$1 == "module" { on = ($2 == m); next }
+                        on && /^  parameter / { if ($2 == "signed") { $2 = $3; $3 = $4 }
+                                                  sub(/^\\/, "", $2); printf " -set %s %s", $2, $3 }' \
+         "$work/elab.il" | sed -E "s/ ([0-9]+)'([01xz]+)/ \1'b\2/g")
+  [[ "$line" != *'"'* ]] || die "$1: string parameters are not supported"
+  [ -z "$line" ] || echo "chparam$line $2"
+}
+
 if [ "$blocks" -eq 0 ]; then
-  map "$top" all "" 1
+  map "$top" all "" 1 "$work/elab.il"
   cp "$work/part_all.json" "$out_json"
 else
-  # Each distinct submodule once, scaled by its instance count.
+  # Each distinct submodule once, elaborated on its own (Yosys numbers its automatic
+  # names across a run, so inside the whole design a block's netlist, and ABC's
+  # mapping of it, would move with every change elsewhere), scaled by its instance count.
   kids=() counts=()
   while read -r k n; do kids+=("$k") counts+=("$n"); done \
     < <("$report" children --stat "$work/elab_stat.json" --top "$top")
+  # The module of an elaborated name: \sm_x, $paramod$<hash>\sm_x or
+  # $paramod\sm_x\P=value...; every one must have its file before any block runs.
+  mods=() libread=
+  for k in "${kids[@]+"${kids[@]}"}"; do
+    m=${k#\$paramod}
+    m=${m#\$*\\}
+    m=${m#\\}
+    m=${m%%\\*}
+    [ -f "$rtl/$m.v" ] || die "$rtl/$m.v: no such file (submodule $k of $top)"
+    mods+=("$m")
+    [[ "$libread" == *"/$m.v"$'\n'* ]] || libread="${libread}read_verilog -lib $rtl/$m.v"$'\n'
+  done
   parts=() missing=()
   i=0
   for k in "${kids[@]+"${kids[@]}"}"; do
-    echo "sm_synth: block $k (x${counts[$i]})" >&2
-    if map "$k" "b$i" "" "${counts[$i]}"; then
+    m=${mods[$i]}
+    echo "sm_synth: block $m (x${counts[$i]})" >&2
+    bparams=$(block_chparam "$k" "$m")
+    if elab "$m" "$rtl/$m.v" "$bparams" "_b$i" "" >/dev/null &&
+       map "$m" "b$i" "" "${counts[$i]}" "$work/elab_b$i.il"; then
       parts+=("$work/part_b$i.json")
     else  # keep going: the other blocks' numbers are still worth having
-      missing+=(--missing "${k##*\\}")
+      missing+=(--missing "$m")
     fi
     i=$((i + 1))
   done
-  bb=
-  [ "${#kids[@]}" -gt 0 ] && bb="blackbox ${kids[*]}"
-  if map "$top" glue "$bb" 1; then
+  if elab "$top" "$top_file" "$chparam" "_glue" "$libread" >/dev/null &&
+     map "$top" glue "" 1 "$work/elab_glue.il"; then
     parts+=("$work/part_glue.json")
   else
     missing+=(--missing "$top (own logic)")
