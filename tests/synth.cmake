@@ -34,7 +34,7 @@ foreach(f ${synth_rtl})
   endif()
   add_test(NAME synth_${m} COMMAND ${CMAKE_SOURCE_DIR}/tools/synth/sm_synth.sh ${args})
   # COST: a fresh build has no test times yet, and ctest -j starts the costly tests first
-  # only when told (the whole-IP synthesis, ~150 s, last would be the suite's tail)
+  # only when told (the whole-IP synthesis in blocks mode, ~4 min, last would be the suite's tail)
   set_tests_properties(synth_${m} PROPERTIES LABELS "${labels}" TIMEOUT 1900 COST ${cost})
 endforeach()
 
