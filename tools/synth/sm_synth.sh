@@ -138,11 +138,11 @@ param_args=()
 for p in "${applied[@]+"${applied[@]}"}"; do param_args+=(--param "$p"); done
 common=(--family "$family" --config "$config" "${param_args[@]+"${param_args[@]}"}")
 
-# map <design module> <tag> <blackbox line> <instances> <elaborated design>: one
-# synth_xilinx run and its report part.
+# map <design module> <tag> <instances> <elaborated design>: one synth_xilinx run and
+# its report part.
 map() {
-  local mod=$1 tag=$2 bb=$3 inst=$4 il=$5 secs
-  fill "$here/synth.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$il" "BLACKBOX=$bb" \
+  local mod=$1 tag=$2 inst=$3 il=$4 secs
+  fill "$here/synth.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$il" \
     "FAMILY=$family" "TOP=$mod" "OPTS=$opts" "STAT=$work/stat_$tag.json" \
     "STAT_TXT=$work/stat_$tag.txt" "NETLIST=$work/net_$tag.json"
   secs=$(run_yosys "$work/synth_$tag.ys" "$work/synth_$tag.log") || return $?
@@ -168,7 +168,7 @@ block_chparam() {
 }
 
 if [ "$blocks" -eq 0 ]; then
-  map "$top" all "" 1 "$work/elab.il"
+  map "$top" all 1 "$work/elab.il"
   cp "$work/part_all.json" "$out_json"
 else
   # Each distinct submodule once, elaborated on its own (Yosys numbers its automatic
@@ -196,7 +196,7 @@ else
     echo "sm_synth: block $m (x${counts[$i]})" >&2
     bparams=$(block_chparam "$k" "$m")
     if elab "$m" "$rtl/$m.v" "$bparams" "_b$i" "" >/dev/null &&
-       map "$m" "b$i" "" "${counts[$i]}" "$work/elab_b$i.il"; then
+       map "$m" "b$i" "${counts[$i]}" "$work/elab_b$i.il"; then
       parts+=("$work/part_b$i.json")
     else  # keep going: the other blocks' numbers are still worth having
       missing+=(--missing "$m")
@@ -204,7 +204,7 @@ else
     i=$((i + 1))
   done
   if elab "$top" "$top_file" "$chparam" "_glue" "$libread" >/dev/null &&
-     map "$top" glue "" 1 "$work/elab_glue.il"; then
+     map "$top" glue 1 "$work/elab_glue.il"; then
     parts+=("$work/part_glue.json")
   else
     missing+=(--missing "$top (own logic)")
