@@ -22,15 +22,14 @@ namespace {
   f.d = ev.d.at(x, y);
   f.off = static_cast<int8_t>(subpix_q4(ev, x, y, nd, r) - 16 * f.d);
   // the rules that do not depend on the output level (the border, x < d_out, does)
-  const unsigned on = (r.occ_en ? kFailOcc : 0u) | (r.uniq_en ? kFailUniq : 0u) | (r.agree_en ? kFailAgree : 0u) |
-                      (r.tex_en ? kFailTex : 0u) | (r.lr_en ? kFailLr : 0u);
-  f.fail = (valid_failures(ev, x, y, f.d, r) & on) != 0;
+  const unsigned fails = valid_failures(ev, x, y, f.d, r) & enabled_rules(r) & ~unsigned{kFailBorder};
+  f.fail = fails != 0;
   f.border_en = r.occ_en != 0;
   const uint8_t c = confidence(ev, x, y, f.d);
   f.lr_ok = (c & 0x80) != 0;
   f.matched = ev.matched.at(x, y) != 0;
   f.agree_ok = (c & 0x20) != 0;
-  f.ratio = c & 0x1f;
+  f.ratio = static_cast<uint8_t>(f.fail ? fails_slot(fails) : c & 0x1fu);
   f.fb = !r.occ_en && r.fill_bg && !f.matched ? ev.fill_bg.at(x, y) : static_cast<uint8_t>(nd - 1);
   return f;
 }
@@ -46,9 +45,11 @@ namespace {
   const int d_out = level_of(f, p);
   const int q4 = bg ? 16 * d_out : subpix_after_post(16 * f.d + f.off, f.d, post_d);
   const bool border = x < d_out;
-  const bool valid = disp_valid(p) && !f.fail && !(f.border_en && border);
+  const bool border_fail = f.border_en && border;
+  const bool valid = disp_valid(p) && !f.fail && !border_fail;
   const unsigned conf = f.lr_ok << 7 | (f.matched && !border) << 6 | f.agree_ok << 5 | f.ratio;
-  return make_out_word(valid, conf, static_cast<unsigned>(std::clamp(q4, 0, 16 * (nd - 1))));
+  return make_out_word(valid, conf, static_cast<unsigned>(std::clamp(q4, 0, 16 * (nd - 1))),
+                       fails_from_slot(f.fail ? f.ratio : 0u, border_fail));
 }
 
 #if defined(SM_X86_DISPATCH)
@@ -132,12 +133,13 @@ SM_AVX512 void output_lanes(const Evidence& ev, const DispPix* post, int y, int 
   // the rules that do not depend on the output level, and the confidence bits
   const VI ddw = d > dw ? d - dw : dw - d, lrd = lr > d ? lr - d : d - lr;
   const VI none = {};
-  VI fail = none;
-  if (r.occ_en) fail |= ~matched & (at(ev.gap) > r.occ_t);
-  if (r.uniq_en) fail |= c2 - c1 < r.uniq_t;
-  if (r.agree_en) fail |= ddw > r.agree_t;
-  if (r.tex_en) fail |= at(ev.cmax) - c1 < r.tex_t;
-  if (r.lr_en) fail |= lrd > r.lr_t;
+  VI fails = none;  // ValidFail bits of the enabled rules that fail (the border's below)
+  if (r.occ_en) fails |= ~matched & (at(ev.gap) > r.occ_t) & int32_t{kFailOcc};
+  if (r.uniq_en) fails |= (c2 - c1 < r.uniq_t) & int32_t{kFailUniq};
+  if (r.agree_en) fails |= (ddw > r.agree_t) & int32_t{kFailAgree};
+  if (r.tex_en) fails |= (at(ev.cmax) - c1 < r.tex_t) & int32_t{kFailTex};
+  if (r.lr_en) fails |= (lrd > r.lr_t) & int32_t{kFailLr};
+  const VI fail = fails != 0;
   const VI ratio = restoring_div<5>(32 * (c2 - c1), c2 + 1);  // < 32: C2 - C1 < C2 + 1
   // word_of
   VH16 pv16;
@@ -152,9 +154,11 @@ SM_AVX512 void output_lanes(const Evidence& ev, const DispPix* post, int y, int 
   VI x = {};
   for (int k = 0; k < 16; ++k) x[k] = x0 + k;
   const VI border = x < d_out;
-  const VI valid = ((pv & kDispValid) != 0) & ~fail & (r.occ_en ? ~border : ~none);
+  const VI border_fail = r.occ_en ? border : none;
+  const VI valid = ((pv & kDispValid) != 0) & ~fail & ~border_fail;
   const VI conf = ((lrd <= 1) & 0x80) | (matched & ~border & 0x40) | ((ddw <= 1) & 0x20) | ratio;
-  const VI word = valid & (static_cast<int32_t>(kOutValid) | conf << 16 | q4);
+  const VI word = valid ? (static_cast<int32_t>(kOutValid) | conf << 16 | q4)
+                        : (fails | (border_fail & int32_t{kFailBorder})) << 24;
   std::memcpy(out + x0, &word, sizeof word);
 }
 

@@ -1,6 +1,8 @@
-// The planned output word of the IP (docs/algorithm.md section 9.4):
-//   m_axis_tdata[31:0] = {valid[31], 7'b0, confidence[23:16], disparity_q12_4[15:0]}
-// disparity_q12_4 = 16 d + f (d the integer level, f the Q.4 fraction; 0 when invalid).
+// The output word of the IP (docs/algorithm.md section 9.4):
+//   valid:   m_axis_tdata[31:0] = {1, 7'b0, confidence[23:16], disparity_q12_4[15:0]}
+//   invalid: m_axis_tdata[31:0] = {0, 0, fails[29:24], 24'b0}
+// disparity_q12_4 = 16 d + f (d the integer level, f the Q.4 fraction); fails = the enabled
+// validity rules that cleared the pixel (ValidFail bits, validity.hpp).
 #pragma once
 
 #include <cstdint>
@@ -13,12 +15,14 @@ namespace sm {
 
 using OutImage = Plane<uint32_t>;
 constexpr uint32_t kOutValid = 0x80000000u;
-inline uint32_t make_out_word(bool valid, unsigned conf, unsigned q4) {
-  return valid ? kOutValid | (conf & 0xffu) << 16 | (q4 & 0xffffu) : 0u;
+inline uint32_t make_out_word(bool valid, unsigned conf, unsigned q4, unsigned fails = 0) {
+  return valid ? kOutValid | (conf & 0xffu) << 16 | (q4 & 0xffffu) : (fails & 0x3fu) << 24;
 }
 inline bool out_valid(uint32_t w) { return (w & kOutValid) != 0; }
 inline unsigned out_conf(uint32_t w) { return (w >> 16) & 0xffu; }
 inline unsigned out_q4(uint32_t w) { return w & 0xffffu; }
+// The rules that cleared an invalid word (0 for a valid one).
+inline unsigned out_fails(uint32_t w) { return out_valid(w) ? 0u : (w >> 24) & 0x3fu; }
 
 // The output stage in the two halves the RTL has (docs/algorithm.md 9.6). At the DP's
 // read-out a pixel's evidence becomes the fields below, which travel beside the disparity
@@ -32,7 +36,9 @@ struct OutFields {
   bool lr_ok = false;      // confidence bit 7: |lr - d| <= 1
   bool matched = false;    // matched by the trellis (confidence bit 6 with x >= d_out)
   bool agree_ok = false;   // confidence bit 5: |d - dw| <= 1
-  uint8_t ratio = 0;       // confidence bits 4:0
+  uint8_t ratio = 0;       // confidence bits 4:0; where fail, the rules that fail instead
+                           // (fails_slot: an invalid pixel's confidence is 0, so the
+                           // fields keep their width)
   uint8_t fb = 0;          // background fill level (unmatched, occ_en 0, fill_bg 1), else DISP - 1
 };
 // The fields of evidence pixel (x, y). nd = DISP.

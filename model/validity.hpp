@@ -22,12 +22,22 @@ inline unsigned valid_failures(const Evidence& ev, int x, int y, int d_out, cons
   if (std::abs(static_cast<int>(ev.lr.at(x, y)) - ev.d.at(x, y)) > r.lr_t) f |= kFailLr;
   return f;
 }
-// The valid bit: no enabled rule fails (occ_en covers kFailOcc and kFailBorder).
+// The rules the registers enable (occ_en covers kFailOcc and kFailBorder).
+inline unsigned enabled_rules(const OutputRegs& r) {
+  return (r.occ_en ? kFailOcc | kFailBorder : 0u) | (r.uniq_en ? kFailUniq : 0u) | (r.agree_en ? kFailAgree : 0u) |
+         (r.tex_en ? kFailTex : 0u) | (r.lr_en ? kFailLr : 0u);
+}
+// The valid bit: no enabled rule fails.
 inline bool valid_pixel(const Evidence& ev, int x, int y, int d_out, const OutputRegs& r) {
-  const unsigned f = valid_failures(ev, x, y, d_out, r);
-  const unsigned on = (r.occ_en ? kFailOcc | kFailBorder : 0u) | (r.uniq_en ? kFailUniq : 0u) |
-                      (r.agree_en ? kFailAgree : 0u) | (r.tex_en ? kFailTex : 0u) | (r.lr_en ? kFailLr : 0u);
-  return (f & on) == 0;
+  return (valid_failures(ev, x, y, d_out, r) & enabled_rules(r)) == 0;
+}
+
+// The failed rules other than the border in the 5 bits the output stage's fields carry them
+// in ({lr, tex, agree, uniq, occ}: ValidFail without kFailBorder), and back to ValidFail
+// bits with the border's (docs/algorithm.md 9.4).
+inline unsigned fails_slot(unsigned f) { return (f & kFailOcc) | (f >> 1 & 0x1eu); }
+inline unsigned fails_from_slot(unsigned slot, bool border) {
+  return (slot & 1u) | (border ? kFailBorder : 0u) | (slot & 0x1eu) << 1;
 }
 
 }  // namespace sm

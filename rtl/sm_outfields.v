@@ -10,7 +10,10 @@
 //             band[1..3] when |d - dw| <= 1 and 0 < dw < DISP-1; otherwise 0
 //   fail      an enabled rule of 9.2 fails (occlusion, left-right, agreement, uniqueness,
 //             texture; the left border needs the output level and is sm_outword's)
-//   lr_ok, agree_ok, ratio, matched   the confidence's bits (9.3)
+//   lr_ok, agree_ok, ratio, matched   the confidence's bits (9.3); where fail, ratio
+//             carries the rules that fail instead, {lr, tex, agree, uniq, occ}, for the
+//             invalid word (9.4): an invalid pixel has no confidence, so the slot is free
+//             and the fields' row store keeps its width
 //   fb        the background fill where it may replace the level (occ_en 0, fill_bg 1,
 //             unmatched), else DISP-1 (never below a level)
 //   border_en occ_en, for sm_outword's border rule
@@ -165,14 +168,16 @@ module sm_outfields #(
 
   // ---- stage C: the rules ----
   /* verilator lint_off WIDTH */  // costs zero-extended to the thresholds' 8 bits
-  wire fail_c = (cfg_b[3] && occf_b) || (cfg_b[5] && adlr_b > cfg_b[24:17]) ||
-                (cfg_b[6] && addw_b > cfg_b[32:25]) || (cfg_b[7] && uniqm_b < cfg_b[40:33]) ||
-                (cfg_b[8] && texm_b < cfg_b[48:41]);
+  wire [4:0] fails_c = {cfg_b[5] && adlr_b > cfg_b[24:17], cfg_b[8] && texm_b < cfg_b[48:41],
+                        cfg_b[6] && addw_b > cfg_b[32:25], cfg_b[7] && uniqm_b < cfg_b[40:33],
+                        cfg_b[3] && occf_b};  // {lr, tex, agree, uniq, occ}
   /* verilator lint_on WIDTH */
+  reg [4:0] fails_cq;
   reg fail_cq, lrok_cq, agok_cq;
   always @(posedge clk) begin
     if (ce) begin
-      fail_cq <= fail_c;
+      fails_cq <= fails_c;
+      fail_cq <= |fails_c;
       lrok_cq <= adlr_b <= 8'd1;
       agok_cq <= addw_b <= 8'd1;
     end
@@ -181,7 +186,7 @@ module sm_outfields #(
   // ---- the beat's other fields, delayed to the fit ----
   // stage A values needed at the end: d, fb, matched, border enable, the SUBPIX 1 base
   localparam KA = 2 * DW + 8;  // {base, border_en, matched, fb, d}
-  localparam KC = 3;           // {agree_ok, lr_ok, fail}
+  localparam KC = 8;           // {fails, agree_ok, lr_ok, fail}
   // stage A's values meet the fit FIT_LAT + 1 ce's after A, stage C's FIT_LAT - 1 after C
   localparam NA = FIT_LAT + 1;
   localparam NC = FIT_LAT - 1;
@@ -189,7 +194,7 @@ module sm_outfields #(
   reg [KC*NC-1:0] kc_q;
   reg [4:0]       ratio_q;
   wire [KA-1:0] ka_in = {base_a, cfg_a[3], match_a, fb_a, d_a};
-  wire [KC-1:0] kc_in = {agok_cq, lrok_cq, fail_cq};
+  wire [KC-1:0] kc_in = {fails_cq, agok_cq, lrok_cq, fail_cq};
   integer i;
   always @(posedge clk) begin
     if (ce) begin
@@ -209,8 +214,8 @@ module sm_outfields #(
   wire [5:0]    base_k = ka[2*DW+2 +: 6];
   wire [5:0]    off = base_k + {frac[4], frac};
   always @(posedge clk) begin
-    // {fb, ratio, agree_ok, matched, lr_ok, border_en, fail, off, d}
-    if (ce) m_fields <= {fb_k, ratio_q, kc[2], match_k, kc[1], bord_k, kc[0], off, d_k};
+    // {fb, ratio or the failed rules, agree_ok, matched, lr_ok, border_en, fail, off, d}
+    if (ce) m_fields <= {fb_k, kc[0] ? kc[7:3] : ratio_q, kc[2], match_k, kc[1], bord_k, kc[0], off, d_k};
   end
 
   sm_side_delay #(.DEPTH(LAT)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(s_side), .q(m_side));

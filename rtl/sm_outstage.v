@@ -1,7 +1,8 @@
 `default_nettype none
 `include "sm_defs.vh"
 // The output stage (docs/algorithm.md section 9): sub-pixel disparity, validity and
-// confidence in the 32-bit output word {valid, 7'b0, confidence, 16 d_out + fraction}.
+// confidence in the 32-bit output word {1, 7'b0, confidence, 16 d_out + fraction}, or
+// {0, 0, failed rules, 24'b0} for an invalid pixel.
 //
 //   aggregated costs --+-> sm_dp ------------------------------> read-out (d, matched, gap, fill)
 //   (s_side, s_cost)   +-> sm_wta --> u_rec (3 rows) ----------> record of x      \

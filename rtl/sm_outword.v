@@ -11,7 +11,9 @@
 //           clamped to 0 .. 16 (DISP - 1)
 //   valid = post valid, no rule failed, and not (border rule on and x < d_out)
 //   conf  = {lr_ok, matched && x >= d_out, agree_ok, ratio}
-//   word  = valid ? {1, 7'b0, conf, q4} : 0
+//   fails = the enabled rules that cleared the pixel, {lr, tex, agree, uniq, border, occ}:
+//           the border's here, the others from the ratio's slot where fail is set
+//   word  = valid ? {1, 7'b0, conf, q4} : {0, 0, fails, 24'b0}
 // Two register stages, so a beat's word leaves on the ce after the one that takes it in
 // (latency 1 beat): the level select and the Q.4 sum, then the border compare (the column
 // against d_out) and the word, each under the LUT-level budget.
@@ -54,7 +56,7 @@ module sm_outword #(
   wire          f_lr     = s_fields[DW+8];
   wire          f_match  = s_fields[DW+9];
   wire          f_agree  = s_fields[DW+10];
-  wire [4:0]    f_ratio  = s_fields[DW+11 +: 5];
+  wire [4:0]    f_ratio  = s_fields[DW+11 +: 5];  // where f_fail: {lr, tex, agree, uniq, occ}
 
   wire [DW-1:0] post_d = s_disp[DW-1:0];
   wire          post_v = s_disp[15];
@@ -72,7 +74,7 @@ module sm_outword #(
   reg  [QS-1:0] q_q;  // two's complement: 16 d + off may fall below 0 in principle
   reg  [DW-1:0] dout_q;
   reg  [XW-1:0] x1_q;
-  reg           v_q, bord_q, lr_q, match_q, agree_q;
+  reg           v_q, bord_q, lr_q, match_q, agree_q, fail_q;
   reg  [4:0]    ratio_q;
 
   always @(posedge clk) begin
@@ -82,6 +84,7 @@ module sm_outword #(
       q_q     <= q_base + q_off;
       dout_q  <= bg ? f_fb : post_d;
       v_q     <= post_v && !f_fail;
+      fail_q  <= f_fail;
       bord_q  <= f_border;
       lr_q    <= f_lr;
       match_q <= f_match;
@@ -95,11 +98,14 @@ module sm_outword #(
   wire [CMPW-1:0] x_c = {{(CMPW - XW) {1'b0}}, x1_q};
   wire [CMPW-1:0] d_c = {{(CMPW - DW) {1'b0}}, dout_q};
   wire        border = x_c < d_c;
-  wire        valid = v_q && !(bord_q && border);
+  wire        border_fail = bord_q && border;
+  wire        valid = v_q && !border_fail;
+  wire [4:0]  rules = fail_q ? ratio_q : 5'd0;
+  wire [5:0]  fails = {rules[4:1], border_fail, rules[0]};
   wire [QW-1:0] q4 = q_q[QS-1] ? {QW{1'b0}} : (q_q > Q_MAX) ? Q_MAX[QW-1:0] : q_q[QW-1:0];
   wire [7:0]  conf = {lr_q, match_q && !border, agree_q, ratio_q};
   always @(posedge clk) begin
-    if (ce) m_word <= valid ? {1'b1, 7'b0, conf, {(16 - QW) {1'b0}}, q4} : 32'd0;
+    if (ce) m_word <= valid ? {1'b1, 7'b0, conf, {(16 - QW) {1'b0}}, q4} : {2'b00, fails, 24'd0};
   end
 
   sm_side_delay #(.DEPTH(2)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(s_side), .q(m_side));

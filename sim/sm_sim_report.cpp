@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "sm_regmap.hpp"
@@ -213,6 +214,20 @@ void add_synthesis(const SimOptions& opt, const ModelInfo& info, json& rep) {
 
 }  // namespace
 
+json invalid_json(const tools::FailCounts& c) {
+  json j = {{"pixels", c.invalid}, {"of", c.pixels}};
+  for (int k = 0; k < 6; ++k) j[tools::FailCounts::kRules[k]] = c.by_rule[k];
+  return j;
+}
+
+std::string invalid_line(const json& j) {
+  tools::FailCounts c;
+  c.invalid = j.at("pixels").get<long>();
+  c.pixels = j.at("of").get<long>();
+  for (int k = 0; k < 6; ++k) c.by_rule[k] = j.at(tools::FailCounts::kRules[k]).get<long>();
+  return tools::fail_counts_line(c);
+}
+
 SimReport make_report(const SimOptions& opt, const ModelInfo& info, const SimInput& in, const RegisterPlan& plan,
                       const SimRun& run, const ModelCheck& check, const cv::Mat& disp) {
   SimReport r;
@@ -228,6 +243,7 @@ SimReport make_report(const SimOptions& opt, const ModelInfo& info, const SimInp
   add_timing(opt, run, r.fig, rep);
   add_check(plan, run.out.res, check, rep);
   rep["frame_results"] = frame_results(info.hw, plan, run, check, r.packets);
+  rep["invalid"] = invalid_json(tools::fail_counts(run.last));
   rep["status"] = status;
   rep["sim_wall_seconds"] = wall;
   rep["sim_frames_per_second"] = nframes / wall;
@@ -319,6 +335,7 @@ void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in,
   print_objects(run, check, rep.packets);
   fmt::print("  status read back over AXI4-Lite:\n");
   for (const auto& l : rep.status_lines) fmt::print("    {}\n", l);
+  fmt::print("  last frame: {}\n", invalid_line(j["invalid"]));
   if (j.contains("bad1_percent"))
     fmt::print("  bad-1.0 vs ground truth: {:.2f} %{}\n", j["bad1_percent"].get<double>(),
                in.gt_note.empty() ? "" : " (" + in.gt_note + ")");

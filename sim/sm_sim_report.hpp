@@ -17,6 +17,7 @@
 #include "sm_sim_regplan.hpp"
 #include "sm_sim_simulate.hpp"
 #include "stereo_sim_app.hpp"
+#include "toolio/sm_metrics.hpp"
 
 namespace sm::simapp {
 
@@ -42,6 +43,11 @@ struct SimReport {
   std::vector<std::string> status_lines;  // the status registers read back, one line each
   std::vector<ObjectPacket> packets;      // the RTL's object packets, decoded
 };
+
+// The last frame's invalid words by the rule that cleared them (report.json's `invalid`;
+// a pixel may fail several), and that object as one line for the console.
+nlohmann::json invalid_json(const tools::FailCounts& c);
+std::string invalid_line(const nlohmann::json& invalid);
 
 // `disp`: the last frame's disparity (float, tools::disp_to_float). Throws on a
 // --synth-json that is not a synthesis report.

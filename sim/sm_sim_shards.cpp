@@ -14,6 +14,7 @@
 #include <map>
 
 #include "sm_sim_outputs.hpp"
+#include "sm_sim_report.hpp"
 #include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 
@@ -404,7 +405,7 @@ json merge_reports(const std::vector<ShardReport>& v, const std::string& disp_fi
   merge_schedule(v, m);
   const json& last = v.back().rep;
   m["status"] = last["status"];
-  for (const char* k : {"bad1_percent", "ground_truth"}) {
+  for (const char* k : {"bad1_percent", "ground_truth", "invalid"}) {
     m.erase(k);
     if (last.contains(k)) m[k] = last[k];
   }
@@ -454,6 +455,7 @@ void print_merged(const json& m, const std::string& out_dir) {
                p.is_null() ? "no packet" : fmt::format("{} object(s)", p.value("count", 0)),
                fr.value("bit_exact", true) ? "" : ", differs from model");
   }
+  if (m.contains("invalid")) fmt::print("  last frame: {}\n", invalid_line(m["invalid"]));
   if (m.contains("bad1_percent"))
     fmt::print("  bad-1.0 vs ground truth (last frame): {:.2f} %\n", m["bad1_percent"].get<double>());
   fmt::print("  simulation: {:.2f} s wall, {:.2f} frames/s\n", m["sim_wall_seconds"].get<double>(),

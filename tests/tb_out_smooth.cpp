@@ -32,7 +32,8 @@ OutImage random_words(std::mt19937& rng, int w, int h, int nd, bool anywhere) {
       const int base = (x * 3 / std::max(1, w / 4)) * step + y * 2 + static_cast<int>(rng() % 70) - 35;
       const int q = anywhere || rng() % 12 == 0 ? static_cast<int>(rng() % (top + 1)) : std::clamp(base, 0, top);
       const bool valid = rng() % 10 != 0;
-      m.at(x, y) = make_out_word(valid, rng() & 0xff, static_cast<unsigned>(q));
+      const unsigned byte = rng() & 0xff;  // the confidence, or an invalid word's failed rules
+      m.at(x, y) = make_out_word(valid, byte, static_cast<unsigned>(q), byte);
     }
   return m;
 }

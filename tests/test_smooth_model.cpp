@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "smooth.hpp"
+#include "validity.hpp"
 
 using namespace sm;
 
@@ -47,12 +48,15 @@ TEST_CASE("smoothing keeps planes of one value, depth steps and invalid pixels",
   // two surfaces 2 px apart (32 > 24 in 1/16 px): neither takes the other's values
   const OutImage step = words_of(9, 7, [](int x, int) { return x < 4 ? 16u * 40 : 16u * 42; });
   CHECK(q4s(smooth_output(step, 1, 24)) == q4s(step));
-  // an invalid word stays 0 and is left out of its neighbours' means
+  // an invalid word stays as it is (its failed rules too) and is left out of its
+  // neighbours' means
   OutImage holes = words_of(9, 7, [](int, int) { return 16u * 40; });
-  holes.at(4, 3) = 0;
+  holes.at(4, 3) = make_out_word(false, 0xff, 16u * 40, kFailLr | kFailBorder);
+  REQUIRE(holes.at(4, 3) == 0x22000000u);
   holes.at(2, 2) = make_out_word(true, 9, 16u * 41);  // within 24 of its neighbours
   const OutImage o = smooth_output(holes, 1, 24);
-  CHECK(o.at(4, 3) == 0u);
+  CHECK(o.at(4, 3) == 0x22000000u);
+  CHECK(out_fails(o.at(4, 3)) == (kFailLr | kFailBorder));
   // (2, 2): 24 neighbours at 640 (one invalid: 23) and itself at 656: 656 + floor(-368/24 + 1/2)
   CHECK(static_cast<int>(out_q4(o.at(2, 2))) == 656 + static_cast<int>(std::floor(-16.0 * 23 / 24 + 0.5)));
   // (0, 0): its window inside the frame is 3 x 3, (2, 2) among it: 640 + round(16 / 9)

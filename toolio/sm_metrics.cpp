@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 
+#include <fmt/format.h>
+
 namespace sm::tools {
 
 bool evaluated(const cv::Mat& gt, const cv::Mat& mask, int y, int x) {
@@ -77,6 +79,24 @@ cv::Mat out_to_float(const OutImage& o) {
       f.at<float>(y, x) = out_valid(w) ? static_cast<float>(out_q4(w)) / 16.0f : -1.0f;
     }
   return f;
+}
+
+FailCounts fail_counts(const OutImage& o) {
+  FailCounts c;
+  c.pixels = static_cast<long>(o.px.size());
+  for (const uint32_t w : o.px) {
+    if (out_valid(w)) continue;
+    ++c.invalid;
+    for (int k = 0; k < 6; ++k) c.by_rule[k] += out_fails(w) >> k & 1u;
+  }
+  return c;
+}
+
+std::string fail_counts_line(const FailCounts& c) {
+  std::string rules;
+  for (int k = 0; k < 6; ++k)
+    if (c.by_rule[k]) rules += fmt::format("{}{} {}", rules.empty() ? ": " : ", ", FailCounts::kRules[k], c.by_rule[k]);
+  return fmt::format("{} of {} pixels invalid{}", c.invalid, c.pixels, rules);
 }
 
 cv::Mat out_to_conf(const OutImage& o) {

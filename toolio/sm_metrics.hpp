@@ -4,6 +4,7 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "outword.hpp"
@@ -41,5 +42,16 @@ Sparsification sparsification(const cv::Mat& est_f, const cv::Mat& conf, const c
 // The output words' Q.4 disparity as float pixels (invalid = -1) and their confidence.
 cv::Mat out_to_float(const OutImage& o);
 cv::Mat out_to_conf(const OutImage& o);
+
+// Invalid words of a frame and, per validity rule, how many of them it cleared (a pixel
+// may fail several): the rules in the order of their bits in the word (docs/algorithm.md 9.4).
+struct FailCounts {
+  static constexpr const char* kRules[6] = {"occlusion", "border", "uniqueness", "agreement", "texture", "left_right"};
+  long pixels = 0, invalid = 0;
+  long by_rule[6] = {0, 0, 0, 0, 0, 0};
+};
+FailCounts fail_counts(const OutImage& o);
+// "N of M pixels invalid: occlusion a, border b, ..." (the rules that cleared any).
+std::string fail_counts_line(const FailCounts& c);
 
 }  // namespace sm::tools

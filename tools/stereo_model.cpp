@@ -286,6 +286,7 @@ int run(int argc, char** argv) {
          {&out, &colour, &disp_file, &objects_json, &conf_png, &depth.depth_file, &depth.cloud, &depth.cloud_view})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
+    if (mode != "integer") fmt::print("  {}\n", sm::tools::fail_counts_line(sm::tools::fail_counts(word)));
     fmt::print("  labels: {} started, at most {} in use at once (LABEL_SLOTS {})\n", res.objects.labels_started,
                res.objects.labels_peak, hw.label_slots);
     for (const std::string& l : sm::tools::object_flag_lines(sm::object_packet(res.objects, false)[0], hw, r))
