@@ -267,6 +267,17 @@ TEST_CASE("confidence orders the pixels of a synthetic scene by their error", "[
 
 namespace {
 
+// The main job's built-in scene (tools/scene.cmake: 320x240, 128 levels, seed 1, 6 objects).
+tools::SyntheticScene builtin_scene() {
+  tools::SceneParams p;
+  p.width = 320;
+  p.height = 240;
+  p.levels = 128;
+  p.seed = 1;
+  p.objects = 6;
+  return tools::render_scene(p);
+}
+
 // Phantom pixels of one output of the scene: see the test below.
 long count_phantoms(const tools::SyntheticScene& sc, const OutImage& o, long& checked) {
   long phantom = 0;
@@ -305,13 +316,7 @@ TEST_CASE("no phantom surfaces in the built-in scene's occluded spans", "[unit][
   // few pixels; the limit is 0.25 % of the checked pixels), where the DP's own fill (left
   // of the first match: disp(first)) paints whole bars from census-only costs (AD_MAX 0;
   // with the intensity term it paints few).
-  tools::SceneParams p;
-  p.width = 320;
-  p.height = 240;
-  p.levels = 128;
-  p.seed = 1;
-  p.objects = 6;
-  const auto sc = tools::render_scene(p);
+  const auto sc = builtin_scene();
   const auto res = run_scene(sc, 128), census_only = run_scene(sc, 128, 0);
   OutputRegs fill = dense_mode(OutputRegs{}), classic = fill;
   fill.fill_bg = 1;
@@ -335,13 +340,7 @@ TEST_CASE("invalid words name the rules that cleared them, and the occlusion rul
   // level) have no match: the occlusion or border rule should name nearly all of them, and
   // the pixels those rules name should mostly be occluded (the rest are runs the trellis
   // left unmatched at its own errors: measured 98.8 % and 84.7 %).
-  tools::SceneParams p;
-  p.width = 320;
-  p.height = 240;
-  p.levels = 128;
-  p.seed = 1;
-  p.objects = 6;
-  const auto sc = tools::render_scene(p);
+  const auto sc = builtin_scene();
   const auto res = run_scene(sc, 128);
   const OutputRegs all_on = [] {
     OutputRegs r;
