@@ -26,6 +26,7 @@
 #include "calib_file.hpp"
 #include "toolio/sm_depth.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "toolio/sm_pictures.hpp"
 #include "toolio/sm_signal_cleanup.hpp"
@@ -262,12 +263,14 @@ TEST_CASE("pictures: data range, invalid colour, colour bar, legends, object lab
     for (int x = 0; x < d.cols; ++x) d.at<float>(y, x) = 20.0f + x * 0.5f;
   d.at<float>(0, 0) = -1;
   d.at<float>(1, 0) = NAN;
+  d.at<float>(2, 0) = sm::tools::kNoMatchDisp;  // occluded or left of the border
   const sm::tools::ColourRange r = sm::tools::data_range(d);
   CHECK(r.lo == Approx(20.0));
   CHECK(r.hi == Approx(49.5));
   const cv::Mat c = sm::tools::colourise(d, r);
   CHECK(c.at<cv::Vec3b>(0, 0) == cv::Vec3b(255, 255, 255));
   CHECK(c.at<cv::Vec3b>(1, 0) == cv::Vec3b(255, 255, 255));
+  CHECK(c.at<cv::Vec3b>(2, 0) == cv::Vec3b(128, 128, 128));
   // the ends of the range are the ends of the turbo map, which is never white
   cv::Mat ends = (cv::Mat_<uint8_t>(1, 2) << 0, 255), turbo;
   cv::applyColorMap(ends, turbo, cv::COLORMAP_TURBO);
@@ -277,6 +280,7 @@ TEST_CASE("pictures: data range, invalid colour, colour bar, legends, object lab
     cv::Mat one(1, 1, CV_8UC1, cv::Scalar(i)), col;
     cv::applyColorMap(one, col, cv::COLORMAP_TURBO);
     CHECK(col.at<cv::Vec3b>(0, 0) != cv::Vec3b(255, 255, 255));
+    CHECK(col.at<cv::Vec3b>(0, 0) != cv::Vec3b(128, 128, 128));
   }
   CHECK(sm::tools::data_range(cv::Mat(2, 2, CV_32F, cv::Scalar(-1))).hi == 1.0);
 

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "validity.hpp"
+
 namespace sm::tools {
 
 bool evaluated(const cv::Mat& gt, const cv::Mat& mask, int y, int x) {
@@ -76,7 +78,8 @@ cv::Mat out_to_float(const OutImage& o) {
   for (int y = 0; y < o.h; ++y)
     for (int x = 0; x < o.w; ++x) {
       const uint32_t w = o.at(x, y);
-      f.at<float>(y, x) = out_valid(w) ? static_cast<float>(out_q4(w)) / 16.0f : -1.0f;
+      const bool no_match = (out_fails(w) & (kFailOcc | kFailBorder)) != 0;
+      f.at<float>(y, x) = out_valid(w) ? static_cast<float>(out_q4(w)) / 16.0f : no_match ? kNoMatchDisp : -1.0f;
     }
   return f;
 }

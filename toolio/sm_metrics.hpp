@@ -39,7 +39,10 @@ struct Sparsification {
 Sparsification sparsification(const cv::Mat& est_f, const cv::Mat& conf, const cv::Mat& gt, const cv::Mat& mask,
                               int steps = 100);
 
-// The output words' Q.4 disparity as float pixels (invalid = -1) and their confidence.
+// The output words' Q.4 disparity as float pixels and their confidence. Invalid pixels
+// are negative: kNoMatchDisp where the occlusion or border rule cleared them (no match
+// exists: the pictures paint them apart), else -1.
+constexpr float kNoMatchDisp = -2.0f;
 cv::Mat out_to_float(const OutImage& o);
 cv::Mat out_to_conf(const OutImage& o);
 

@@ -1,5 +1,7 @@
 #include "sm_pictures.hpp"
 
+#include "sm_metrics.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -63,12 +65,15 @@ cv::Mat colourise(const cv::Mat& disp_f, ColourRange r) {
       g.at<uint8_t>(y, x) = valid_disp(d) ? level(d, r) : 0;
     }
   cv::applyColorMap(g, c, cv::COLORMAP_TURBO);
+  const auto bgr = [](const cv::Scalar& s) {
+    return cv::Vec3b(static_cast<uint8_t>(s[0]), static_cast<uint8_t>(s[1]), static_cast<uint8_t>(s[2]));
+  };
+  const cv::Vec3b invalid = bgr(kInvalidColour), no_match = bgr(kNoMatchColour);
   for (int y = 0; y < disp_f.rows; ++y)
-    for (int x = 0; x < disp_f.cols; ++x)
-      if (!valid_disp(disp_f.at<float>(y, x)))
-        c.at<cv::Vec3b>(y, x) =
-            cv::Vec3b(static_cast<uint8_t>(kInvalidColour[0]), static_cast<uint8_t>(kInvalidColour[1]),
-                      static_cast<uint8_t>(kInvalidColour[2]));
+    for (int x = 0; x < disp_f.cols; ++x) {
+      const float d = disp_f.at<float>(y, x);
+      if (!valid_disp(d)) c.at<cv::Vec3b>(y, x) = d == kNoMatchDisp ? no_match : invalid;
+    }
   return c;
 }
 
@@ -79,7 +84,7 @@ cv::Mat colour_bar(ColourRange r, int height, const RectCamera* cam) {
   const int th = cv::getTextSize("0", kFont, s, 1, &base).height;
   const int left = cv::getTextSize("0000.0", kFont, s, 1, &base).width + 4, bar_w = 14;
   const int right = cam ? cv::getTextSize("000.00 m", kFont, s, 1, &base).width + 4 : 4;
-  const int top = th + 4, legend = th + 8, bar_h = std::max(4, height - top - legend - th);
+  const int top = th + 4, legend = 2 * th + 10, bar_h = std::max(4, height - top - legend - th);
   cv::Mat img(height, left + bar_w + right, CV_8UC3, cv::Scalar(0, 0, 0));
   // the bar: row i shows disparity hi at the top down to lo at the bottom
   cv::Mat g(bar_h, 1, CV_8UC1), col;
@@ -117,9 +122,12 @@ cv::Mat colour_bar(ColourRange r, int height, const RectCamera* cam) {
         put_text(img, fmt::format("{:g} m", z), {left + bar_w + 4, std::clamp(y + th / 2, th, height - 1)}, s, white);
       }
   }
-  const int ly = height - legend + 2;
-  cv::rectangle(img, cv::Rect(left, ly, bar_w, th + 2), kInvalidColour, cv::FILLED);
-  put_text(img, "invalid", {2, ly + th + 1}, s * 0.9, white);
+  int ly = height - legend + 2;
+  for (const auto& [c, name] : {std::pair{kNoMatchColour, "hidden"}, std::pair{kInvalidColour, "invalid"}}) {
+    cv::rectangle(img, cv::Rect(left, ly, bar_w, th + 2), c, cv::FILLED);
+    put_text(img, name, {2, ly + th + 1}, s * 0.9, white);
+    ly += th + 4;
+  }
   return img;
 }
 

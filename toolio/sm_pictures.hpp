@@ -17,8 +17,10 @@
 
 namespace sm::tools {
 
-// Invalid (no estimate) in every disparity picture: white, which the turbo map never is.
+// Invalid (no estimate) in every disparity picture: white, which the turbo map never is;
+// grey where no match exists (occluded or left of the border: kNoMatchDisp, sm_metrics.hpp).
 const cv::Scalar kInvalidColour(255, 255, 255);
+const cv::Scalar kNoMatchColour(128, 128, 128);
 // The error map's classes (BGR).
 const cv::Scalar kGoodColour(0, 160, 0);        // within 1 px of the ground truth
 const cv::Scalar kBadColour(0, 0, 255);         // off by more than 1 px
@@ -34,15 +36,16 @@ struct ColourRange {
 ColourRange data_range(const cv::Mat& disp_f);
 
 // Turbo colour map over r (lo = dark blue, hi = dark red, clamped), invalid (negative or
-// non-finite) = kInvalidColour. Replaces disp_to_colour(d, levels) when the range should
+// non-finite) = kInvalidColour, kNoMatchDisp = kNoMatchColour. Replaces disp_to_colour(d, levels) when the range should
 // follow the data: disp_to_colour(d, L) is colourise(d, {0, L - 1}) within one step of the
 // colour map (it maps disparity 0..L-1 over grey 1..255, disp_to_grey) except the invalid
 // colour (black there).
 cv::Mat colourise(const cv::Mat& disp_f, ColourRange r);
 
 // A vertical colour bar `height` rows tall for r (hi at the top): disparity ticks on its
-// left, depth ticks in metres on its right when `cam` is given, and the invalid swatch
-// named "invalid" under it.
+// left, depth ticks in metres on its right when `cam` is given, and under it the invalid
+// swatches, "hidden" (no match: occluded or left of the border) and "invalid" (rejected
+// by a check).
 cv::Mat colour_bar(ColourRange r, int height, const RectCamera* cam = nullptr);
 // colourise(disp_f, r) with colour_bar(r, rows, cam) on its right.
 cv::Mat disparity_picture(const cv::Mat& disp_f, ColourRange r, const RectCamera* cam = nullptr);
