@@ -17,6 +17,7 @@
 #include "smooth.hpp"
 #include "subpix.hpp"
 #include "validity.hpp"
+#include "sm_test_util.hpp"
 
 using namespace sm;
 
@@ -39,6 +40,9 @@ PipelineResult run_scene(const tools::SyntheticScene& s, int levels, int ad_max 
   Regs regs = Regs::defaults(hw);
   return run_pipeline(tools::to_image8(s.left), tools::to_image8(s.right), hw, regs, false);
 }
+
+// The main job's built-in scene (tools/scene.cmake: 320x240, 128 levels, seed 1, 6 objects).
+tools::SyntheticScene builtin_scene() { return tools::render_scene(sm::test::scene_params(320, 240, 128, 1, 6)); }
 
 }  // namespace
 
@@ -245,12 +249,7 @@ TEST_CASE("background fill never paints a span nearer than its neighbours' minim
 }
 
 TEST_CASE("confidence orders the pixels of a synthetic scene by their error", "[unit][output]") {
-  tools::SceneParams p;
-  p.width = 128;
-  p.height = 96;
-  p.levels = 32;
-  p.seed = 5;
-  p.objects = 5;
+  tools::SceneParams p = sm::test::scene_params(128, 96, 32, 5, 5);
   p.noise = 6;
   const auto s = run_scene(tools::render_scene(p), 32);
   const auto sc = tools::render_scene(p);
@@ -266,17 +265,6 @@ TEST_CASE("confidence orders the pixels of a synthetic scene by their error", "[
 }
 
 namespace {
-
-// The main job's built-in scene (tools/scene.cmake: 320x240, 128 levels, seed 1, 6 objects).
-tools::SyntheticScene builtin_scene() {
-  tools::SceneParams p;
-  p.width = 320;
-  p.height = 240;
-  p.levels = 128;
-  p.seed = 1;
-  p.objects = 6;
-  return tools::render_scene(p);
-}
 
 // Phantom pixels of one output of the scene: see the test below.
 long count_phantoms(const tools::SyntheticScene& sc, const OutImage& o, long& checked) {
