@@ -369,6 +369,24 @@ TEST_CASE("invalid words name the rules that cleared them, and the occlusion rul
   }
 }
 
+TEST_CASE("the host's reading of invalid words: counts by rule, hidden pixels apart", "[unit][output]") {
+  OutImage o(4, 1);
+  o.at(0, 0) = make_out_word(true, 200, 16 * 5 + 3);
+  o.at(1, 0) = make_out_word(false, 0, 0, kFailOcc | kFailLr);
+  o.at(2, 0) = make_out_word(false, 0, 0, kFailBorder);
+  o.at(3, 0) = make_out_word(false, 0, 0, kFailAgree | kFailLr);
+  const tools::FailCounts c = tools::fail_counts(o);
+  CHECK(c.pixels == 4);
+  CHECK(c.invalid == 3);
+  CHECK(std::vector<long>(c.by_rule, c.by_rule + 6) == std::vector<long>{1, 1, 0, 1, 0, 2});
+  CHECK(tools::fail_counts_line(c) == "3 of 4 pixels invalid: occlusion 1, border 1, agreement 1, left_right 2");
+  const cv::Mat f = tools::out_to_float(o);
+  CHECK(f.at<float>(0, 0) == 5.1875f);
+  CHECK(f.at<float>(0, 1) == tools::kNoMatchDisp);  // occluded: no match exists
+  CHECK(f.at<float>(0, 2) == tools::kNoMatchDisp);  // left of the border
+  CHECK(f.at<float>(0, 3) == -1.0f);                // a match, rejected by the checks
+}
+
 TEST_CASE("accuracy metrics and sparsification: hand-computed values", "[unit][output]") {
   // errors 0.2, 0.6, invalid, 2.0; the fifth pixel has no ground truth
   const cv::Mat est = (cv::Mat_<float>(1, 5) << 1.0f, 2.6f, -1.0f, 5.0f, 7.0f);
