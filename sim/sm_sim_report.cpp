@@ -216,7 +216,7 @@ void add_synthesis(const SimOptions& opt, const ModelInfo& info, json& rep) {
 
 json invalid_json(const tools::FailCounts& c) {
   json j = {{"pixels", c.invalid}, {"of", c.pixels}};
-  for (int k = 0; k < 6; ++k) j[tools::FailCounts::kRules[k]] = c.by_rule[k];
+  for (int k = 0; k < tools::FailCounts::kN; ++k) j[tools::FailCounts::kRules[k]] = c.by_rule[k];
   return j;
 }
 
@@ -224,7 +224,7 @@ std::string invalid_line(const json& j) {
   tools::FailCounts c;
   c.invalid = j.at("pixels").get<long>();
   c.pixels = j.at("of").get<long>();
-  for (int k = 0; k < 6; ++k) c.by_rule[k] = j.at(tools::FailCounts::kRules[k]).get<long>();
+  for (int k = 0; k < tools::FailCounts::kN; ++k) c.by_rule[k] = j.at(tools::FailCounts::kRules[k]).get<long>();
   return tools::fail_counts_line(c);
 }
 

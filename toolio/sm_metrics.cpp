@@ -90,14 +90,14 @@ FailCounts fail_counts(const OutImage& o) {
   for (const uint32_t w : o.px) {
     if (out_valid(w)) continue;
     ++c.invalid;
-    for (int k = 0; k < 6; ++k) c.by_rule[k] += out_fails(w) >> k & 1u;
+    for (int k = 0; k < FailCounts::kN; ++k) c.by_rule[k] += out_fails(w) >> k & 1u;
   }
   return c;
 }
 
 std::string fail_counts_line(const FailCounts& c) {
   std::string rules;
-  for (int k = 0; k < 6; ++k)
+  for (int k = 0; k < FailCounts::kN; ++k)
     if (c.by_rule[k]) rules += fmt::format("{}{} {}", rules.empty() ? ": " : ", ", FailCounts::kRules[k], c.by_rule[k]);
   return fmt::format("{} of {} pixels invalid{}", c.invalid, c.pixels, rules);
 }

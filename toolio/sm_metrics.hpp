@@ -49,9 +49,10 @@ cv::Mat out_to_conf(const OutImage& o);
 // Invalid words of a frame and, per validity rule, how many of them it cleared (a pixel
 // may fail several): the rules in the order of their bits in the word (docs/algorithm.md 9.4).
 struct FailCounts {
-  static constexpr const char* kRules[6] = {"occlusion", "border", "uniqueness", "agreement", "texture", "left_right"};
+  static constexpr int kN = 6;  // the word's fails[5:0]
+  static constexpr const char* kRules[kN] = {"occlusion", "border", "uniqueness", "agreement", "texture", "left_right"};
   long pixels = 0, invalid = 0;
-  long by_rule[6] = {0, 0, 0, 0, 0, 0};
+  long by_rule[kN] = {};
 };
 FailCounts fail_counts(const OutImage& o);
 // "N of M pixels invalid: occlusion a, border b, ..." (the rules that cleared any).

@@ -37,6 +37,10 @@ std::string tick_text(double v, double step) {
   return fmt::format("{:.{}f}", v, decimals);
 }
 
+cv::Vec3b vec3b(const cv::Scalar& s) {
+  return cv::Vec3b(static_cast<uint8_t>(s[0]), static_cast<uint8_t>(s[1]), static_cast<uint8_t>(s[2]));
+}
+
 uint8_t level(double v, ColourRange r) {
   const double t = (v - r.lo) / (r.hi - r.lo);
   return static_cast<uint8_t>(std::lround(std::clamp(t, 0.0, 1.0) * 255.0));
@@ -65,10 +69,7 @@ cv::Mat colourise(const cv::Mat& disp_f, ColourRange r) {
       g.at<uint8_t>(y, x) = valid_disp(d) ? level(d, r) : 0;
     }
   cv::applyColorMap(g, c, cv::COLORMAP_TURBO);
-  const auto bgr = [](const cv::Scalar& s) {
-    return cv::Vec3b(static_cast<uint8_t>(s[0]), static_cast<uint8_t>(s[1]), static_cast<uint8_t>(s[2]));
-  };
-  const cv::Vec3b invalid = bgr(kInvalidColour), no_match = bgr(kNoMatchColour);
+  const cv::Vec3b invalid = vec3b(kInvalidColour), no_match = vec3b(kNoMatchColour);
   for (int y = 0; y < disp_f.rows; ++y)
     for (int x = 0; x < disp_f.cols; ++x) {
       const float d = disp_f.at<float>(y, x);
@@ -174,9 +175,8 @@ cv::Mat error_map(const cv::Mat& est, const cv::Mat& gt, const cv::Mat& mask) {
       const float g = gt.at<float>(y, x);
       if (!(g > 0) || (!mask.empty() && mask.at<uint8_t>(y, x) == 0)) continue;
       const float e = est.at<float>(y, x);
-      const cv::Scalar& c = !valid_disp(e) ? kNoEstColour : (std::fabs(e - g) > 1.0f ? kBadColour : kGoodColour);
       m.at<cv::Vec3b>(y, x) =
-          cv::Vec3b(static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]));
+          vec3b(!valid_disp(e) ? kNoEstColour : (std::fabs(e - g) > 1.0f ? kBadColour : kGoodColour));
     }
   return m;
 }
