@@ -43,3 +43,8 @@ sm_rtl_test(NAME tb_out_smooth_odd TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_LIS
 sm_rtl_test(NAME tb_out_smooth_paper TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_smooth.cpp
             PARAMS MAX_WIDTH=320 DISP=128 ARGS --widths 320,67 --height 6)
 sm_unit_test(test_smooth_model LIBS sm_model DISCOVER)
+
+# The output study's speckle check against OpenCV's filterSpeckles and a streaming known answer.
+if(TARGET sm_speckle)
+  sm_unit_test(test_speckle LIBS sm_speckle opencv_calib3d DISCOVER)
+endif()

@@ -3,7 +3,7 @@
 // disparity, then scores the sub-pixel estimators, validity rules and confidence formulas
 // of model/outword.hpp on all scenes at once (14-scene means), so each default is chosen
 // on every scene.
-//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf,bound]
+//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf,bound,speckle]
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -23,7 +23,9 @@
 #include "output_frame.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
+#include "smooth.hpp"
 #include "sm_output_bound.hpp"
+#include "sm_speckle.hpp"
 
 using namespace sm;
 using namespace sm::tools;
@@ -172,6 +174,88 @@ void study_bound(const std::vector<Frame>& fr) {
   }
 }
 
+// Where the speckle check reads the words' Q.4 values: before the smoothing (docs/algorithm.md
+// 9.7), where a check in the IP would sit beside the object labeller, which reads them
+// there too; or after it, the stream a host receives ("stream", or "raw" with SMOOTH_EN 0).
+enum class SpeckleAt { kBeforeSmoothing, kOnStream };
+
+// The stream's words under the rules of r with speckles (sm_speckle.hpp) made invalid.
+OutImage speckle_words(const Frame& f, const OutputRegs& r, int max_size, int max_diff, int delay_rows, SpeckleAt at) {
+  OutImage words = make_output(f.ev, f.post, f.levels, r, 0);
+  auto check = [&](OutImage& o) {
+    if (max_size <= 0) return;
+    cv::Mat q4;
+    out_to_float(o).convertTo(q4, CV_16S, 16.0);  // (invalid pixels stay negative)
+    const cv::Mat keep = speckle_keep(q4, max_size, max_diff, delay_rows);
+    for (int y = 0; y < o.h; ++y)
+      for (int x = 0; x < o.w; ++x)
+        if (out_valid(o.at(x, y)) && !keep.at<uint8_t>(y, x)) o.at(x, y) = 0;
+  };
+  if (at == SpeckleAt::kBeforeSmoothing) check(words);
+  words = smooth_output(words, r.smooth_en, r.smooth_t);
+  if (at == SpeckleAt::kOnStream) check(words);
+  return words;
+}
+
+Row score_speckle(const std::vector<Frame>& fr, const OutputRegs& r, int max_size, int max_diff, int delay_rows,
+                  SpeckleAt at) {
+  Row m;
+  for (const auto& f : fr) {
+    const DispMetrics d =
+        disp_metrics(out_to_float(speckle_words(f, r, max_size, max_diff, delay_rows, at)), f.gt, f.mask);
+    m.b05 += d.pct(d.bad05);
+    m.b1 += d.pct(d.bad1);
+    m.mae += d.mae();
+    m.dens += d.density();
+    m.b1v += d.bad1_of_valid();
+  }
+  const double n = static_cast<double>(fr.size());
+  for (double* v : {&m.b05, &m.b1, &m.mae, &m.dens, &m.b1v}) *v /= n;
+  return m;
+}
+
+// Checked-mode density against bad-1.0 of the valid pixels with a speckle check after the
+// rules: regions of at most S pixels (4-neighbours within D/16 px) become invalid, decided
+// on the whole frame or, as a streaming core would, K rows after the row.
+void study_speckle(const std::vector<Frame>& fr) {
+  struct Rules {
+    const char* name;
+    int occ_t, lr, agree;  // -1: rule off
+  };
+  const Rules rules[] = {{"defaults (occ 1, lr 2, agree 2)", 1, 2, 2},
+                         {"occ 1 only", 1, -1, -1},
+                         {"occ 2 only", 2, -1, -1},
+                         {"occ 1, lr 4", 1, 4, -1},
+                         {"occ 1, agree 4", 1, -1, 4}};
+  fmt::print("\n| {:<32} | {:<8} | {:>5} | {:>3} | {:>5} | dens % | b1 val | bad1.0 |  MAE  |\n", "rules", "reads", "S",
+             "D", "K");
+  fmt::print("|{:-<34}|----------|-------|-----|-------|--------|--------|--------|-------|\n", "");
+  for (const auto& ru : rules) {
+    OutputRegs r;
+    r.occ_t = static_cast<uint8_t>(ru.occ_t);
+    r.lr_en = ru.lr >= 0;
+    r.lr_t = static_cast<uint8_t>(std::max(ru.lr, 0));
+    r.agree_en = ru.agree >= 0;
+    r.agree_t = static_cast<uint8_t>(std::max(ru.agree, 0));
+    OutputRegs raw = r;  // the stream with SMOOTH_EN 0
+    raw.smooth_en = 0;
+    auto row = [&](const OutputRegs& regs, int s, int d, int k, SpeckleAt at) {
+      const Row m = score_speckle(fr, regs, s, d, k, at);
+      const std::string ks = k >= 1 << 15 ? "frame" : std::to_string(k);
+      const char* reads = at == SpeckleAt::kBeforeSmoothing ? "words" : regs.smooth_en ? "stream" : "raw";
+      fmt::print("| {:<32} | {:<8} | {:>5} | {:>3} | {:>5} | {:6.2f} | {:6.2f} | {:6.2f} | {:5.3f} |\n", ru.name, reads,
+                 s, d, ks, m.dens, m.b1v, m.b1, m.mae);
+    };
+    row(r, 0, 0, 0, SpeckleAt::kOnStream);
+    for (const int s : {300, 1000, 2000})
+      for (const int d : {8, 16}) {
+        for (const int k : {1 << 15, 32, 16, 8}) row(r, s, d, k, SpeckleAt::kBeforeSmoothing);
+        row(r, s, d, 1 << 15, SpeckleAt::kOnStream);
+        row(raw, s, d, 1 << 15, SpeckleAt::kOnStream);
+      }
+  }
+}
+
 void study_conf(const std::vector<Frame>& fr) {
   header(true);
   for (int v = 0; v < kConfidenceVariants; ++v)
@@ -259,10 +343,11 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
   app.add_option("--study", studies,
-                 "comma-separated subset of subpix,valid,conf,bound (bound: a random forest on the evidence, "
-                 "leave one scene out, ~3 min; not in the default set)")
+                 "comma-separated subset of subpix,valid,conf,bound,speckle (bound: a random forest on the "
+                 "evidence, leave one scene out, ~3 min; speckle: the rules then a speckle check; neither is in "
+                 "the default set)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound"}));
+      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle"}));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
   if (!dump_dir.empty()) check_output_folder("--dump-features", dump_dir);
   quiet_opencv();
@@ -283,6 +368,8 @@ int run(int argc, char** argv) {
       study_valid(fr);
     else if (s == "conf")
       study_conf(fr);
+    else if (s == "speckle")
+      study_speckle(fr);
     else
       study_bound(fr);
   }

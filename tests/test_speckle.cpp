@@ -1,0 +1,75 @@
+// The speckle check of the output study (tools/sm_speckle.hpp): on the whole frame it must
+// give OpenCV's filterSpeckles verdict (independent code), and in its streaming form a
+// region is judged only on the rows seen K rows after its row.
+#include <catch2/catch.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+
+#include "sm_speckle.hpp"
+
+using namespace sm::tools;
+
+namespace {
+
+// Random disparities in a few levels, so regions of every size form, a quarter invalid.
+cv::Mat random_map(int w, int h, uint64_t seed) {
+  cv::RNG rng(seed);
+  cv::Mat m(h, w, CV_16S);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      m.at<int16_t>(y, x) = rng.uniform(0, 4) == 0 ? int16_t{-16} : static_cast<int16_t>(16 * rng.uniform(0, 3));
+  return m;
+}
+
+// The pixels filterSpeckles keeps, in speckle_keep's form (invalid and removed: 0).
+cv::Mat opencv_keep(const cv::Mat& q4, int max_size, int max_diff) {
+  cv::Mat f = q4.clone();
+  f.setTo(-16, q4 < 0);  // (filterSpeckles skips pixels equal to its new value)
+  cv::filterSpeckles(f, -16, max_size, max_diff);
+  cv::Mat keep = f != -16;
+  return keep / 255;
+}
+
+}  // namespace
+
+TEST_CASE("speckle check on the whole frame equals OpenCV's filterSpeckles", "[speckle]") {
+  int mixed = 0;  // cases where some valid pixels are kept and some removed
+  for (const auto& [w, h] : {std::pair{37, 23}, std::pair{64, 48}, std::pair{5, 81}})
+    for (const int max_size : {1, 4, 30, 200})
+      for (const int max_diff : {0, 16}) {
+        const cv::Mat q4 = random_map(w, h, static_cast<uint64_t>(w * 1000 + max_size * 10 + max_diff));
+        const cv::Mat ours = speckle_keep(q4, max_size, max_diff, h);
+        CAPTURE(w, h, max_size, max_diff);
+        REQUIRE(cv::countNonZero(ours != opencv_keep(q4, max_size, max_diff)) == 0);
+        const int kept = cv::countNonZero(ours), valid = cv::countNonZero(q4 >= 0);
+        mixed += kept > 0 && kept < valid;
+      }
+  CHECK(mixed >= 12);  // of 24
+}
+
+TEST_CASE("streaming speckle check: a region still reaching the newest row is kept", "[speckle]") {
+  // A 3-pixel region in rows 1..2 (level 5), a large region of level 40 in column 0 from
+  // row 0 to the last row; the rest invalid.
+  cv::Mat q4(8, 6, CV_16S, cv::Scalar(-16));
+  for (int y = 0; y < 8; ++y) q4.at<int16_t>(y, 0) = 40 * 16;
+  q4.at<int16_t>(1, 3) = q4.at<int16_t>(1, 4) = q4.at<int16_t>(2, 3) = 5 * 16;
+  auto small_kept = [&](int delay) { return speckle_keep(q4, 5, 8, delay).at<uint8_t>(1, 3) == 1; };
+  CHECK(small_kept(0));   // row 1 judged when row 1 is the newest: open
+  CHECK(small_kept(1));   // row 1 judged after row 2: the region reaches row 2, open
+  CHECK(!small_kept(2));  // after row 3: closed at 3 pixels <= 5
+  CHECK(!small_kept(8));  // the whole frame
+  // Row 2 of the small region: judged after row 3 at delay 1, so closed.
+  CHECK(speckle_keep(q4, 5, 8, 1).at<uint8_t>(2, 3) == 0);
+  // The column region (8 pixels > 5) is kept at every delay once it is complete, and while
+  // it reaches the newest row.
+  for (const int delay : {0, 1, 2, 3, 8}) {
+    const cv::Mat keep = speckle_keep(q4, 5, 8, delay);
+    for (int y = 0; y < 8; ++y) CHECK(keep.at<uint8_t>(y, 0) == 1);
+    CHECK(keep.at<uint8_t>(0, 1) == 0);  // invalid stays 0
+  }
+  // Made small (max_size 8): the column is a speckle once the whole frame is seen, so the
+  // rows decided at the frame's end (the last `delay` + 1) lose it, earlier rows keep it.
+  const cv::Mat k2 = speckle_keep(q4, 8, 8, 2);
+  for (int y = 0; y < 5; ++y) CHECK(k2.at<uint8_t>(y, 0) == 1);
+  for (int y = 5; y < 8; ++y) CHECK(k2.at<uint8_t>(y, 0) == 0);
+}

@@ -1,0 +1,72 @@
+#include "sm_speckle.hpp"
+
+#include <cstdint>
+#include <cstdlib>
+#include <numeric>
+#include <vector>
+
+namespace sm::tools {
+
+namespace {
+
+// Union-find over the pixels in raster order; each root keeps its region's size and the
+// lowest row it reaches.
+struct Regions {
+  std::vector<int32_t> parent, size, last_row;
+  explicit Regions(size_t n) : parent(n), size(n, 1), last_row(n, 0) { std::iota(parent.begin(), parent.end(), 0); }
+  int32_t find(int32_t p) {
+    while (parent[static_cast<size_t>(p)] != p) {
+      const int32_t up = parent[static_cast<size_t>(parent[static_cast<size_t>(p)])];
+      parent[static_cast<size_t>(p)] = up;  // path halving
+      p = up;
+    }
+    return p;
+  }
+  void join(int32_t a, int32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (size[static_cast<size_t>(a)] < size[static_cast<size_t>(b)]) std::swap(a, b);
+    parent[static_cast<size_t>(b)] = a;
+    size[static_cast<size_t>(a)] += size[static_cast<size_t>(b)];
+    last_row[static_cast<size_t>(a)] = std::max(last_row[static_cast<size_t>(a)], last_row[static_cast<size_t>(b)]);
+  }
+};
+
+// Row y's verdicts once rows 0..newest are joined; a region reaching row newest is open
+// unless newest is the frame's last row.
+void decide_row(const cv::Mat& q4, Regions& g, int y, int newest, int max_size, cv::Mat& keep) {
+  const int w = q4.cols;
+  const bool final_rows = newest == q4.rows - 1;
+  for (int x = 0; x < w; ++x) {
+    if (q4.at<int16_t>(y, x) < 0) continue;
+    const int32_t r = g.find(y * w + x);
+    const bool open = !final_rows && g.last_row[static_cast<size_t>(r)] == newest;
+    keep.at<uint8_t>(y, x) = open || g.size[static_cast<size_t>(r)] > max_size;
+  }
+}
+
+}  // namespace
+
+cv::Mat speckle_keep(const cv::Mat& q4, int max_size, int max_diff, int delay_rows) {
+  CV_Assert(q4.type() == CV_16S && delay_rows >= 0);
+  const int w = q4.cols, h = q4.rows;
+  Regions g(static_cast<size_t>(w) * static_cast<size_t>(h));
+  cv::Mat keep = cv::Mat::zeros(h, w, CV_8U);
+  auto near = [&](int y0, int x0, int y1, int x1) {
+    const int a = q4.at<int16_t>(y0, x0), b = q4.at<int16_t>(y1, x1);
+    return a >= 0 && b >= 0 && std::abs(a - b) <= max_diff;
+  };
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      g.last_row[static_cast<size_t>(y * w + x)] = y;
+      if (x > 0 && near(y, x, y, x - 1)) g.join(y * w + x, y * w + x - 1);
+      if (y > 0 && near(y, x, y - 1, x)) g.join(y * w + x, (y - 1) * w + x);
+    }
+    if (y - delay_rows >= 0 && y < h - 1) decide_row(q4, g, y - delay_rows, y, max_size, keep);
+  }
+  for (int y = std::max(0, h - 1 - delay_rows); y < h; ++y) decide_row(q4, g, y, h - 1, max_size, keep);
+  return keep;
+}
+
+}  // namespace sm::tools
