@@ -60,6 +60,16 @@ Frame run_scene(const std::string& dir, int levels) {
 struct Row {
   double b05 = 0, b1 = 0, b2 = 0, mae = 0, dens = 0, b1v = 0, b1_classic = 0, auc = 0, oauc = 0, ratio = 0;
 };
+// Adds one frame's figures to the sums of a Row (score and score_speckle divide them).
+void add_frame(Row& m, const DispMetrics& d) {
+  m.b05 += d.pct(d.bad05);
+  m.b1 += d.pct(d.bad1);
+  m.b2 += d.pct(d.bad2);
+  m.mae += d.mae();
+  m.dens += d.density();
+  m.b1v += d.bad1_of_valid();
+}
+
 Row score(const std::vector<Frame>& fr, const OutputRegs& r, int conf_variant, bool sparsify) {
   Row m;
   int nc = 0;
@@ -67,12 +77,7 @@ Row score(const std::vector<Frame>& fr, const OutputRegs& r, int conf_variant, b
     const OutImage o = make_output(f.ev, f.post, f.levels, r, conf_variant);
     const cv::Mat e = out_to_float(o);
     const DispMetrics d = disp_metrics(e, f.gt, f.mask);
-    m.b05 += d.pct(d.bad05);
-    m.b1 += d.pct(d.bad1);
-    m.b2 += d.pct(d.bad2);
-    m.mae += d.mae();
-    m.dens += d.density();
-    m.b1v += d.bad1_of_valid();
+    add_frame(m, d);
     if (classic(f.name)) m.b1_classic += d.pct(d.bad1), ++nc;
     if (sparsify) {
       const Sparsification s = sparsification(e, out_to_conf(o), f.gt, f.mask);
@@ -189,7 +194,7 @@ OutImage speckle_words(const Frame& f, const OutputRegs& r, int max_size, int ma
     const cv::Mat keep = speckle_keep(q4, max_size, max_diff, delay_rows);
     for (int y = 0; y < o.h; ++y)
       for (int x = 0; x < o.w; ++x)
-        if (out_valid(o.at(x, y)) && !keep.at<uint8_t>(y, x)) o.at(x, y) = 0;
+        if (out_valid(o.at(x, y)) && !keep.at<uint8_t>(y, x)) o.at(x, y) = 0;  // (no rule bit: a study)
   };
   if (at == SpeckleAt::kBeforeSmoothing) check(words);
   words = smooth_output(words, r.smooth_en, r.smooth_t);
@@ -201,16 +206,10 @@ Row score_speckle(const std::vector<Frame>& fr, const OutputRegs& r, int max_siz
                   SpeckleAt at) {
   Row m;
   for (const auto& f : fr) {
-    const DispMetrics d =
-        disp_metrics(out_to_float(speckle_words(f, r, max_size, max_diff, delay_rows, at)), f.gt, f.mask);
-    m.b05 += d.pct(d.bad05);
-    m.b1 += d.pct(d.bad1);
-    m.mae += d.mae();
-    m.dens += d.density();
-    m.b1v += d.bad1_of_valid();
+    add_frame(m, disp_metrics(out_to_float(speckle_words(f, r, max_size, max_diff, delay_rows, at)), f.gt, f.mask));
   }
   const double n = static_cast<double>(fr.size());
-  for (double* v : {&m.b05, &m.b1, &m.mae, &m.dens, &m.b1v}) *v /= n;
+  for (double* v : {&m.b05, &m.b1, &m.b2, &m.mae, &m.dens, &m.b1v}) *v /= n;
   return m;
 }
 
