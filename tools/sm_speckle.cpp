@@ -1,8 +1,10 @@
 #include "sm_speckle.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 namespace sm::tools {
