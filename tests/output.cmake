@@ -47,4 +47,6 @@ sm_unit_test(test_smooth_model LIBS sm_model DISCOVER)
 # The output study's speckle check against OpenCV's filterSpeckles and a streaming known answer.
 if(TARGET sm_speckle)
   sm_unit_test(test_speckle LIBS sm_speckle opencv_calib3d DISCOVER)
+  # The host's check (toolio) against that union-find and known answers.
+  sm_unit_test(test_host_speckle LIBS sm_speckle sm_toolio DISCOVER)
 endif()

@@ -15,7 +15,9 @@
 #include <sstream>
 
 #include "calib_file.hpp"
+#include "toolio/sm_host_speckle.hpp"
 #include "toolio/sm_io.hpp"
+#include "toolio/sm_metrics.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "outword.hpp"
 #include "smooth.hpp"
@@ -108,6 +110,10 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
   }
   SECTION("missing calibration") { expect_error(model(o + " --disp 16 --calib " + fx.I("none.json")), "none.json"); }
   SECTION("bad thread count") { expect_error(model(o + " --disp 16 --threads 0"), "--threads"); }
+  SECTION("bad speckle check") {
+    expect_error(model(o + " --disp 16 --speckle 10,300"), "--speckle: 300: outside 0..255");
+    expect_error(model(o + " --disp 16 --speckle many"), "--speckle: 'many': not an integer");
+  }
   SECTION("unwritable output") {
     expect_error(model(" --disp 16 -o " + (out / "no" / "d.png").string()), "cannot write");
   }
@@ -227,7 +233,7 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
     CHECK(s["methods"][std::string(m) + "-dense"]["invalid"].get<long>() <= s["methods"][m]["invalid"].get<long>());
   // The output stage (issue 39): the dense sub-pixel output has every pixel valid and a
   // confidence; the checked one leaves pixels invalid; the accuracy block agrees with bad1.
-  for (const char* m : {"model", "model_subpix", "model_checked", "sgbm"}) {
+  for (const char* m : {"model", "model_subpix", "model_checked", "model_host", "sgbm"}) {
     INFO(m);
     const auto& a = s["methods"][m]["accuracy"];
     CHECK(a["bad1_pct"].get<double>() == Approx(s["methods"][m]["bad1_pct"].get<double>()));
@@ -237,6 +243,7 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   }
   CHECK(s["methods"]["model_subpix"]["accuracy"]["density_pct"] == 100.0);
   CHECK(s["methods"]["model_checked"]["accuracy"]["density_pct"].get<double>() < 100.0);
+  CHECK(s["methods"]["model_host"]["accuracy"]["density_pct"].get<double>() < 100.0);
   const auto& sp = s["methods"]["model_subpix"]["accuracy"]["sparsification"];
   REQUIRE(sp["curve"].size() == 100);
   CHECK(sp["auc"].get<double>() >= sp["oracle_auc"].get<double>());
@@ -257,7 +264,7 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   CHECK(j2["scenes"][0]["methods"]["model"]["levels"] == 16);
   CHECK(j2["scenes"][0]["methods"]["model"]["bad1_pct"] == s["methods"]["model"]["bad1_pct"]);
   CHECK(j2["scenes"][0]["methods"]["model"]["streak"][0]["max_rows"] == 2);
-  CHECK(j2["scenes"][0]["methods"].size() == 8);  // the model's seven outputs and bm
+  CHECK(j2["scenes"][0]["methods"].size() == 9);  // the model's eight outputs and bm
   const std::string ds = (fx.dir / "dataset").string() + " -q";
   expect_error(run(SM_EVALUATE_EXE, ds + " --peer-levels 40"), "--peer-levels 40");
   expect_error(run(SM_EVALUATE_EXE, ds + " --methods model,bm,model"), "twice");
@@ -278,8 +285,8 @@ TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {
   REQUIRE(js["scenes"].size() == 2);
   CHECK(js["scenes"][1]["name"] == "synthetic2");
   CHECK(js["scenes"][0]["width"] == 48);
-  // model_dp, model_f0, model_f1, model_f1f2, model, model_subpix, model_checked, sgbm
-  CHECK(js["scenes"][0]["methods"].size() == 8);
+  // model_dp, model_f0, model_f1, model_f1f2, model, model_subpix, model_checked, model_host, sgbm
+  CHECK(js["scenes"][0]["methods"].size() == 9);
   expect_error(run(SM_EVALUATE_EXE, "--synthetic 1 --synthetic-size 48by32"), "48by32");
   expect_error(run(SM_EVALUATE_EXE, "--levels 15 --synthetic 1"), "--levels 15");
 }
@@ -375,6 +382,26 @@ TEST_CASE("--help shows the model's own defaults", "[unit][tools][cli]") {
   }
 }
 
+namespace {
+
+// A PFM that stereo_model wrote holds `want` (CV_32F): its valid values exactly, +infinity
+// where `want` is invalid (negative).
+void check_pfm(const fs::path& pfm, const cv::Mat& want) {
+  const cv::Mat raw = cv::imread(pfm.string(), cv::IMREAD_UNCHANGED);
+  REQUIRE(raw.type() == CV_32FC1);
+  REQUIRE(raw.size() == want.size());
+  for (int y = 0; y < want.rows; ++y)
+    for (int x = 0; x < want.cols; ++x) {
+      const float e = want.at<float>(y, x), g = raw.at<float>(y, x);
+      if (e < 0)
+        CHECK(std::isinf(g));
+      else
+        CHECK(g == e);
+    }
+}
+
+}  // namespace
+
 TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][tools][cli]") {
   Fixture fx;
   const fs::path out = sm::test::fresh_dir(fx.dir / "out_lossless");
@@ -392,17 +419,7 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
     INFO(r.err);
     REQUIRE(r.rc == 0);
     expect_only(out, {"d.pfm"});  // no viewing PNGs unless asked for
-    const cv::Mat raw = cv::imread((out / "d.pfm").string(), cv::IMREAD_UNCHANGED);
-    REQUIRE(raw.type() == CV_32FC1);
-    REQUIRE(raw.size() == ref.size());
-    for (int y = 0; y < ref.rows; ++y)
-      for (int x = 0; x < ref.cols; ++x) {
-        const float e = ref.at<float>(y, x), g = raw.at<float>(y, x);
-        if (e < 0)
-          CHECK(std::isinf(g));
-        else
-          CHECK(g == e);
-      }
+    check_pfm(out / "d.pfm", ref);
   }
   SECTION("16-bit PNG: disparity x 16, 0 = invalid; viewing PNGs alongside") {
     const Run r =
@@ -449,6 +466,21 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
                      lr + " --disp-file " + (out / "x.pfm").string() + " --confidence " + (out / "x.png").string()),
                  "--confidence needs");
     expect_only(out, {"dense.png", "dense_conf.png", "checked.png", "checked_conf.png"});
+  }
+  SECTION("--speckle: the host's check on the written disparity, after the IP's rules") {
+    const fs::path f = out / "host.pfm";
+    const Run r = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --lr-en 0 --agree-en 0 --smooth-en 0 --speckle 20 -v" +
+                                               " --disp-file " + f.string());
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    sm::OutputRegs host;
+    host.lr_en = host.agree_en = host.smooth_en = 0;
+    cv::Mat want = sm::tools::out_to_float(sm::stream_words(res.evidence, res.post, 16, host));
+    const long cleared = sm::tools::host_speckle(want, 20, sm::tools::kHostSpeckleDiff);
+    CHECK(cleared > 0);  // the fixture's pair has speckles of at most 20 px
+    CHECK(r.out.find(fmt::format("host: {} of them cleared as speckles of at most 20 px", cleared)) !=
+          std::string::npos);
+    check_pfm(f, want);
   }
   SECTION("bad requests leave no output at all") {
     expect_error(run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.txt").string()), ".pfm or .png");

@@ -6,8 +6,10 @@
 // outputs count as bad (dense comparison); beside bad-1.0 every output gets bad-0.5, bad-2.0,
 // the mean absolute error and bad-1.0 over its valid pixels and its density, and the model's
 // sub-pixel outputs (model_subpix: dense, model_checked: the validity rules; model/outword.hpp)
-// the sparsification of their confidence. Disparity files made by another program
-// (--results: <scene>.pfm or <scene>.png) are scored the same way. docs/evaluation.md.
+// the sparsification of their confidence; model_host is the checked output as a host that
+// holds the frame can improve it (toolio/sm_host_speckle.hpp). Disparity files made by
+// another program (--results: <scene>.pfm or <scene>.png) are scored the same way.
+// docs/evaluation.md.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -29,6 +31,7 @@
 #include <vector>
 
 #include "toolio/sm_cli.hpp"
+#include "toolio/sm_host_speckle.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_pictures.hpp"
 #include "toolio/sm_outputs.hpp"
@@ -129,12 +132,20 @@ cv::Mat run_binsgbm(const sm::tools::Scene& s, int nd, bool dense) {
 
 // The model's output words (model/outword.hpp, smoothed: model/smooth.hpp) in its two modes: dense (every pixel valid,
 // the DP's fill, the Q.4 fraction) with its confidence, and checked (the registers' rules: res.out, which run_pipeline
-// made at the registers regs come from).
+// made at the registers regs come from); then the host's recipe on the same evidence (model_host).
 void add_output_modes(const sm::PipelineResult& res, int levels, const sm::OutputRegs& regs, MethodOut& o) {
   const sm::OutImage dense = sm::stream_words(res.evidence, res.post, levels, sm::dense_mode(regs));
   o.disp.push_back(sm::tools::out_to_float(dense));
   o.conf.push_back(sm::tools::out_to_conf(dense));
   o.disp.push_back(sm::tools::out_to_float(res.out));
+  o.conf.emplace_back();
+  // model_host: the host recipe of docs/evaluation.md "Speckles" -- the IP with the
+  // left-right and agreement rules and the smoothing off, then the host's speckle check.
+  sm::OutputRegs host = regs;
+  host.lr_en = host.agree_en = host.smooth_en = 0;
+  cv::Mat host_disp = sm::tools::out_to_float(sm::stream_words(res.evidence, res.post, levels, host));
+  sm::tools::host_speckle(host_disp, sm::tools::kHostSpeckleSize, sm::tools::kHostSpeckleDiff);
+  o.disp.push_back(host_disp);
   o.conf.emplace_back();
 }
 
@@ -157,43 +168,44 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
   // The model with every post-processing filter enabled (the default registers), scored
   // after each step: the DP output, F0 (band filter), F0+F1 (5x1 vertical median), F0+F1+F2
   // (3x3), F0+F1+F2+F3 (5x3) = the model's output.
-  m.push_back({"model",
-               {"model_dp", "model_f0", "model_f1", "model_f1f2", "model", "model_subpix", "model_checked"},
-               [occ, occ_given, regs_file](const sm::tools::Scene& s, int levels) {
-                 sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
-                 hw.disp = levels;
-                 hw.max_width = s.left.cols;
-                 hw.max_height = s.left.rows;
-                 sm::Regs regs = sm::Regs::defaults(hw);
-                 regs.occ = static_cast<uint8_t>(occ);
-                 regs.filter_enable = 15;
-                 if (!regs_file.empty()) {
-                   // --regs: registers and compile-time parameters on top of the defaults;
-                   // the sizes stay the scene's, --occ (when given) wins over the file.
-                   sm::tools::apply_regs_json(regs_file, hw, regs);
-                   hw.disp = levels;
-                   hw.max_width = s.left.cols;
-                   hw.max_height = s.left.rows;
-                   regs.width = hw.max_width;
-                   regs.height = hw.max_height;
-                   if (occ_given) regs.occ = static_cast<uint8_t>(occ);
-                   hw.validate();
-                 }
-                 if (const auto c = scene_calib(s, hw)) {  // a raw pair: rectified by the IP's grids
-                   regs.grid_l = c->left;
-                   regs.grid_r = c->right;
-                   regs.rect_enable = true;
-                 }
-                 const auto res = sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw,
-                                                   regs, false, model_threads);
-                 if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
-                   throw std::logic_error("model: expected four post-processing steps ending in the output");
-                 MethodOut o = maps({sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
-                                     sm::tools::disp_to_float(res.post_steps[1]),
-                                     sm::tools::disp_to_float(res.post_steps[2]), sm::tools::disp_to_float(res.post)});
-                 add_output_modes(res, hw.disp, sm::output_regs(regs), o);
-                 return o;
-               }});
+  m.push_back(
+      {"model",
+       {"model_dp", "model_f0", "model_f1", "model_f1f2", "model", "model_subpix", "model_checked", "model_host"},
+       [occ, occ_given, regs_file](const sm::tools::Scene& s, int levels) {
+         sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
+         hw.disp = levels;
+         hw.max_width = s.left.cols;
+         hw.max_height = s.left.rows;
+         sm::Regs regs = sm::Regs::defaults(hw);
+         regs.occ = static_cast<uint8_t>(occ);
+         regs.filter_enable = 15;
+         if (!regs_file.empty()) {
+           // --regs: registers and compile-time parameters on top of the defaults;
+           // the sizes stay the scene's, --occ (when given) wins over the file.
+           sm::tools::apply_regs_json(regs_file, hw, regs);
+           hw.disp = levels;
+           hw.max_width = s.left.cols;
+           hw.max_height = s.left.rows;
+           regs.width = hw.max_width;
+           regs.height = hw.max_height;
+           if (occ_given) regs.occ = static_cast<uint8_t>(occ);
+           hw.validate();
+         }
+         if (const auto c = scene_calib(s, hw)) {  // a raw pair: rectified by the IP's grids
+           regs.grid_l = c->left;
+           regs.grid_r = c->right;
+           regs.rect_enable = true;
+         }
+         const auto res = sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, regs, false,
+                                           model_threads);
+         if (res.post_steps.size() != 4 || res.post_steps.back() != res.post)
+           throw std::logic_error("model: expected four post-processing steps ending in the output");
+         MethodOut o = maps({sm::tools::disp_to_float(res.dp), sm::tools::disp_to_float(res.post_steps[0]),
+                             sm::tools::disp_to_float(res.post_steps[1]), sm::tools::disp_to_float(res.post_steps[2]),
+                             sm::tools::disp_to_float(res.post)});
+         add_output_modes(res, hw.disp, sm::output_regs(regs), o);
+         return o;
+       }});
   using Scene = sm::tools::Scene;
   auto peer = [&m](const std::string& name, std::function<cv::Mat(const Scene&, int)> f) {
     m.push_back({name, {name}, [f](const Scene& s, int nd) { return maps({f(s, nd)}); }, true});

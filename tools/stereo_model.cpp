@@ -5,7 +5,8 @@
 // Every HwConfig / Regs field can be set by option or by a --regs JSON file (keys = field
 // names; its width / height resize the images to that active size, as in stereo_sim);
 // options given on the command line win. With a calibration that holds the rectified
-// camera, metric depth (--depth-file) and a point cloud (--cloud, --cloud-view). Outputs
+// camera, metric depth (--depth-file) and a point cloud (--cloud, --cloud-view). --speckle
+// adds the host's speckle check (toolio/sm_host_speckle.hpp) before every output. Outputs
 // are checked writable before any work and written all-or-nothing.
 #include <fmt/format.h>
 
@@ -23,6 +24,7 @@
 
 #include "calib_file.hpp"
 #include "toolio/sm_depth_options.hpp"
+#include "toolio/sm_host_speckle.hpp"
 #include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_metrics.hpp"
@@ -147,6 +149,8 @@ int run(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   sm::tools::DepthOptions depth;
   depth.add(app);
+  sm::tools::HostSpeckleOptions speckle;
+  speckle.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   if (threads < 1 || threads > 256) throw ToolError(fmt::format("--threads {}: must be 1..256", threads));
 
@@ -238,7 +242,8 @@ int run(int argc, char** argv) {
                             : mode == "dense"
                                 ? sm::stream_words(res.evidence, res.post, hw.disp, sm::dense_mode(sm::output_regs(r)))
                                 : res.out;
-  const cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
+  cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
+  const long speckled = speckle.apply(df);  // the host's check, before every output made from df
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;
   if (!out.empty())
@@ -286,6 +291,7 @@ int run(int argc, char** argv) {
          {&out, &colour, &disp_file, &objects_json, &conf_png, &depth.depth_file, &depth.cloud, &depth.cloud_view})
       if (!f->empty()) files += (files.empty() ? "" : ", ") + *f;
     fmt::print("  {} valid pixels of {}, {} objects -> {}\n", valid, d.px.size(), res.objects.objects.size(), files);
+    if (speckle.on()) fmt::print("  host: {} of them cleared as {}\n", speckled, speckle.describe());
     if (mode != "integer") fmt::print("  {}\n", sm::tools::fail_counts_line(sm::tools::fail_counts(word)));
     fmt::print("  labels: {} started, at most {} in use at once (LABEL_SLOTS {})\n", res.objects.labels_started,
                res.objects.labels_peak, hw.label_slots);
