@@ -21,11 +21,10 @@
 
 namespace sm {
 
+// The wave format a path names: its extension without the dot, lower-cased ("vcd", "fst").
 inline std::string wave_extension(const std::string& path) {
-  const size_t dot = path.find_last_of('.');
-  const size_t slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  return lower_case(path.substr(dot + 1));
+  const std::string ext = lower_extension(path);
+  return ext.empty() ? ext : ext.substr(1);
 }
 
 namespace detail {
