@@ -4,7 +4,7 @@
 set -euo pipefail
 cf=${1:-clang-format}
 cd "$(dirname "$0")/.."
-mapfile -t files < <(find model sim tests tools bench \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) | sort)
+mapfile -t files < <(find model sim tests tools toolio bench \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) | sort)
 [ ${#files[@]} -gt 0 ] || { echo "check_format: no C++ files found" >&2; exit 1; }
 "$cf" --dry-run --Werror --style=file "${files[@]}"
 echo "format: ${#files[@]} files follow .clang-format"
