@@ -481,6 +481,11 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
     CHECK(r.out.find(fmt::format("host: {} of them cleared as speckles of at most 20 px", cleared)) !=
           std::string::npos);
     check_pfm(f, want);
+    CHECK(r.err.find("note:") == std::string::npos);
+    // with the rules the check was not measured with: written all the same, and a note says so
+    const Run on = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle 20 --disp-file " + f.string());
+    CHECK(on.rc == 0);
+    CHECK(on.err.find("--speckle was measured with --lr-en 0 --agree-en 0 --smooth-en 0") != std::string::npos);
   }
   SECTION("bad requests leave no output at all") {
     expect_error(run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.txt").string()), ".pfm or .png");

@@ -244,6 +244,10 @@ int run(int argc, char** argv) {
                                 : res.out;
   cv::Mat df = mode == "integer" ? sm::tools::disp_to_float(d) : sm::tools::out_to_float(word);
   const long speckled = speckle.apply(df);  // the host's check, before every output made from df
+  if (speckle.on() && mode == "checked" && (r.lr_en || r.agree_en || r.smooth_en))
+    fmt::print(stderr,
+               "stereo_model: note: --speckle was measured with --lr-en 0 --agree-en 0 --smooth-en 0 (docs/"
+               "evaluation.md, \"Speckles\"); with these rules on it clears good pixels with the bad\n");
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;
   if (!out.empty())
