@@ -73,3 +73,25 @@ TEST_CASE("streaming speckle check: a region still reaching the newest row is ke
   for (int y = 0; y < 5; ++y) CHECK(k2.at<uint8_t>(y, 0) == 1);
   for (int y = 5; y < 8; ++y) CHECK(k2.at<uint8_t>(y, 0) == 0);
 }
+
+TEST_CASE("streaming speckle check: what it holds at once", "[speckle]") {
+  // A U (two arms at level 0 joined on row 1) and, below it, a separate pixel at level 10:
+  //   row 0:  0 . 0 . .
+  //   row 1:  0 0 0 . .
+  //   row 2:  . . . . 10
+  cv::Mat q4(3, 5, CV_16S, cv::Scalar(-16));
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{2, 0}, std::pair{0, 1}, std::pair{1, 1}, std::pair{2, 1}})
+    q4.at<int16_t>(y, x) = 0;
+  q4.at<int16_t>(2, 4) = 160;
+  // All rows pending: two regions at most (the arms, then the U and the pixel), but three
+  // labels once the pixel comes (the arms keep the labels they were given before the join).
+  const SpeckleHold all = speckle_hold(q4, 8, 10);
+  CHECK(all.regions == 2);
+  CHECK(all.labels == 3);
+  // Only the newest row pending: the arms on row 0; row 1 is labelled after its join.
+  const SpeckleHold newest = speckle_hold(q4, 8, 0);
+  CHECK(newest.regions == 2);
+  CHECK(newest.labels == 2);
+  // Level 10 within the difference: the pixel is still separate (no 4-neighbour), the same.
+  CHECK(speckle_hold(q4, 160, 10).labels == 3);
+}

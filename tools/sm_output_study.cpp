@@ -213,6 +213,31 @@ Row score_speckle(const std::vector<Frame>& fr, const OutputRegs& r, int max_siz
   return m;
 }
 
+// What a streaming check in the IP would hold at once (sm_speckle.hpp, SpeckleHold), per
+// scene, on the words before the smoothing at the rules the check replaces (occlusion only)
+// and half a pixel, for 32 and 16 rows of look-ahead.
+void print_speckle_hold(const std::vector<Frame>& fr) {
+  OutputRegs r;
+  r.lr_en = r.agree_en = 0;
+  fmt::print("\nHeld at once by a streaming check (occlusion rule only, D 8, words before the smoothing):\n\n");
+  fmt::print("| {:<12} | {:>9} | {:>16} | {:>15} | {:>16} | {:>15} |\n", "scene", "size", "K 32: regions",
+             "K 32: labels", "K 16: regions", "K 16: labels");
+  fmt::print(
+      "|--------------|-----------|------------------|-----------------|------------------|-----------------|\n");
+  SpeckleHold most32, most16;
+  for (const auto& f : fr) {
+    cv::Mat q4;
+    out_to_float(make_output(f.ev, f.post, f.levels, r, 0)).convertTo(q4, CV_16S, 16.0);
+    const SpeckleHold k32 = speckle_hold(q4, 8, 32), k16 = speckle_hold(q4, 8, 16);
+    fmt::print("| {:<12} | {:>9} | {:>16} | {:>15} | {:>16} | {:>15} |\n", f.name,
+               fmt::format("{}x{}", q4.cols, q4.rows), k32.regions, k32.labels, k16.regions, k16.labels);
+    most32 = {std::max(most32.regions, k32.regions), std::max(most32.labels, k32.labels)};
+    most16 = {std::max(most16.regions, k16.regions), std::max(most16.labels, k16.labels)};
+  }
+  fmt::print("| {:<12} | {:>9} | {:>16} | {:>15} | {:>16} | {:>15} |\n", "most", "", most32.regions, most32.labels,
+             most16.regions, most16.labels);
+}
+
 // Checked-mode density against bad-1.0 of the valid pixels with a speckle check after the
 // rules: regions of at most S pixels (4-neighbours within D/16 px) become invalid, decided
 // on the whole frame or, as a streaming core would, K rows after the row.
@@ -253,6 +278,7 @@ void study_speckle(const std::vector<Frame>& fr) {
         row(raw, s, d, 1 << 15, SpeckleAt::kOnStream);
       }
   }
+  print_speckle_hold(fr);
 }
 
 void study_conf(const std::vector<Frame>& fr) {

@@ -15,4 +15,15 @@ namespace sm::tools {
 // is kept, 0 elsewhere. delay_rows >= rows: the whole frame (cv::filterSpeckles' verdict).
 cv::Mat speckle_keep(const cv::Mat& q4, int max_size, int max_diff, int delay_rows);
 
+// What the streaming form must hold at once, the peak over the frame of the rows still
+// awaiting their verdict (rows newest - delay_rows .. newest): `regions`, the distinct
+// regions their valid pixels belong to (a table that relabels on every merge needs one
+// entry each); `labels`, the distinct labels they were given when labelled, before the
+// merges that came after (a table that keeps merged labels as pointers, as sm_objects
+// does, needs one entry each).
+struct SpeckleHold {
+  int regions = 0, labels = 0;
+};
+SpeckleHold speckle_hold(const cv::Mat& q4, int max_diff, int delay_rows);
+
 }  // namespace sm::tools
