@@ -1,11 +1,11 @@
 // The host's speckle check (docs/evaluation.md, "Speckles"): what a host that holds a whole
 // frame of the IP's stream can add to the checked mode. A connected region of valid pixels
 // whose 4-neighbours differ by at most DIFF/16 px, of at most SIZE pixels, becomes invalid
-// (OpenCV's filterSpeckles on the Q.4 values). The IP cannot do this itself within its area:
-// it decides a pixel rows before the region around it has closed. Measured on the 14
-// scenes with LR_EN, AGREE_EN and SMOOTH_EN 0 in the IP (sm_evaluate's `model_host`).
-// Shared by stereo_model and stereo_sim: add() to the command line, apply() to the
-// disparity before any output is made from it.
+// (OpenCV's filterSpeckles on the Q.4 values). The IP does not do this itself: it decides a
+// pixel rows before the region around it has closed, and holding the rows costs more area
+// than issue 39 allows. Measured on the 14 scenes with LR_EN, AGREE_EN and SMOOTH_EN 0 in
+// the IP (sm_evaluate's `model_host`). stereo_model's --speckle: add() to the command line,
+// apply() to the disparity before any output is made from it.
 #pragma once
 
 #include <opencv2/core.hpp>

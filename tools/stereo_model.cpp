@@ -247,7 +247,7 @@ int run(int argc, char** argv) {
   if (speckle.on() && mode == "checked" && (r.lr_en || r.agree_en || r.smooth_en))
     fmt::print(stderr,
                "stereo_model: note: --speckle was measured with --lr-en 0 --agree-en 0 --smooth-en 0 (docs/"
-               "evaluation.md, \"Speckles\"); with these rules on it clears good pixels with the bad\n");
+               "evaluation.md, \"Speckles\"); with them on it does worse\n");
   // All outputs under temporary names first, renamed together once every one is written.
   sm::tools::OutputSet outs;
   if (!out.empty())
