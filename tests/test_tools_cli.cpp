@@ -113,6 +113,10 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
   SECTION("bad speckle check") {
     expect_error(model(o + " --disp 16 --speckle 10,300"), "--speckle: 300: outside 0..255");
     expect_error(model(o + " --disp 16 --speckle many"), "--speckle: 'many': not an integer");
+    expect_error(model(o + " --disp 16 --speckle ,8"), "--speckle: '': not an integer");
+    expect_error(model(o + " --disp 16 --speckle 10,8,2"), "--speckle: '10,8,2': expected SIZE or SIZE,DIFF");
+    expect_error(model(o + " --disp 16 --speckle 10,"), "expected SIZE or SIZE,DIFF");
+    expect_error(model(o + " --disp 16 --speckle 10 --speckle 20"), "--speckle");
   }
   SECTION("unwritable output") {
     expect_error(model(" --disp 16 -o " + (out / "no" / "d.png").string()), "cannot write");

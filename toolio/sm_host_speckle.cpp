@@ -4,6 +4,9 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
 #include <opencv2/calib3d.hpp>
 
 #include "sm_cli.hpp"
@@ -40,22 +43,51 @@ long host_speckle(cv::Mat& disp_f, int max_size, int max_diff) {
   return cleared;
 }
 
+namespace {
+
+// "SIZE" or "SIZE,DIFF" split at the comma; nullopt for any other shape.
+std::optional<std::pair<std::string, std::string>> split_spec(const std::string& s) {
+  const size_t comma = s.find(',');
+  if (comma == std::string::npos) return std::pair{s, std::string{}};
+  if (s.find(',', comma + 1) != std::string::npos || comma + 1 == s.size()) return std::nullopt;
+  return std::pair{s.substr(0, comma), s.substr(comma + 1)};
+}
+
+// SIZE 0..kMaxSize and an optional DIFF 0..255, in int_in's wording.
+CLI::Validator speckle_spec() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        const auto parts = split_spec(s);
+        if (!parts) return fmt::format("'{}': expected SIZE or SIZE,DIFF", s);
+        std::string size = parts->first, diff = parts->second;
+        std::string e = int_in(0, kMaxSize)(size);
+        if (e.empty() && !diff.empty()) e = int_in(0, 255)(diff);
+        return e;
+      },
+      fmt::format("SIZE in 0..{}, DIFF in 0..255", kMaxSize));
+}
+
+}  // namespace
+
 void HostSpeckleOptions::add(CLI::App& app) {
-  app.add_option("--speckle", size_diff,
-                 fmt::format("host-side speckle check on the disparity before any output: regions of at most SIZE "
-                             "pixels whose 4-neighbours differ by at most DIFF/16 px become invalid (OpenCV "
-                             "filterSpeckles; DIFF default {}; {},{} with --lr-en 0 --agree-en 0 --smooth-en 0 is "
-                             "the host recipe of docs/evaluation.md, \"Speckles\")",
-                             kHostSpeckleDiff, kHostSpeckleSize, kHostSpeckleDiff))
+  app.add_option_function<std::string>(
+         "--speckle",
+         [this](const std::string& s) {
+           const auto parts = split_spec(s);  // checked by speckle_spec()
+           max_size = std::stoi(parts->first);
+           max_diff = parts->second.empty() ? kHostSpeckleDiff : std::stoi(parts->second);
+         },
+         fmt::format("host-side speckle check on the disparity before any output: regions of at most SIZE pixels "
+                     "whose 4-neighbours differ by at most DIFF/16 px become invalid (OpenCV filterSpeckles; DIFF "
+                     "default {}; {},{} with --lr-en 0 --agree-en 0 --smooth-en 0 is the host recipe of "
+                     "docs/evaluation.md, \"Speckles\")",
+                     kHostSpeckleDiff, kHostSpeckleSize, kHostSpeckleDiff))
       ->type_name("SIZE[,DIFF]")
-      ->delimiter(',')
-      ->expected(1, 2)
-      ->check(int_in(0, kMaxSize).application_index(0))
-      ->check(int_in(0, 255).application_index(1));
+      ->check(speckle_spec());
 }
 
 std::string HostSpeckleOptions::describe() const {
-  return fmt::format("speckles of at most {} px within {}/16 px", size(), diff());
+  return fmt::format("speckles of at most {} px within {}/16 px", max_size, max_diff);
 }
 
 }  // namespace sm::tools

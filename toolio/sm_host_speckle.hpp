@@ -10,7 +10,6 @@
 
 #include <opencv2/core.hpp>
 #include <string>
-#include <vector>
 
 namespace CLI {
 class App;
@@ -28,15 +27,15 @@ constexpr int kHostSpeckleDiff = 8;
 long host_speckle(cv::Mat& disp_f, int max_size, int max_diff);
 
 struct HostSpeckleOptions {
-  std::vector<int> size_diff;  // --speckle SIZE[,DIFF]; empty: off
+  int max_size = 0;                 // --speckle SIZE; 0: off
+  int max_diff = kHostSpeckleDiff;  // --speckle SIZE,DIFF
 
-  bool on() const { return !size_diff.empty() && size_diff[0] > 0; }
-  int size() const { return size_diff.empty() ? 0 : size_diff[0]; }
-  int diff() const { return size_diff.size() > 1 ? size_diff[1] : kHostSpeckleDiff; }
-  // Adds --speckle to `app` (SIZE 0..2^24, 0 = off; DIFF 0..255; both checked by the parser).
+  bool on() const { return max_size > 0; }
+  // Adds --speckle SIZE[,DIFF] to `app` (SIZE 0..2^24, 0 = off; DIFF 0..255; checked by the
+  // parser, one line naming the value: "--speckle: 300: outside 0..255").
   void add(CLI::App& app);
   // Applies the check to disp_f when on(); returns the pixels cleared.
-  long apply(cv::Mat& disp_f) const { return on() ? host_speckle(disp_f, size(), diff()) : 0; }
+  long apply(cv::Mat& disp_f) const { return on() ? host_speckle(disp_f, max_size, max_diff) : 0; }
   // "speckles of at most SIZE px within DIFF/16 px" for reports.
   std::string describe() const;
 };
