@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "sm_speckle.hpp"
+#include "sm_speckle_table.hpp"
 
 using namespace sm::tools;
 
@@ -94,4 +95,44 @@ TEST_CASE("streaming speckle check: what it holds at once", "[speckle]") {
   CHECK(newest.labels == 2);
   // Level 10 within the difference: the pixel is still separate (no 4-neighbour), the same.
   CHECK(speckle_hold(q4, 160, 10).labels == 3);
+}
+
+TEST_CASE("speckle check with a label table: the ideal verdict or more kept", "[speckle]") {
+  int tested = 0;
+  for (const auto& [w, h] : {std::pair{37, 23}, std::pair{64, 48}, std::pair{5, 81}})
+    for (const int max_size : {1, 4, 30})
+      for (const int max_diff : {0, 16}) {
+        const cv::Mat q4 = random_map(w, h, static_cast<uint64_t>(w * 7919 + max_size * 31 + max_diff));
+        INFO(w << "x" << h << " S " << max_size << " D " << max_diff);
+        // The whole frame with labels to spare: exactly the ideal (filterSpeckles') verdict.
+        SpeckleTableStats st;
+        const cv::Mat whole = speckle_keep_table(q4, max_size, max_diff, h, w * h, &st);
+        CHECK(cv::countNonZero(whole != speckle_keep(q4, max_size, max_diff, h)) == 0);
+        CHECK(st.keep_pixels == 0);
+        // Streaming, any table: every pixel the ideal streaming check keeps is kept.
+        for (const int delay : {1, 3})
+          for (const int labels : {w * h, 16, 2}) {
+            const cv::Mat ideal = speckle_keep(q4, max_size, max_diff, delay);
+            const cv::Mat table = speckle_keep_table(q4, max_size, max_diff, delay, labels);
+            CHECK(cv::countNonZero(ideal & ~table) == 0);
+            ++tested;
+          }
+      }
+  CHECK(tested == 108);
+}
+
+TEST_CASE("speckle check with a label table: labels come back once their pixels are decided", "[speckle]") {
+  // A single valid pixel on every other row of column 1: each its own region of one pixel.
+  cv::Mat q4(40, 3, CV_16S, cv::Scalar(-16));
+  for (int y = 0; y < 40; y += 2) q4.at<int16_t>(y, 1) = 80;
+  SpeckleTableStats st;
+  // Decided 2 rows later: at most two labels are held at once, so two suffice for 20 regions.
+  const cv::Mat keep = speckle_keep_table(q4, 1, 0, 2, 2, &st);
+  CHECK(st.keep_pixels == 0);
+  CHECK(st.peak_labels == 2);
+  CHECK(cv::countNonZero(keep) == 0);  // every one a speckle of 1 pixel
+  // One label: the second region finds the table full and is kept.
+  const cv::Mat one = speckle_keep_table(q4, 1, 0, 2, 1, &st);
+  CHECK(st.keep_pixels > 0);
+  CHECK(cv::countNonZero(one) == st.keep_pixels);
 }

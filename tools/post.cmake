@@ -10,8 +10,9 @@ add_library(sm_output_bound STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_output_bound.cpp
 target_include_directories(sm_output_bound PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(sm_output_bound PUBLIC sm_toolio opencv_ml)
 target_compile_options(sm_output_bound PRIVATE ${SM_WARNINGS})
-# The speckle check of a disparity map (sm_output_study --study speckle).
-add_library(sm_speckle STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_speckle.cpp)
+# The speckle check of a disparity map, ideal and with a bounded label table
+# (sm_output_study --study speckle).
+add_library(sm_speckle STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_speckle.cpp ${CMAKE_CURRENT_LIST_DIR}/sm_speckle_table.cpp)
 target_include_directories(sm_speckle PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(sm_speckle PUBLIC opencv_core)
 target_compile_options(sm_speckle PRIVATE ${SM_WARNINGS})

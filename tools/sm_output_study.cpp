@@ -26,6 +26,7 @@
 #include "smooth.hpp"
 #include "sm_output_bound.hpp"
 #include "sm_speckle.hpp"
+#include "sm_speckle_table.hpp"
 
 using namespace sm;
 using namespace sm::tools;
@@ -184,33 +185,70 @@ void study_bound(const std::vector<Frame>& fr) {
 // there too; or after it, the stream a host receives ("stream", or "raw" with SMOOTH_EN 0).
 enum class SpeckleAt { kBeforeSmoothing, kOnStream };
 
-// The stream's words under the rules of r with speckles (sm_speckle.hpp) made invalid.
-OutImage speckle_words(const Frame& f, const OutputRegs& r, int max_size, int max_diff, int delay_rows, SpeckleAt at) {
+// A speckle check: the pixels it keeps (CV_8U) of a Q.4 map (CV_16S, negative = invalid).
+using SpeckleCheck = std::function<cv::Mat(const cv::Mat& q4)>;
+
+// The ideal check of sm_speckle.hpp; none when max_size is 0.
+SpeckleCheck ideal_check(int max_size, int max_diff, int delay_rows) {
+  if (max_size <= 0) return nullptr;
+  return [=](const cv::Mat& q4) { return speckle_keep(q4, max_size, max_diff, delay_rows); };
+}
+
+// The stream's words under the rules of r with speckles made invalid by `check`.
+OutImage speckle_words(const Frame& f, const OutputRegs& r, const SpeckleCheck& check, SpeckleAt at) {
   OutImage words = make_output(f.ev, f.post, f.levels, r, 0);
-  auto check = [&](OutImage& o) {
-    if (max_size <= 0) return;
+  auto apply = [&](OutImage& o) {
+    if (!check) return;
     cv::Mat q4;
     out_to_float(o).convertTo(q4, CV_16S, 16.0);  // (invalid pixels stay negative)
-    const cv::Mat keep = speckle_keep(q4, max_size, max_diff, delay_rows);
+    const cv::Mat keep = check(q4);
     for (int y = 0; y < o.h; ++y)
       for (int x = 0; x < o.w; ++x)
         if (out_valid(o.at(x, y)) && !keep.at<uint8_t>(y, x)) o.at(x, y) = 0;  // (no rule bit: a study)
   };
-  if (at == SpeckleAt::kBeforeSmoothing) check(words);
+  if (at == SpeckleAt::kBeforeSmoothing) apply(words);
   words = smooth_output(words, r.smooth_en, r.smooth_t);
-  if (at == SpeckleAt::kOnStream) check(words);
+  if (at == SpeckleAt::kOnStream) apply(words);
   return words;
 }
 
-Row score_speckle(const std::vector<Frame>& fr, const OutputRegs& r, int max_size, int max_diff, int delay_rows,
-                  SpeckleAt at) {
+Row score_speckle(const std::vector<Frame>& fr, const OutputRegs& r, const SpeckleCheck& check, SpeckleAt at) {
   Row m;
-  for (const auto& f : fr) {
-    add_frame(m, disp_metrics(out_to_float(speckle_words(f, r, max_size, max_diff, delay_rows, at)), f.gt, f.mask));
-  }
+  for (const auto& f : fr) add_frame(m, disp_metrics(out_to_float(speckle_words(f, r, check, at)), f.gt, f.mask));
   const double n = static_cast<double>(fr.size());
   for (double* v : {&m.b05, &m.b1, &m.b2, &m.mae, &m.dens, &m.b1v}) *v /= n;
   return m;
+}
+
+// The check with a bounded label table (sm_speckle_table.hpp) against the ideal streaming
+// one, at the chosen S and D, occlusion rule only, before the smoothing.
+void print_speckle_table(const std::vector<Frame>& fr) {
+  OutputRegs r;
+  r.lr_en = r.agree_en = 0;
+  fmt::print("\nWith a label table (occlusion rule only, S 1000, D 8, words before the smoothing):\n\n");
+  fmt::print("| {:<22} | {:>5} | dens % | b1 val | {:>11} | {:>12} | {:>11} |\n", "form", "K", "peak labels",
+             "longest find", "KEEP pixels");
+  fmt::print("|{:-<24}|-------|--------|--------|-------------|--------------|-------------|\n", "");
+  for (const int k : {32, 16}) {
+    const Row ideal = score_speckle(fr, r, ideal_check(1000, 8, k), SpeckleAt::kBeforeSmoothing);
+    fmt::print("| {:<22} | {:>5} | {:6.2f} | {:6.2f} | {:>11} | {:>12} | {:>11} |\n", "ideal (sm_speckle)", k,
+               ideal.dens, ideal.b1v, "", "", "");
+    for (const int labels : {1024, 512, 256}) {
+      SpeckleTableStats most;  // over the scenes
+      const SpeckleCheck table = [&](const cv::Mat& q4) {
+        SpeckleTableStats st;
+        cv::Mat keep = speckle_keep_table(q4, 1000, 8, k, labels, &st);
+        most.peak_labels = std::max(most.peak_labels, st.peak_labels);
+        most.longest_find = std::max(most.longest_find, st.longest_find);
+        most.keep_pixels += st.keep_pixels;
+        return keep;
+      };
+      const Row m = score_speckle(fr, r, table, SpeckleAt::kBeforeSmoothing);
+      fmt::print("| {:<22} | {:>5} | {:6.2f} | {:6.2f} | {:>11} | {:>12} | {:>11} |\n",
+                 fmt::format("table of {} labels", labels), k, m.dens, m.b1v, most.peak_labels, most.longest_find,
+                 most.keep_pixels);
+    }
+  }
 }
 
 // What a streaming check in the IP would hold at once (sm_speckle.hpp, SpeckleHold), per
@@ -264,7 +302,7 @@ void study_speckle(const std::vector<Frame>& fr) {
     OutputRegs raw = r;  // the stream with SMOOTH_EN 0
     raw.smooth_en = 0;
     auto row = [&](const OutputRegs& regs, int s, int d, int k, SpeckleAt at) {
-      const Row m = score_speckle(fr, regs, s, d, k, at);
+      const Row m = score_speckle(fr, regs, ideal_check(s, d, k), at);
       const std::string ks = k >= 1 << 15 ? "frame" : std::to_string(k);
       const char* reads = at == SpeckleAt::kBeforeSmoothing ? "words" : regs.smooth_en ? "stream" : "raw";
       fmt::print("| {:<32} | {:<8} | {:>5} | {:>3} | {:>5} | {:6.2f} | {:6.2f} | {:6.2f} | {:5.3f} |\n", ru.name, reads,
@@ -279,6 +317,7 @@ void study_speckle(const std::vector<Frame>& fr) {
       }
   }
   print_speckle_hold(fr);
+  print_speckle_table(fr);
 }
 
 void study_conf(const std::vector<Frame>& fr) {
