@@ -48,18 +48,6 @@ void decide_row(const cv::Mat& q4, Regions& g, int y, int newest, int max_size, 
   }
 }
 
-// Whether pixel (x, y) joins its left and its upper neighbour: both valid, within max_diff.
-struct Joins {
-  bool left = false, up = false;
-};
-Joins joins(const cv::Mat& q4, int y, int x, int max_diff) {
-  auto near = [&](int y1, int x1) {
-    const int a = q4.at<int16_t>(y, x), b = q4.at<int16_t>(y1, x1);
-    return a >= 0 && b >= 0 && std::abs(a - b) <= max_diff;
-  };
-  return {x > 0 && near(y, x - 1), y > 0 && near(y - 1, x)};
-}
-
 // Joins pixel (x, y) to the neighbours of j.
 void join_pixel(Regions& g, int w, int y, int x, Joins j) {
   g.last_row[static_cast<size_t>(y * w + x)] = y;
@@ -79,6 +67,14 @@ int distinct(const cv::Mat& q4, int y0, int y1, Id id) {
 }
 
 }  // namespace
+
+Joins joins(const cv::Mat& q4, int y, int x, int max_diff) {
+  auto near = [&](int y1, int x1) {
+    const int a = q4.at<int16_t>(y, x), b = q4.at<int16_t>(y1, x1);
+    return a >= 0 && b >= 0 && std::abs(a - b) <= max_diff;
+  };
+  return {x > 0 && near(y, x - 1), y > 0 && near(y - 1, x)};
+}
 
 cv::Mat speckle_keep(const cv::Mat& q4, int max_size, int max_diff, int delay_rows) {
   CV_Assert(q4.type() == CV_16S && delay_rows >= 0);

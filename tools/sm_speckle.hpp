@@ -11,6 +11,13 @@
 
 namespace sm::tools {
 
+// Whether pixel (x, y) of q4 joins its left and its upper neighbour: both valid (>= 0) and
+// within max_diff of it. The one neighbour test of every form of the check.
+struct Joins {
+  bool left = false, up = false;
+};
+Joins joins(const cv::Mat& q4, int y, int x, int max_diff);
+
 // q4: CV_16S disparity (any unit; negative = invalid). Returns CV_8U, 1 where a valid pixel
 // is kept, 0 elsewhere. delay_rows >= rows: the whole frame (cv::filterSpeckles' verdict).
 cv::Mat speckle_keep(const cv::Mat& q4, int max_size, int max_diff, int delay_rows);

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <deque>
 #include <vector>
+
+#include "sm_speckle.hpp"
 
 namespace sm::tools {
 
@@ -100,10 +101,6 @@ cv::Mat speckle_keep_table(const cv::Mat& q4, int max_size, int max_diff, int de
   LabelTable t(labels, max_size);
   SpeckleTableStats st;
   cv::Mat lab(h, w, CV_32S, cv::Scalar(kNone)), keep = cv::Mat::zeros(h, w, CV_8U);
-  auto near = [&](int y0, int x0, int y1, int x1) {
-    const int a = q4.at<int16_t>(y0, x0), b = q4.at<int16_t>(y1, x1);
-    return a >= 0 && b >= 0 && std::abs(a - b) <= max_diff;
-  };
   auto decide = [&](int x, int y, int newest, bool final_rows) {
     const int32_t l = lab.at<int32_t>(y, x);
     if (l == kNone) return;
@@ -113,8 +110,9 @@ cv::Mat speckle_keep_table(const cv::Mat& q4, int max_size, int max_diff, int de
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       if (q4.at<int16_t>(y, x) >= 0) {
-        const int32_t up = y > 0 && near(y, x, y - 1, x) ? lab.at<int32_t>(y - 1, x) : kNone;
-        const int32_t left = x > 0 && near(y, x, y, x - 1) ? lab.at<int32_t>(y, x - 1) : kNone;
+        const Joins j = joins(q4, y, x, max_diff);
+        const int32_t up = j.up ? lab.at<int32_t>(y - 1, x) : kNone;
+        const int32_t left = j.left ? lab.at<int32_t>(y, x - 1) : kNone;
         lab.at<int32_t>(y, x) = label_pixel(t, up, left, y, st);
         st.keep_pixels += lab.at<int32_t>(y, x) == kKeep;
       }
