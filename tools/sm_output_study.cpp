@@ -185,6 +185,13 @@ void study_bound(const std::vector<Frame>& fr) {
 // there too; or after it, the stream a host receives ("stream", or "raw" with SMOOTH_EN 0).
 enum class SpeckleAt { kBeforeSmoothing, kOnStream };
 
+// The words' Q.4 values as the speckle checks read them: CV_16S, invalid pixels negative.
+cv::Mat words_q4(const OutImage& o) {
+  cv::Mat q4;
+  out_to_float(o).convertTo(q4, CV_16S, 16.0);
+  return q4;
+}
+
 // A speckle check: the pixels it keeps (CV_8U) of a Q.4 map (CV_16S, negative = invalid).
 using SpeckleCheck = std::function<cv::Mat(const cv::Mat& q4)>;
 
@@ -199,9 +206,7 @@ OutImage speckle_words(const Frame& f, const OutputRegs& r, const SpeckleCheck& 
   OutImage words = make_output(f.ev, f.post, f.levels, r, 0);
   auto apply = [&](OutImage& o) {
     if (!check) return;
-    cv::Mat q4;
-    out_to_float(o).convertTo(q4, CV_16S, 16.0);  // (invalid pixels stay negative)
-    const cv::Mat keep = check(q4);
+    const cv::Mat keep = check(words_q4(o));
     for (int y = 0; y < o.h; ++y)
       for (int x = 0; x < o.w; ++x)
         if (out_valid(o.at(x, y)) && !keep.at<uint8_t>(y, x)) o.at(x, y) = 0;  // (no rule bit: a study)
@@ -264,8 +269,7 @@ void print_speckle_hold(const std::vector<Frame>& fr) {
       "|--------------|-----------|------------------|-----------------|------------------|-----------------|\n");
   SpeckleHold most32, most16;
   for (const auto& f : fr) {
-    cv::Mat q4;
-    out_to_float(make_output(f.ev, f.post, f.levels, r, 0)).convertTo(q4, CV_16S, 16.0);
+    const cv::Mat q4 = words_q4(make_output(f.ev, f.post, f.levels, r, 0));
     const SpeckleHold k32 = speckle_hold(q4, 8, 32), k16 = speckle_hold(q4, 8, 16);
     fmt::print("| {:<12} | {:>9} | {:>16} | {:>15} | {:>16} | {:>15} |\n", f.name,
                fmt::format("{}x{}", q4.cols, q4.rows), k32.regions, k32.labels, k16.regions, k16.labels);
