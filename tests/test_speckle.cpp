@@ -105,7 +105,7 @@ TEST_CASE("speckle check with a label table: the ideal verdict or more kept", "[
         const cv::Mat q4 = random_map(w, h, static_cast<uint64_t>(w * 7919 + max_size * 31 + max_diff));
         INFO(w << "x" << h << " S " << max_size << " D " << max_diff);
         // The whole frame with labels to spare: exactly the ideal (filterSpeckles') verdict.
-        SpeckleTableStats st;
+        sm::SpeckleStats st;
         const cv::Mat whole = speckle_keep_table(q4, max_size, max_diff, h, w * h, &st);
         CHECK(cv::countNonZero(whole != speckle_keep(q4, max_size, max_diff, h)) == 0);
         CHECK(st.keep_pixels == 0);
@@ -125,7 +125,7 @@ TEST_CASE("speckle check with a label table: labels come back once their pixels 
   // A single valid pixel on every other row of column 1: each its own region of one pixel.
   cv::Mat q4(40, 3, CV_16S, cv::Scalar(-16));
   for (int y = 0; y < 40; y += 2) q4.at<int16_t>(y, 1) = 80;
-  SpeckleTableStats st;
+  sm::SpeckleStats st;
   // Decided 2 rows later: at most two labels are held at once, so two suffice for 20 regions.
   const cv::Mat keep = speckle_keep_table(q4, 1, 0, 2, 2, &st);
   CHECK(st.keep_pixels == 0);

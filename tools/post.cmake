@@ -10,11 +10,11 @@ add_library(sm_output_bound STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_output_bound.cpp
 target_include_directories(sm_output_bound PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(sm_output_bound PUBLIC sm_toolio opencv_ml)
 target_compile_options(sm_output_bound PRIVATE ${SM_WARNINGS})
-# The speckle check of a disparity map, ideal and with a bounded label table
+# The speckle check of a disparity map, ideal and in the IP's form (model/speckle.hpp)
 # (sm_output_study --study speckle).
 add_library(sm_speckle STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_speckle.cpp ${CMAKE_CURRENT_LIST_DIR}/sm_speckle_table.cpp)
 target_include_directories(sm_speckle PUBLIC ${CMAKE_CURRENT_LIST_DIR})
-target_link_libraries(sm_speckle PUBLIC opencv_core)
+target_link_libraries(sm_speckle PUBLIC opencv_core sm_model)
 target_compile_options(sm_speckle PRIVATE ${SM_WARNINGS})
 add_executable(sm_output_study ${CMAKE_CURRENT_LIST_DIR}/sm_output_study.cpp)
 target_link_libraries(sm_output_study PRIVATE sm_output_bound sm_speckle CLI11::CLI11 nlohmann_json::nlohmann_json)

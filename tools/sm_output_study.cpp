@@ -239,9 +239,9 @@ void print_speckle_table(const std::vector<Frame>& fr) {
     fmt::print("| {:<22} | {:>5} | {:6.2f} | {:6.2f} | {:>11} | {:>12} | {:>11} |\n", "ideal (sm_speckle)", k,
                ideal.dens, ideal.b1v, "", "", "");
     for (const int labels : {1024, 512, 256}) {
-      SpeckleTableStats most;  // over the scenes
+      SpeckleStats most;  // over the scenes
       const SpeckleCheck table = [&](const cv::Mat& q4) {
-        SpeckleTableStats st;
+        SpeckleStats st;
         cv::Mat keep = speckle_keep_table(q4, 1000, 8, k, labels, &st);
         most.peak_labels = std::max(most.peak_labels, st.peak_labels);
         most.longest_find = std::max(most.longest_find, st.longest_find);

@@ -1,0 +1,163 @@
+// Block test of sm_speckle (the speckle stage, docs/algorithm.md 9.8) against the model's
+// SpeckleStage, beat by beat: frames of surfaces with islands of every size, invalid
+// pixels and words anywhere, at odd widths; binary combs for the longest finds; frames shorter than ROWS (several
+// frames in the held rows), back to back or with 0..ROWS + 2 virtual rows between them; the registers per frame (off,
+// 0, the greatest, ...) and garbage on them between frames, as on every idle beat; random ce gaps, ce refused while the
+// stage is busy. Every output beat's sideband and word are checked, the real ones' order too, and the run must clear
+// speckles and (small tables) label KEEP pixels, or the bench has tested nothing.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include SM_VTOP_H
+#include "beat_schedule.hpp"
+#include "sm_block_test.hpp"
+#include "speckle.hpp"
+
+using namespace sm;
+using namespace sm::test;
+
+namespace {
+
+// A surface of a few slanted planes with steps, islands (1..12 pixels) at levels of their
+// own, a tenth invalid and now and then a word anywhere (16 bits of Q.4).
+OutImage random_frame(std::mt19937& rng, int w, int h) {
+  OutImage m(w, h);
+  const int step = 8 + static_cast<int>(rng() % 40);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int q = 400 + (x * 3 / std::max(1, w / 3)) * step + y + static_cast<int>(rng() % 7);
+      const bool valid = rng() % 10 != 0;
+      const unsigned byte = rng() & 0xff;
+      m.at(x, y) = make_out_word(valid, byte, rng() % 40 == 0 ? rng() & 0xffff : static_cast<unsigned>(q), byte);
+    }
+  const int islands = w * h / 12;
+  for (int i = 0; i < islands; ++i) {
+    const int iw = 1 + static_cast<int>(rng() % 4), ih = 1 + static_cast<int>(rng() % 3);
+    const int x0 = static_cast<int>(rng() % static_cast<unsigned>(w)),
+              y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
+    const unsigned q = 2000 + rng() % 3000;
+    for (int y = y0; y < std::min(h, y0 + ih); ++y)
+      for (int x = x0; x < std::min(w, x0 + iw); ++x) m.at(x, y) = make_out_word(true, 0x5a, q + (rng() & 1));
+  }
+  return m;
+}
+
+// A binary comb: one-pixel teeth on even columns, invalid columns between, joined below
+// them by one bridge pixel per pair of groups at row R + l for groups of 2^l teeth. Each
+// bridge merges two regions of equal rank, so the finds follow the longest chains union
+// by rank allows (log2 of the teeth).
+OutImage comb_frame(int w, int h) {
+  OutImage m(w, h);
+  const int teeth = (w + 1) / 2, tooth_rows = std::max(1, h / 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int l = y - tooth_rows, i = x / 2;
+      const bool bridge =
+          x % 2 == 1 && l >= 0 && l < 16 && (i + 1) % (1 << l) == 0 && (i + 1) % (2 << l) != 0 && i + 1 < teeth;
+      m.at(x, y) = make_out_word(x % 2 == 0 || bridge, 0x33, 640);
+    }
+  return m;
+}
+
+struct Beat {
+  uint8_t side = 0;
+  uint32_t word = 0;
+  int frame = -1;  // the frame whose registers a first beat carries
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  BlockTest<SM_VTOP> t{"speckle stage block test"};
+  std::vector<int> widths = {SM_P_MAX_WIDTH};
+  int h = 9, frames = 6, idle = 25, gap = 1;
+  t.option("--widths", widths, "active widths, one group of frames each").delimiter(',').range(2, SM_P_MAX_WIDTH);
+  t.option("--height", h, "rows of the tallest frames").range(1, 4096);
+  t.option("--frames", frames, "frames per width").range(1, 1000);
+  t.option("--idle", idle, "percent of clocks the schedule holds ce low").range(0, 95);
+  t.option("--gap", gap, "clocks from a ce to the next at least (sm_top's pacing F)").range(1, 64);
+  if (auto rc = t.parse(argc, argv)) return *rc;
+  constexpr int kRows = SM_P_ROWS;
+  std::mt19937 rng(2468);
+  auto& tb = t.tb();
+  tb->ce = 0;
+  tb->s_side = 0;
+  t.reset(3);
+  t.ce_schedule(97, idle, gap);
+  SpeckleStage model(SM_P_MAX_WIDTH, kRows, SM_P_LABELS);
+  // (en, size, diff) per frame, in turn
+  const SpeckleRegs regs[] = {{1, 6, 8}, {1, 0, 0}, {1, 4095, 255}, {0, 6, 8}, {1, 2, 16}, {1, 40, 3}};
+  long taken = 0, cleared = 0;
+  SpeckleStage::Beat want;  // the model's output for the beat taken last
+  for (const int w : widths) {
+    std::vector<int> heights;
+    std::vector<OutImage> in;
+    std::vector<Beat> sched;
+    auto virtual_rows = [&](int n) {
+      for (int r = 0; r < n; ++r)
+        for (int x = 0; x < w; ++x)
+          sched.push_back({static_cast<uint8_t>(x == 0 ? kSol : 0), static_cast<uint32_t>(rng())});
+    };
+    for (int f = 0; f < frames; ++f) {
+      // tall frames, a row, two rows, frames shorter than the held rows
+      const int fh = f % 3 == 0 ? h : f % 3 == 1 ? 1 + f % 2 : std::max(1, std::min(h, kRows / 2 + 1));
+      heights.push_back(fh);
+      in.push_back(f % 4 == 3 ? comb_frame(w, fh) : random_frame(rng, w, fh));
+      for (int y = 0; y < fh; ++y)
+        for (int x = 0; x < w; ++x)
+          sched.push_back({static_cast<uint8_t>(kReal | (x == 0 ? kSol : 0) | (x + y == 0 ? kSof : 0) | (f & 3) << 3),
+                           in.back().at(x, y), x + y == 0 ? f : -1});
+      virtual_rows(rng() % 3 == 0 ? 0 : static_cast<int>(rng() % (kRows + 3)));
+    }
+    virtual_rows(kRows + 1);  // the last frame out (and the held rows of width w before the next width)
+    t.expect_frames(w, heights);
+    int cur = 0;
+    for (size_t k = 0; k < sched.size();) {
+      const bool c = t.next_ce() && tb->ready;
+      tb->ce = c;
+      const Beat& b = sched[k];
+      if (b.frame >= 0) cur = b.frame;
+      const SpeckleRegs& r = regs[cur % 6];
+      if (c) {
+        tb->s_side = b.side;
+        tb->s_word = b.word;
+      } else {  // the stage holds: nothing here may reach it
+        tb->s_side = rng() & 31;
+        tb->s_word = static_cast<uint32_t>(rng());
+      }
+      // the registers matter only with a first beat; garbage otherwise
+      const bool first = c && b.frame >= 0;
+      tb->en = first ? r.en : rng() & 1;
+      tb->size = first ? r.size : rng() & 0xfff;
+      tb->diff = first ? r.diff : rng() & 0xff;
+      const SpeckleRegs seen{static_cast<uint8_t>(tb->en), static_cast<uint16_t>(tb->size),
+                             static_cast<uint8_t>(tb->diff)};
+      tb.tick();
+      if (!c) continue;
+      ++k;
+      if (taken++ > 0) {
+        t.check(tb->m_side == want.side && tb->m_word == want.word, [&] {
+          return fmt::format("w {} beat {}: side {:#x} word {:#010x}, model side {:#x} word {:#010x}", w, k - 1,
+                             tb->m_side, tb->m_word, want.side, want.word);
+        });
+        if (tb->m_side & kReal) {
+          if (!t.next_out(tb->m_side)) break;
+          cleared += tb->m_word == kOutSpeckle;
+        }
+      }
+      want = model.step(b.side, b.word, seen);
+    }
+    t.all_out(fmt::format("w {}: ", w));
+  }
+  const SpeckleStats& st = model.stats();
+  t.check(cleared > 0, "no speckle was cleared: the stimulus tests nothing");
+  if (SM_P_LABELS < 64) t.check(st.keep_pixels > 0, "the table never filled: KEEP untested");
+  return t.finish(fmt::format("tb_speckle MAX_WIDTH={} ROWS={} LABELS={} widths {}", SM_P_MAX_WIDTH, kRows, SM_P_LABELS,
+                              widths.size()),
+                  fmt::format(" ({} beats, {} cleared, {} KEEP, peak {} labels, longest find {})", taken, cleared,
+                              st.keep_pixels, st.peak_labels, st.longest_find));
+}
