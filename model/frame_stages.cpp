@@ -3,6 +3,7 @@
 #include "evidence.hpp"
 #include "outword.hpp"
 #include "smooth.hpp"
+#include "speckle.hpp"
 
 namespace sm {
 
@@ -21,7 +22,7 @@ PipelineResult run_frame_stages(const Image8& left, const Image8& right, const H
   r.dp = trellis_dp_edge(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw, threads);
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   r.evidence = evidence_frame(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw);
-  r.out = make_output(r.evidence, r.post, hw.disp, output_regs(regs), 0, threads);
+  r.out = speckle_words(make_output(r.evidence, r.post, hw.disp, output_regs(regs), 0, threads), regs, hw);
   r.objects = separate_objects(object_levels(r.out), regs, hw);
   r.out = smooth_output(r.out, regs.smooth_en, regs.smooth_t, threads);
   return r;

@@ -15,6 +15,7 @@
 #include "kernels.hpp"
 #include "parallel.hpp"
 #include "smooth.hpp"
+#include "speckle.hpp"
 
 namespace sm {
 
@@ -22,7 +23,8 @@ void validate_regs(const Regs& r, const HwConfig& hw) {
   auto bad = [](const std::string& m) { throw std::invalid_argument(m); };
   if (r.width < hw.min_width() || r.width > hw.max_width)
     bad(fmt::format("width {} outside {}..{}", r.width, hw.min_width(), hw.max_width));
-  if (r.height < 16 || r.height > hw.max_height) bad(fmt::format("height {} outside 16..{}", r.height, hw.max_height));
+  if (r.height < hw.min_height() || r.height > hw.max_height)
+    bad(fmt::format("height {} outside {}..{}", r.height, hw.min_height(), hw.max_height));
   if (r.gain_l > 1023 || r.gain_r > 1023) bad("gain above 1023 (10-bit Q2.8)");
   if (r.offset_l < -256 || r.offset_l > 255 || r.offset_r < -256 || r.offset_r > 255)
     bad("offset outside -256..255 (9-bit signed)");
@@ -231,8 +233,8 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
-  if (band_count(h, threads) == 1) {
-    r.out = make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads);
+  if (band_count(h, threads) == 1 || hw.speckle_rows > 0) {
+    r.out = speckle_words(make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads), regs, hw);
     lap("output");
     r.objects = separate_objects(object_levels(r.out), regs, hw);
     lap("objects");
@@ -243,8 +245,8 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     r.stage_ms.emplace_back("objects", std::chrono::duration<double, std::milli>(clock::now() - words).count());
     t = clock::now();
   }
-  // The labeller reads the words as formed (sm_outstage's m_obj_disp); the stream carries
-  // them smoothed.
+  // The labeller reads the words as formed (sm_outstage's m_obj_disp, or the speckle
+  // stage's words where it is built); the stream carries them smoothed.
   r.out = smooth_output(r.out, regs.smooth_en, regs.smooth_t, threads);
   lap("smooth");
   return r;

@@ -28,7 +28,9 @@ constexpr Param kParams[] = {{"MAX_WIDTH", &HwConfig::max_width},
                              {"MAX_OBJECTS", &HwConfig::max_objects},
                              {"LABEL_SLOTS", &HwConfig::label_slots},
                              {"BAND_K", &HwConfig::band_k},
-                             {"PU", &HwConfig::pu}};
+                             {"PU", &HwConfig::pu},
+                             {"SPECKLE_ROWS", &HwConfig::speckle_rows},
+                             {"SPECKLE_LABELS", &HwConfig::speckle_labels}};
 }  // namespace
 
 int* HwConfig::field(const std::string& name) {
@@ -46,6 +48,10 @@ std::map<std::string, int> HwConfig::parameters() const {
 }
 
 int HwConfig::flush_rows() const {  // as sm_top.v's FLUSH_ROWS
+  return base_flush_rows() + (speckle_rows ? speckle_rows + (defs::kSpeckleSlack + 1 + 15) / 16 : 0);
+}
+
+int HwConfig::base_flush_rows() const {
   return (rect_radius + 1) + (census - 1) / 2 + (sw - 1) / 2 + 2 + band_k + 5 + 2 + (disp / 2 + 64 + 1 + 7 + 15) / 16 +
          1;
 }
@@ -71,11 +77,14 @@ void HwConfig::validate() const {
     bad(fmt::format("pu {} must be 0 (= disp), disp, or an even divisor of disp {}", pu, disp));
   // sm_top's pipeline depth in rows of 16 beats must stay below the 4-frame parameter
   // history (its g_bad_flush check, docs/algorithm.md "Per-frame parameters").
-  if (flush_rows() >= 64)
+  if (base_flush_rows() >= 64)
     bad(
         fmt::format("pipeline of {} narrow rows (FLUSH_ROWS) outlasts the 4-frame parameter history: lower "
                     "rect_radius, band_k or disp",
-                    flush_rows()));
+                    base_flush_rows()));
+  if (min_height() > max_height)
+    bad(fmt::format("max_height {} below the shortest frame the pipeline allows, {} (speckle_rows {})", max_height,
+                    min_height(), speckle_rows));
 }
 
 RectGrid RectGrid::identity(int width, int height) {

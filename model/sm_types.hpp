@@ -74,20 +74,22 @@ inline bool disp_valid(DispPix p) { return (p & kDispValid) != 0; }
 
 // Compile-time parameters of the RTL (Verilog parameters of sm_top).
 struct HwConfig {
-  int max_width = 320;   // MAX_WIDTH: widest active line
-  int max_height = 240;  // MAX_HEIGHT: tallest active frame
-  int disp = 128;        // DISP: disparity levels 0..DISP-1
-  int census = 15;       // CENSUS: census window side
-  int sw = 5;            // SW: support-weight window side
-  int rect_radius = 18;  // RECT_RADIUS: rows above/below the output row the
-                         // rectifier can read (line buffer holds 2R+2 rows)
-  int cost_shift = 2;    // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
-  int ad_shift = 2;      // AD_SHIFT: the cost's intensity term is |left - right| >> AD_SHIFT ...
-  int ad_max = 7;        // AD_MAX: ... capped at AD_MAX (0: census only; algorithm.md section 4)
-  int max_objects = 8;   // MAX_OBJECTS (K): objects reported per frame
-  int label_slots = 64;  // LABEL_SLOTS: equivalence-table entries of the labeller
-  int band_k = 8;        // BAND_K: look-ahead rows of the band filter F0
-  int pu = 0;            // PU: disparity levels computed per clock (0 = DISP, fully parallel)
+  int max_width = 320;        // MAX_WIDTH: widest active line
+  int max_height = 240;       // MAX_HEIGHT: tallest active frame
+  int disp = 128;             // DISP: disparity levels 0..DISP-1
+  int census = 15;            // CENSUS: census window side
+  int sw = 5;                 // SW: support-weight window side
+  int rect_radius = 18;       // RECT_RADIUS: rows above/below the output row the
+                              // rectifier can read (line buffer holds 2R+2 rows)
+  int cost_shift = 2;         // COST_SHIFT: raw Hamming cost >> COST_SHIFT feeds aggregation
+  int ad_shift = 2;           // AD_SHIFT: the cost's intensity term is |left - right| >> AD_SHIFT ...
+  int ad_max = 7;             // AD_MAX: ... capped at AD_MAX (0: census only; algorithm.md section 4)
+  int max_objects = 8;        // MAX_OBJECTS (K): objects reported per frame
+  int label_slots = 64;       // LABEL_SLOTS: equivalence-table entries of the labeller
+  int band_k = 8;             // BAND_K: look-ahead rows of the band filter F0
+  int pu = 0;                 // PU: disparity levels computed per clock (0 = DISP, fully parallel)
+  int speckle_rows = 0;       // SPECKLE_ROWS: rows the speckle stage (9.8) holds a word; 0: no stage
+  int speckle_labels = 1024;  // SPECKLE_LABELS: its label-table entries
   // Levels per clock and clocks per beat of the folded datapath (docs/algorithm.md,
   // "Folded datapath"): F = DISP / PU clocks per pixel in cost, aggregation and DP.
   int levels_per_clock() const { return pu ? pu : disp; }
@@ -98,8 +100,17 @@ struct HwConfig {
   // shorter line would overlap its own backward pass.
   int min_width() const { return disp / 2 + 3 > 16 ? disp / 2 + 3 : 16; }
   int cost_bits() const;  // width of the aggregated cost (see algorithm.md)
-  // Virtual rows after a frame, sm_top's FLUSH_ROWS: the pipeline depth in rows of 16 beats.
+  // Virtual rows after a frame, sm_top's FLUSH_ROWS: the pipeline depth in rows of 16 beats,
+  // the speckle stage's SPECKLE_ROWS rows and queue (kSpeckleSlack + 1 beats) included;
+  // base_flush_rows() without them.
   int flush_rows() const;
+  int base_flush_rows() const;
+  // Shortest active frame: 16, or more when the pipeline is deeper than four 16-row
+  // frames (the speckle stage): the 4-frame parameter history must outlast the pipeline.
+  int min_height() const { return flush_rows() / 4 + 1 > 16 ? flush_rows() / 4 + 1 : 16; }
+  // The per-pixel left-right and agreement rules' reset (LR_EN, AGREE_EN): on, unless the
+  // speckle stage is built, which replaces them (docs/evaluation.md, "Speckles").
+  bool pixel_rules() const { return speckle_rows == 0; }
   // Throws std::invalid_argument on an illegal combination: every parameter inside its
   // range of defs::kLimits (rtl/defs.json, the ranges sm_top checks at elaboration), then
   // the rules between parameters.

@@ -196,4 +196,9 @@ OutImage speckle_output(const OutImage& in, const SpeckleRegs& regs, int rows, i
   return out;
 }
 
+OutImage speckle_words(const OutImage& in, const Regs& regs, const HwConfig& hw) {
+  if (hw.speckle_rows == 0) return in;
+  return speckle_output(in, speckle_regs(regs), hw.speckle_rows, hw.speckle_labels);
+}
+
 }  // namespace sm

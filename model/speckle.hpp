@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "outword.hpp"
+#include "sm_types.hpp"
 
 namespace sm {
 
@@ -94,6 +95,12 @@ class SpeckleStage {
   uint16_t left_code_ = 0;
   SpeckleStats stats_;
 };
+
+// The stage's registers in r (SPECKLE_EN, SPECKLE_SIZE, SPECKLE_DIFF).
+inline SpeckleRegs speckle_regs(const Regs& r) { return {r.speckle_en, r.speckle_size, r.speckle_diff}; }
+
+// The words of a frame after the speckle stage of hw (unchanged when it has none).
+OutImage speckle_words(const OutImage& in, const Regs& regs, const HwConfig& hw);
 
 // One frame through a fresh stage, followed by ROWS virtual rows: the words it leaves with.
 OutImage speckle_output(const OutImage& in, const SpeckleRegs& regs, int rows, int labels,

@@ -21,7 +21,9 @@ module sm_axil_regs #(
     parameter DISP        = 128,  // disparity levels (reported in CAPS1)
     parameter MAX_OBJECTS = 8,    // objects in the list
     parameter PU          = DISP, // disparity levels per clock (reported in CAPS1)
-    parameter LEVEL_W     = 10    // width of the input FIFO level
+    parameter LEVEL_W     = 10,   // width of the input FIFO level
+    parameter MIN_HEIGHT  = 16,   // shortest active frame (sm_top: four frames outlast the pipeline)
+    parameter SPECKLE_ROWS = 0    // the speckle stage's rows (reported in CAPS1; 0: none)
 ) (
     input  wire              aclk,
     input  wire              aresetn,
@@ -76,6 +78,7 @@ module sm_axil_regs #(
     // SUBPIX_FIT, SUBPIX}
     output wire [48:0]       cfg_out,
     output wire [6:0]        cfg_smooth,      // {SMOOTH_T, SMOOTH_EN}
+    output wire [20:0]       cfg_speckle,     // {SPECKLE_DIFF, SPECKLE_SIZE, SPECKLE_EN}
     /* verilator coverage_on */
     // object list read port: obj_rd_data is sampled two clocks after obj_rd_idx changes
     output reg  [OIW-1:0]    obj_rd_idx,
@@ -88,6 +91,8 @@ module sm_axil_regs #(
   // Narrowest active line the pipeline supports (HwConfig::min_width, the WIDTH minimum
   // of the generated map): the DP needs DISP/2 + 3 columns (sm_dp.v), every window 16.
   localparam integer MIN_WIDTH = (DISP / 2 + 3 > 16) ? DISP / 2 + 3 : 16;
+  // LR_EN and AGREE_EN reset on, unless the speckle stage replaces them (HwConfig::pixel_rules).
+  localparam integer PIXEL_RULES = (SPECKLE_ROWS == 0) ? 1 : 0;
   /* verilator lint_off UNUSEDPARAM */  // the generated map holds every field's constants
   // The older Verilator (5.006) calls the tables' 32-bit typed elements unsized when
   // their value comes from an unsized expression; the newer one does not.
@@ -175,6 +180,8 @@ module sm_axil_regs #(
                     shadow_q[SM_FILL_BG_VALUE_SOFF], shadow_q[SM_OCC_EN_VALUE_SOFF],
                     shadow_q[SM_SUBPIX_FIT_VALUE_SOFF], shadow_q[SM_SUBPIX_VALUE_SOFF +: 2]};
   assign cfg_smooth = {shadow_q[SM_SMOOTH_T_VALUE_SOFF +: 6], shadow_q[SM_SMOOTH_EN_VALUE_SOFF]};
+  assign cfg_speckle = {shadow_q[SM_SPECKLE_DIFF_VALUE_SOFF +: 8], shadow_q[SM_SPECKLE_SIZE_VALUE_SOFF +: 12],
+                        shadow_q[SM_SPECKLE_EN_VALUE_SOFF]};
 
   // ---- address decoding (the byte-lane bits a[1:0] are ignored by design)
   /* verilator lint_off UNUSEDSIGNAL */

@@ -8,8 +8,9 @@
 // the noise out, and the threshold keeps the mean from crossing a depth edge. How many
 // neighbours agree is evidence too: the confidence byte e of the word (9.3) becomes
 // 16 (e[7] + e[6] + e[5]) + e[4:0] + 3 K + 2 K8, K8 the window pixels within 8 (1/2 px).
-// The valid bit passes unchanged; invalid words pass as they are (their failed rules in
-// bits 29:24 travel in the confidence's line buffer, which an invalid pixel does not use).
+// The valid bit passes unchanged; invalid words pass as they are (their bits 30:24, the
+// speckle stage's bit and the failed rules, travel in the confidence's line buffer, which
+// an invalid pixel does not use).
 //
 // The division is a multiplication: floor(U / 2K) = (U * ceil(2^19 / 2K)) >> 19 for every
 // U below 2^13 and K <= 25, with U = 2S + K + 128K > 0 (the bias 64 * 2K makes the
@@ -29,7 +30,7 @@ module sm_out_smooth #(
     input  wire                  enable,  // 0: the Q.4 values pass unchanged (same latency)
     input  wire [5:0]            thr,     // greatest |difference| (1/16 px) a window pixel may have
     input  wire [`SM_SIDE_W-1:0] s_side,
-    input  wire [31:0]           s_word,  // {1, 7'b0, confidence, Q.4} or {0, 0, fails, 24'b0}
+    input  wire [31:0]           s_word,  // {1, 7'b0, confidence, Q.4} or {0, speckle, fails, 24'b0}
     output wire [`SM_SIDE_W-1:0] m_side,
     output reg  [31:0]           m_word
 );
@@ -72,7 +73,7 @@ module sm_out_smooth #(
   // of 3 for whole words).
   wire [PW-1:0] s_pix = {s_word[31], s_word[QW-1:0]};
   // the centre's byte: its confidence, or an invalid word's failed rules
-  wire [7:0] s_byte = s_word[31] ? s_word[23:16] : {2'b00, s_word[29:24]};
+  wire [7:0] s_byte = s_word[31] ? s_word[23:16] : {1'b0, s_word[30:24]};
   wire unused_word = ^{s_word[30], s_word[15:QW]};
   wire [PW*(NR-1)-1:0] lb_dout;  // rows live-1 .. live-4
   wire [15:0]          lbc_dout;  // confidence of rows live-1, live-2
@@ -223,7 +224,7 @@ module sm_out_smooth #(
       ctr3_q <= {ctr2_q[CTW-1 -: 2], ctr2_q[CTW-2] ? conf_n : e2, ctr2_q[QW-1:0]};
       p_q    <= u_q * rc_q;
       ctr4_q <= ctr3_q;
-      m_word <= !c4_valid ? {2'b00, ctr4_q[QW +: 6], 24'd0}
+      m_word <= !c4_valid ? {1'b0, ctr4_q[QW +: 7], 24'd0}
               : {1'b1, 7'd0, ctr4_q[QW +: 8], {(16 - QW) {1'b0}}, c4_en ? q_out : ctr4_q[QW-1:0]};
     end
   end

@@ -43,9 +43,7 @@ module sm_outstage #(
     input  wire [`SM_SIDE_W-1:0] post_side,  // the post filters' output
     input  wire [15:0]           post_disp,
     output wire [`SM_SIDE_W-1:0] m_side,
-    output wire [31:0]           m_word,
-    output reg  [`SM_SIDE_W-1:0] m_obj_side, // m_side a beat later
-    output reg  [15:0]           m_obj_disp  // what the object labeller reads: {valid, level}
+    output wire [31:0]           m_word
 );
   localparam XW = `SM_COUNT_W(MAX_WIDTH);
   localparam DW = $clog2(DISP);
@@ -139,15 +137,5 @@ module sm_outstage #(
       .clk(clk), .rst_n(rst_n), .ce(ce), .s_side(p_side), .s_disp(p_disp), .s_fields(p_fields),
       .m_side(m_side), .m_word(m_word)
   );
-  // the labeller's level: the word's Q.4 value rounded, (q4 + 8) >> 4 (at most DISP - 1:
-  // q4 <= 16 (DISP - 1)), registered so the adder stays out of the labeller's paths
-  localparam QW = DW + 4;
-  wire [QW:0] q_round = {1'b0, m_word[QW-1:0]} + 8;
-  wire unused_round = ^{q_round[QW], q_round[3:0], m_word[30:QW]};
-  always @(posedge clk) begin
-    if (!rst_n) m_obj_side <= {`SM_SIDE_W{1'b0}};
-    else if (ce) m_obj_side <= m_side;
-    if (ce) m_obj_disp <= {m_word[31], {(15 - DW) {1'b0}}, q_round[QW-1:4]};
-  end
 endmodule
 `default_nettype wire

@@ -20,19 +20,24 @@
 // unless its frame has ended (virtual or next frame's beat entering), or if its region
 // holds more than size pixels.
 //
-// Timing: a beat takes about 10 clocks plus the pointers its two finds follow (4 at most
-// on the 14 scenes at 1,024 labels); `ready` holds ce off until it is done, so the block
-// suits the folded configurations (16 clocks per beat). Latency: the output beat after
-// the ce of input beat n is the pixel of beat n - ROWS * width - 1.
+// Timing: a beat takes 10 clocks plus the pointers its two finds follow (4 at most on the
+// 14 scenes at 1,024 labels), so the block suits the folded configurations (16 clocks a
+// beat) on average, not beat by beat. The entering beats wait in a queue and the decided
+// ones in another, SLACK beats in all: a run of slow beats borrows from the fast ones
+// around it, and the stream keeps its pace (ce every F clocks) unless the labeller falls
+// SLACK beats behind, when `ready` holds ce off until it catches up. Latency: the output
+// beat after the ce of input beat n is the leaving pixel of beat n - SLACK (the pixel of
+// beat n - SLACK - ROWS * width); the first SLACK output beats have an empty sideband.
 module sm_speckle #(
     parameter MAX_WIDTH = 320,  // widest active line
     parameter ROWS      = 32,   // rows a word waits for its verdict (look-ahead)
-    parameter LABELS    = 1024  // label-table entries (regions awaiting a verdict)
+    parameter LABELS    = 1024, // label-table entries (regions awaiting a verdict)
+    parameter SLACK     = 16    // beats the labeller may fall behind the stream (queue depth)
 ) (
     input  wire                  clk,
     input  wire                  rst_n,
     input  wire                  ce,
-    output wire                  ready,   // the last beat is labelled and decided: ce may come
+    output wire                  ready,   // the output beat of the next ce is decided: ce may come
     input  wire                  en,      // en, size, diff: latched at a frame's first beat;
     input  wire [11:0]           size,    // en 0 passes every word (ROWS rows later)
     input  wire [7:0]            diff,
@@ -66,13 +71,61 @@ module sm_speckle #(
     `SM_BAD_PARAM(g_bad_rows, ROWS < 1 || ROWS > 62, ("sm_speckle: ROWS (%0d) must be 1..62", ROWS))
     `SM_BAD_PARAM(g_bad_labels, LABELS < 2 || LABELS > 4094, ("sm_speckle: LABELS (%0d) must be 2..4094", LABELS))
     `SM_BAD_PARAM(g_bad_width, MAX_WIDTH < 2, ("sm_speckle: MAX_WIDTH (%0d) must be >= 2", MAX_WIDTH))
+    `SM_BAD_PARAM(g_bad_slack, SLACK < 2 || SLACK > 64 || (SLACK & (SLACK - 1)) != 0,
+                  ("sm_speckle: SLACK (%0d) must be a power of two, 2..64", SLACK))
   endgenerate
 
   localparam [3:0] S_IDLE = 4'd0, S_UP = 4'd1, S_DEC = 4'd2, S_LAB = 4'd3, S_FINDU = 4'd4, S_GOTL = 4'd5,
                    S_ADD = 4'd6, S_NEW = 4'd7, S_POP = 4'd8, S_STORE = 4'd9, S_WALK = 4'd10;
   reg [3:0] state_q;
-  assign ready = state_q == S_IDLE;
+  wire pop;  // the labeller takes the oldest queued beat
+  reg  [`SM_SIDE_W-1:0] res_side_q;  // the beat the labeller decided last
+  reg  [31:0]           res_word_q;
+
+  // ---- the queues: beats entering (at ce) and decided (taken at ce), SLACK in all ----
+  // Entering + being labelled + decided + prefill = SLACK at every ce, so neither queue
+  // overflows; the prefill stands for the beats the labeller is ahead of at reset.
+  localparam QW = $clog2(SLACK);
+  reg  [21+`SM_SIDE_W+31:0] q_in [0:SLACK-1];  // {en, size, diff, side, word}
+  reg  [`SM_SIDE_W+31:0] q_out [0:SLACK-1];
+  reg  [QW-1:0] in_wp_q, in_rp_q, out_wp_q, out_rp_q;
+  reg  [QW:0]   in_n_q, out_n_q, fill_q;
+  reg           done_q;  // the beat just decided waits in res_*_q for the output queue
+  assign ready = fill_q != {(QW + 1){1'b0}} || out_n_q != {(QW + 1){1'b0}};
   wire take = ce && ready;
+  wire [21+`SM_SIDE_W+31:0] q_head = q_in[in_rp_q];
+  wire [`SM_SIDE_W-1:0] q_side = q_head[`SM_SIDE_W+31:32];
+  wire [31:0]           q_word = q_head[31:0];
+  wire                  en_in = q_head[20+`SM_SIDE_W+32];
+  wire [11:0]           size_in = q_head[8+`SM_SIDE_W+32 +: 12];
+  wire [7:0]            diff_in = q_head[`SM_SIDE_W+32 +: 8];
+  assign pop = state_q == S_IDLE && in_n_q != {(QW + 1){1'b0}};
+  always @(posedge clk) begin
+    if (take) q_in[in_wp_q] <= {en, size, diff, s_side, s_word};
+    if (done_q) q_out[out_wp_q] <= {res_side_q, res_word_q};
+  end
+  always @(posedge clk) begin
+    if (!rst_n) begin
+      in_wp_q  <= {QW{1'b0}};
+      in_rp_q  <= {QW{1'b0}};
+      out_wp_q <= {QW{1'b0}};
+      out_rp_q <= {QW{1'b0}};
+      in_n_q   <= {(QW + 1){1'b0}};
+      out_n_q  <= {(QW + 1){1'b0}};
+      fill_q   <= SLACK[QW:0];
+      m_side   <= {`SM_SIDE_W{1'b0}};
+    end else begin
+      if (take) in_wp_q <= in_wp_q + 1'b1;
+      if (pop) in_rp_q <= in_rp_q + 1'b1;
+      in_n_q <= in_n_q + {{QW{1'b0}}, take} - {{QW{1'b0}}, pop};
+      if (done_q) out_wp_q <= out_wp_q + 1'b1;
+      if (take && fill_q == {(QW + 1){1'b0}}) out_rp_q <= out_rp_q + 1'b1;
+      out_n_q <= out_n_q + {{QW{1'b0}}, done_q} - {{QW{1'b0}}, take && fill_q == {(QW + 1){1'b0}}};
+      if (take && fill_q != {(QW + 1){1'b0}}) fill_q <= fill_q - 1'b1;
+      if (take) m_side <= fill_q != {(QW + 1){1'b0}} ? {`SM_SIDE_W{1'b0}} : q_out[out_rp_q][`SM_SIDE_W+31:32];
+    end
+    if (take) m_word <= q_out[out_rp_q][31:0];
+  end
 
   // Whether two words are valid and their Q.4 values within d.
   function automatic near(input va, input [15:0] a, input vb, input [15:0] b, input [7:0] d);
@@ -82,8 +135,6 @@ module sm_speckle #(
   endfunction
 
   // ---- position: the entering row's slot and column, the decided row's slot ----
-  reg  [`SM_SIDE_W-1:0] res_side_q;  // the beat the next ce puts out
-  reg  [31:0]   res_word_q;
   reg           in_real_q;
   reg  [31:0]   in_word_q;
   reg           started_q;    // a row has begun since reset
@@ -96,7 +147,7 @@ module sm_speckle #(
   reg  [7:0]    diff_q;
   reg  [NSLOT-1:0] real_q;    // the held rows that belong to a frame
   reg  [MW-1:0] meta [0:NSLOT-1];
-  wire sol = s_side[`SM_SIDE_SOL], sof = s_side[`SM_SIDE_SOF];
+  wire sol = q_side[`SM_SIDE_SOL], sof = q_side[`SM_SIDE_SOF];
 
   // x and labels widened (the widths may be equal: no zero-width replication)
   function automatic [AW-1:0] addr_of(input [XW-1:0] x);
@@ -136,7 +187,7 @@ module sm_speckle #(
       row_q      <= {RW{1'b0}};
       fid_q      <= {RW{1'b0}};
       real_q     <= {NSLOT{1'b0}};
-    end else if (take) begin
+    end else if (pop) begin
       if (sol) begin
         started_q  <= 1'b1;
         x_q        <= {XW{1'b0}};
@@ -147,7 +198,7 @@ module sm_speckle #(
         slot_dec_q <= next_slot(slot_dec_q);
         row_q      <= row_q + 1'b1;
         if (sof) fid_q <= fid_q + 1'b1;
-        real_q[next_slot(slot_cur_q)] <= s_side[`SM_SIDE_REAL];
+        real_q[next_slot(slot_cur_q)] <= q_side[`SM_SIDE_REAL];
       end else if (started_q && x_q != MAX_WIDTH[XW-1:0]) begin
         x_q <= x_q + 1'b1;
       end
@@ -156,18 +207,18 @@ module sm_speckle #(
 
   // per-frame settings and the row meta: data only
   always @(posedge clk) begin
-    if (take) begin
-      in_real_q <= s_side[`SM_SIDE_REAL];
-      in_word_q <= s_word;
+    if (pop) begin
+      in_real_q <= q_side[`SM_SIDE_REAL];
+      in_word_q <= q_word;
       if (sol) cur_sof_q <= sof;
       if (sol && sof) begin
-        en_q   <= en;
-        size_q <= size;
-        diff_q <= diff;
+        en_q   <= en_in;
+        size_q <= size_in;
+        diff_q <= diff_in;
       end
       if (sol)
-        meta[next_slot(slot_cur_q)] <= sof ? {sof, en, s_side[`SM_SIDE_TAG], fid_q + 1'b1, size}
-                                           : {1'b0, en_q, s_side[`SM_SIDE_TAG], fid_q, size_q};
+        meta[next_slot(slot_cur_q)] <= sof ? {sof, en_in, q_side[`SM_SIDE_TAG], fid_q + 1'b1, size_in}
+                                           : {1'b0, en_q, q_side[`SM_SIDE_TAG], fid_q, size_q};
     end
   end
 
@@ -293,13 +344,14 @@ module sm_speckle #(
   always @(posedge clk) begin
     if (!rst_n) begin
       state_q   <= S_IDLE;
+      done_q    <= 1'b0;
       fresh_q   <= {LW{1'b0}};
       f_head_q  <= {LB{1'b0}};
       f_tail_q  <= {LB{1'b0}};
       f_count_q <= {LW{1'b0}};
     end else begin
       case (state_q)
-        S_IDLE: if (take) state_q <= S_UP;
+        S_IDLE: if (pop) state_q <= S_UP;
         S_UP: state_q <= S_DEC;
         S_DEC: state_q <= S_LAB;
         S_LAB:
@@ -329,6 +381,8 @@ module sm_speckle #(
         S_WALK: if (e_parent == node_q) state_q <= S_IDLE;
         default: state_q <= S_IDLE;
       endcase
+      done_q <= (state_q == S_LAB && !in_ok) || (state_q == S_STORE && !(dmeta_real && dec_code_q < NONE)) ||
+                (state_q == S_WALK && e_parent == node_q);
       // the FIFO's count: a pop in S_POP, a push in S_WALK (never both in one clock)
       if (f_we) f_tail_q <= next_label(f_tail_q);
       if (f_we) f_count_q <= f_count_q + 1'b1;
@@ -337,12 +391,6 @@ module sm_speckle #(
   end
 
   // data registers of the beat's work
-  always @(posedge clk) begin
-    if (!rst_n) m_side <= {`SM_SIDE_W{1'b0}};
-    else if (take) m_side <= res_side_q;
-    if (take) m_word <= res_word_q;
-  end
-
   always @(posedge clk) begin
     case (state_q)
       S_DEC: begin

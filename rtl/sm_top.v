@@ -25,7 +25,12 @@ module sm_top #(
     // Disparity levels computed per clock in cost, aggregation and DP (docs/algorithm.md,
     // "Folded datapath"): 0 = DISP, one pixel per clock; an even divisor of DISP folds
     // the datapath to DISP / PU clocks per pixel for DISP / PU times less of its logic.
-    parameter PU          = 0
+    parameter PU          = 0,
+    // The speckle stage (docs/algorithm.md 9.8): rows a word waits for its region's
+    // verdict, 0 for none. Its labeller takes about 10 clocks a pixel, so it suits the
+    // folded configurations; where it is built, LR_EN and AGREE_EN reset to 0.
+    parameter SPECKLE_ROWS   = 0,
+    parameter SPECKLE_LABELS = 1024  // its label-table entries
 ) (
     input  wire        aclk,
     input  wire        aresetn,
@@ -88,8 +93,13 @@ module sm_top #(
   // beats, the band filter's 1 beat and the smoothing's 7) counted in rows of the
   // narrowest line (16). Extra virtual rows
   // only cost idle time.
-  localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 + 2 +
-                          (DISP / 2 + 64 + 1 + 7 + 15) / 16 + 1;
+  localparam BASE_FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 + 2 +
+                               (DISP / 2 + 64 + 1 + 7 + 15) / 16 + 1;
+  // the speckle stage: its rows and its queues' SPECKLE_SLACK + 1 beats
+  localparam FLUSH_ROWS = BASE_FLUSH_ROWS + ((SPECKLE_ROWS > 0) ? SPECKLE_ROWS + (`SM_SPECKLE_SLACK + 1 + 15) / 16 : 0);
+  // Shortest active frame (the HEIGHT register's minimum, HwConfig::min_height): four
+  // frames must outlast the pipeline's FLUSH_ROWS narrow rows (per-frame parameters).
+  localparam MIN_HEIGHT = (FLUSH_ROWS / 4 + 1 > 16) ? FLUSH_ROWS / 4 + 1 : 16;
 
 
   // ---------------------------------------------------------------- registers
@@ -105,6 +115,7 @@ module sm_top #(
   wire [15:0]   cfg_obj_min_pixels;
   wire [48:0]   cfg_out;
   wire [6:0]    cfg_smooth;
+  wire [20:0]   cfg_speckle;
   wire          grid_we;
   wire [31:0]   grid_wdata;
   wire [GAW-1:0] grid_waddr;  // {camera, bank, point}
@@ -146,7 +157,7 @@ module sm_top #(
 
   sm_axil_regs #(
       .MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT), .DISP(DISP), .MAX_OBJECTS(MAX_OBJECTS), .PU(PUE),
-      .LEVEL_W(IN_LW)
+      .LEVEL_W(IN_LW), .MIN_HEIGHT(MIN_HEIGHT), .SPECKLE_ROWS(SPECKLE_ROWS)
   ) u_regs (
       .aclk(aclk), .aresetn(host_rst_n),
       .s_axil_awaddr(s_axil_awaddr), .s_axil_awvalid(s_axil_awvalid), .s_axil_awready(s_axil_awready),
@@ -163,6 +174,7 @@ module sm_top #(
       .cfg_edge_t(cfg_edge_t), .cfg_sw_table(cfg_sw_table),
       .cfg_filter_enable(cfg_filter_enable), .cfg_obj_near(cfg_obj_near), .cfg_obj_tol(cfg_obj_tol),
       .cfg_obj_min_pixels(cfg_obj_min_pixels), .cfg_out(cfg_out), .cfg_smooth(cfg_smooth),
+      .cfg_speckle(cfg_speckle),
       .obj_rd_idx(obj_rd_idx), .obj_rd_data(obj_rd_data_q),
       .grid_we(grid_we), .grid_waddr(grid_waddr), .grid_wdata(grid_wdata)
   );
@@ -177,7 +189,8 @@ module sm_top #(
   // inputs are the previous stages' registers, which change only on ce). The camera is
   // held by s_axis_tready only when the input FIFO is full (docs/streams.md, "Pacing").
   wire       pace_ok;
-  wire       ce = beat_valid && out_room && pace_ok;
+  wire       spk_ready;  // the speckle stage's labeller is not SLACK beats behind
+  wire       ce = beat_valid && out_room && pace_ok && spk_ready;
   generate
     if (F > 1) begin : g_pace
       reg [FCW-1:0] pace_q;  // clocks until the next ce may come
@@ -211,15 +224,17 @@ module sm_top #(
   // be more than one frame deep in the pipeline), each stage's field in its
   // sm_frame_sel, written with the frame's first beat (beat_side). The four tags must outlast the
   // pipeline: FLUSH_ROWS rows of 16 beats bound its latency, four frames last at least
-  // 4 x 16 rows.
+  // 4 x MIN_HEIGHT rows.
   // Every parameter inside its range of rtl/defs.json (the ranges HwConfig::validate()
   // checks too), then the rules between parameters.
   `include "sm_defs_check.vh"
   generate
     `SM_BAD_PARAM(g_bad_pu, PUE < 1 || PUE > DISP || DISP % PUE != 0 || (PUE != DISP && PUE % 2 != 0),
                   ("sm_top: PU (%0d) must be 0, DISP (%0d) or an even divisor of DISP", PU, DISP))
-    `SM_BAD_PARAM(g_bad_flush, FLUSH_ROWS >= 64,
-                  ("sm_top: pipeline of %0d narrow rows outlasts the 4-frame parameter history", FLUSH_ROWS))
+    `SM_BAD_PARAM(g_bad_flush, BASE_FLUSH_ROWS >= 64,
+                  ("sm_top: pipeline of %0d narrow rows outlasts the 4-frame parameter history", BASE_FLUSH_ROWS))
+    `SM_BAD_PARAM(g_bad_min_height, MIN_HEIGHT > MAX_HEIGHT,
+                  ("sm_top: MAX_HEIGHT (%0d) below the shortest frame the pipeline allows (%0d)", MAX_HEIGHT, MIN_HEIGHT))
   endgenerate
   localparam P_RECT = 0;               // rectification enable, grid bank
   localparam P_SWT  = P_RECT + 2;      // support-weight table
@@ -230,8 +245,9 @@ module sm_top #(
   localparam P_H    = P_OBJ + 32;
   localparam P_OUT  = P_H + YW;        // the output stage's registers (sm_outfields' s_cfg)
   localparam P_SMO  = P_OUT + 49;      // smoothing: enable, then the threshold
-  localparam PW     = P_SMO + 7;
-  wire [PW-1:0] fr_par = {cfg_smooth, cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
+  localparam P_SPK  = P_SMO + 7;       // speckle stage: enable, size, diff
+  localparam PW     = P_SPK + 21;
+  wire [PW-1:0] fr_par = {cfg_speckle, cfg_smooth, cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
                           cfg_edge_t, cfg_occ_edge, cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
 
   // ---------------------------------------------------------------- pre-processing
@@ -376,7 +392,33 @@ module sm_top #(
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .s_side(ag_side), .s_cost(ag_cost),
       .dp_side(dp_side), .dp_disp(dp_disp), .dp_matched(dp_matched), .dp_gap(dp_gap), .dp_fill_bg(dp_fill_bg),
       .s_cfg(par_out), .post_side(f3_side), .post_disp(f3_disp),
-      .m_side(out_side), .m_word(out_word), .m_obj_side(obj_side), .m_obj_disp(obj_disp)
+      .m_side(out_side), .m_word(out_word)
+  );
+
+  // The speckle stage (docs/algorithm.md 9.8), where built: the words wait SPECKLE_ROWS
+  // rows for their region's verdict. Its registers: those of the frame whose first word
+  // it takes next, which the post filters' output (f3_side) sees a few beats before.
+  // The object labeller and the smoothing take its words.
+  wire [`SM_SIDE_W-1:0] sk_side;
+  wire [31:0] sk_word;
+  generate
+    if (SPECKLE_ROWS > 0) begin : g_speckle
+      wire [20:0] par_spk;  // {diff, size, en}
+      sm_frame_sel #(.PW(PW), .LSB(P_SPK), .W(21), .NEXT(0)) u_fsel_spk (
+          .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(f3_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_spk)
+      );
+      sm_speckle #(.MAX_WIDTH(MAX_WIDTH), .ROWS(SPECKLE_ROWS), .LABELS(SPECKLE_LABELS), .SLACK(`SM_SPECKLE_SLACK)) u_speckle (
+          .clk(aclk), .rst_n(rst_n), .ce(ce), .ready(spk_ready), .en(par_spk[0]), .size(par_spk[12:1]),
+          .diff(par_spk[20:13]), .s_side(out_side), .s_word(out_word), .m_side(sk_side), .m_word(sk_word)
+      );
+    end else begin : g_no_speckle
+      assign spk_ready = 1'b1;
+      assign sk_side = out_side;
+      assign sk_word = out_word;
+    end
+  endgenerate
+  sm_obj_level #(.DISP(DISP)) u_obj_level (
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .s_side(sk_side), .s_word(sk_word), .m_side(obj_side), .m_disp(obj_disp)
   );
 
   // Object list: the register file reads word (idx) of the list window -- header at 0,
@@ -391,10 +433,11 @@ module sm_top #(
   reg         list_valid_q;
   // Object thresholds and the frame height, for sm_objects and the output formatter: both
   // latch them at their start of frame, which follows post filter 3's input (f2_side) by
-  // its delay of 2W + 3 beats.
+  // its delay of 2W + 3 beats, or the speckle stage's output (sk_side) by two beats.
   wire [32+YW-1:0] par_obj;  // {height, min pixels, tol, near}
+  wire [`SM_SIDE_W-1:0] obj_ev_side = (SPECKLE_ROWS > 0) ? sk_side : f2_side;
   sm_frame_sel #(.PW(PW), .LSB(P_OBJ), .W(32 + YW), .NEXT(0)) u_fsel_obj (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(f2_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_obj)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(obj_ev_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_obj)
   );
   wire [YW-1:0] frame_height = par_obj[32 +: YW];
   sm_objects #(
@@ -438,7 +481,7 @@ module sm_top #(
   );
   sm_out_smooth #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP)) u_smooth (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .enable(par_smooth[0]), .thr(par_smooth[6:1]),
-      .s_side(out_side), .s_word(out_word), .m_side(sm_side), .m_word(sm_word)
+      .s_side(sk_side), .s_word(sk_word), .m_side(sm_side), .m_word(sm_word)
   );
 
   sm_outfmt #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT)) u_out (

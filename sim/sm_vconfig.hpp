@@ -51,6 +51,12 @@ inline HwConfig verilated_config() {
 #ifdef SM_P_PU
   hw.pu = SM_P_PU;
 #endif
+#ifdef SM_P_SPECKLE_ROWS
+  hw.speckle_rows = SM_P_SPECKLE_ROWS;
+#endif
+#ifdef SM_P_SPECKLE_LABELS
+  hw.speckle_labels = SM_P_SPECKLE_LABELS;
+#endif
   return hw;
 }
 

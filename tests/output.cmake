@@ -45,16 +45,17 @@ sm_rtl_test(NAME tb_out_smooth_paper TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_L
 sm_unit_test(test_smooth_model LIBS sm_model DISCOVER)
 
 # The speckle stage (sm_speckle) against the model's SpeckleStage, beat by beat: tables
-# small enough to fill (KEEP), a table of a size not a power of two, one held row, the
-# folded pacing, and the zynq configuration's sizes.
+# small enough to fill (KEEP), a table of a size not a power of two, one held row, queues
+# of 2..16 beats (ce held while the labeller is behind), the folded pacing, and the zynq
+# configuration's sizes.
 sm_rtl_test(NAME tb_speckle TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_speckle.cpp
-            PARAMS MAX_WIDTH=40 ROWS=3 LABELS=16 ARGS --widths 37,5,40 --height 11 --frames 7)
+            PARAMS MAX_WIDTH=40 ROWS=3 LABELS=16 SLACK=4 ARGS --widths 37,5,40 --height 11 --frames 7)
 sm_rtl_test(NAME tb_speckle_odd TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_speckle.cpp
-            PARAMS MAX_WIDTH=23 ROWS=1 LABELS=6 ARGS --widths 23,2 --height 9 --frames 6 --idle 50)
+            PARAMS MAX_WIDTH=23 ROWS=1 LABELS=6 SLACK=2 ARGS --widths 23,2 --height 9 --frames 6 --idle 50)
 sm_rtl_test(NAME tb_speckle_two TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_speckle.cpp
-            PARAMS MAX_WIDTH=16 ROWS=7 LABELS=2 ARGS --widths 16,9 --height 13 --frames 6 --gap 16)
+            PARAMS MAX_WIDTH=16 ROWS=7 LABELS=2 SLACK=8 ARGS --widths 16,9 --height 13 --frames 6 --gap 16)
 sm_rtl_test(NAME tb_speckle_zynq TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_speckle.cpp
-            PARAMS MAX_WIDTH=320 ROWS=32 LABELS=1024 ARGS --widths 320,67 --height 40 --frames 4 --gap 16 --idle 5)
+            PARAMS MAX_WIDTH=320 ROWS=32 LABELS=1024 SLACK=16 ARGS --widths 320,67 --height 40 --frames 4 --gap 16 --idle 5)
 
 # The output study's speckle check against OpenCV's filterSpeckles and a streaming known answer.
 if(TARGET sm_speckle)

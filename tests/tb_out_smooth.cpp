@@ -15,6 +15,7 @@
 #include "disp_stream.hpp"
 #include "sm_block_test.hpp"
 #include "smooth.hpp"
+#include "speckle.hpp"
 
 using namespace sm;
 using namespace sm::test;
@@ -33,7 +34,9 @@ OutImage random_words(std::mt19937& rng, int w, int h, int nd, bool anywhere) {
       const int q = anywhere || rng() % 12 == 0 ? static_cast<int>(rng() % (top + 1)) : std::clamp(base, 0, top);
       const bool valid = rng() % 10 != 0;
       const unsigned byte = rng() & 0xff;  // the confidence, or an invalid word's failed rules
-      m.at(x, y) = make_out_word(valid, byte, static_cast<unsigned>(q), byte);
+      // an invalid word: its failed rules, now and then the speckle stage's bit (9.8)
+      m.at(x, y) =
+          make_out_word(valid, byte, static_cast<unsigned>(q), byte) | (!valid && (byte & 64) ? kOutSpeckle : 0);
     }
   return m;
 }

@@ -1,9 +1,11 @@
 // Block test of sm_speckle (the speckle stage, docs/algorithm.md 9.8) against the model's
 // SpeckleStage, beat by beat: frames of surfaces with islands of every size, invalid
-// pixels and words anywhere, at odd widths; binary combs for the longest finds; frames shorter than ROWS (several
-// frames in the held rows), back to back or with 0..ROWS + 2 virtual rows between them; the registers per frame (off,
-// 0, the greatest, ...) and garbage on them between frames, as on every idle beat; random ce gaps, ce refused while the
-// stage is busy. Every output beat's sideband and word are checked, the real ones' order too, and the run must clear
+// pixels and words anywhere, at odd widths; binary combs for the longest finds; frames
+// shorter than ROWS (several frames in the held rows), back to back or with 0..ROWS + 2
+// virtual rows between them; the registers per frame (off, 0, the greatest, ...) and
+// garbage on them between frames, as on every idle beat; random ce gaps, and ce held
+// while the labeller is SLACK beats behind. Every output beat's sideband and word are
+// checked (the first SLACK empty), the real ones' order too, and the run must clear
 // speckles and (small tables) label KEEP pixels, or the bench has tested nothing.
 #include <fmt/format.h>
 
@@ -91,8 +93,9 @@ int main(int argc, char** argv) {
   SpeckleStage model(SM_P_MAX_WIDTH, kRows, SM_P_LABELS);
   // (en, size, diff) per frame, in turn
   const SpeckleRegs regs[] = {{1, 6, 8}, {1, 0, 0}, {1, 4095, 255}, {0, 6, 8}, {1, 2, 16}, {1, 40, 3}};
-  long taken = 0, cleared = 0;
-  SpeckleStage::Beat want;  // the model's output for the beat taken last
+  constexpr long kSlack = SM_P_SLACK;  // output beat k is the model's beat k - SLACK
+  long taken = 0, cleared = 0, held = 0;
+  std::vector<SpeckleStage::Beat> want;  // the model's output beats, in order
   for (const int w : widths) {
     std::vector<int> heights;
     std::vector<OutImage> in;
@@ -113,11 +116,14 @@ int main(int argc, char** argv) {
                            in.back().at(x, y), x + y == 0 ? f : -1});
       virtual_rows(rng() % 3 == 0 ? 0 : static_cast<int>(rng() % (kRows + 3)));
     }
-    virtual_rows(kRows + 1);  // the last frame out (and the held rows of width w before the next width)
+    // the last frame out (and the held rows of width w before the next width)
+    virtual_rows(kRows + 1 + static_cast<int>((kSlack + w - 1) / w));
     t.expect_frames(w, heights);
     int cur = 0;
     for (size_t k = 0; k < sched.size();) {
-      const bool c = t.next_ce() && tb->ready;
+      const bool wanted = t.next_ce();
+      const bool c = wanted && tb->ready;
+      held += wanted && !c;
       tb->ce = c;
       const Beat& b = sched[k];
       if (b.frame >= 0) cur = b.frame;
@@ -139,25 +145,29 @@ int main(int argc, char** argv) {
       tb.tick();
       if (!c) continue;
       ++k;
-      if (taken++ > 0) {
-        t.check(tb->m_side == want.side && tb->m_word == want.word, [&] {
-          return fmt::format("w {} beat {}: side {:#x} word {:#010x}, model side {:#x} word {:#010x}", w, k - 1,
-                             tb->m_side, tb->m_word, want.side, want.word);
+      want.push_back(model.step(b.side, b.word, seen));
+      if (taken < kSlack) {  // the prefill
+        t.check(tb->m_side == 0, [&] { return fmt::format("prefill beat {}: side {:#x}", taken, tb->m_side); });
+      } else {
+        const SpeckleStage::Beat& e = want[static_cast<size_t>(taken - kSlack)];
+        t.check(tb->m_side == e.side && tb->m_word == e.word, [&] {
+          return fmt::format("w {} beat {}: side {:#x} word {:#010x}, model side {:#x} word {:#010x}", w, taken,
+                             tb->m_side, tb->m_word, e.side, e.word);
         });
         if (tb->m_side & kReal) {
           if (!t.next_out(tb->m_side)) break;
           cleared += tb->m_word == kOutSpeckle;
         }
       }
-      want = model.step(b.side, b.word, seen);
+      ++taken;
     }
     t.all_out(fmt::format("w {}: ", w));
   }
   const SpeckleStats& st = model.stats();
   t.check(cleared > 0, "no speckle was cleared: the stimulus tests nothing");
   if (SM_P_LABELS < 64) t.check(st.keep_pixels > 0, "the table never filled: KEEP untested");
-  return t.finish(fmt::format("tb_speckle MAX_WIDTH={} ROWS={} LABELS={} widths {}", SM_P_MAX_WIDTH, kRows, SM_P_LABELS,
-                              widths.size()),
-                  fmt::format(" ({} beats, {} cleared, {} KEEP, peak {} labels, longest find {})", taken, cleared,
-                              st.keep_pixels, st.peak_labels, st.longest_find));
+  return t.finish(fmt::format("tb_speckle MAX_WIDTH={} ROWS={} LABELS={} SLACK={} widths {}", SM_P_MAX_WIDTH, kRows,
+                              SM_P_LABELS, kSlack, widths.size()),
+                  fmt::format(" ({} beats, {} cleared, {} KEEP, peak {} labels, longest find {}, ce held {} times)",
+                              taken, cleared, st.keep_pixels, st.peak_labels, st.longest_find, held));
 }

@@ -13,6 +13,7 @@
 #include "toolio/sm_scenegen.hpp"
 #include "confidence.hpp"
 #include "outword.hpp"
+#include "speckle.hpp"
 #include "pipeline.hpp"
 #include "smooth.hpp"
 #include "subpix.hpp"
@@ -370,16 +371,18 @@ TEST_CASE("invalid words name the rules that cleared them, and the occlusion rul
 }
 
 TEST_CASE("the host's reading of invalid words: counts by rule, hidden pixels apart", "[unit][output]") {
-  OutImage o(4, 1);
+  OutImage o(5, 1);
   o.at(0, 0) = make_out_word(true, 200, 16 * 5 + 3);
   o.at(1, 0) = make_out_word(false, 0, 0, kFailOcc | kFailLr);
   o.at(2, 0) = make_out_word(false, 0, 0, kFailBorder);
   o.at(3, 0) = make_out_word(false, 0, 0, kFailAgree | kFailLr);
+  o.at(4, 0) = kOutSpeckle;  // cleared by the speckle stage (9.8)
   const tools::FailCounts c = tools::fail_counts(o);
-  CHECK(c.pixels == 4);
-  CHECK(c.invalid == 3);
-  CHECK(std::vector<long>(c.by_rule, c.by_rule + 6) == std::vector<long>{1, 1, 0, 1, 0, 2});
-  CHECK(tools::fail_counts_line(c) == "3 of 4 pixels invalid: occlusion 1, border 1, agreement 1, left_right 2");
+  CHECK(c.pixels == 5);
+  CHECK(c.invalid == 4);
+  CHECK(std::vector<long>(c.by_rule, c.by_rule + 7) == std::vector<long>{1, 1, 0, 1, 0, 2, 1});
+  CHECK(tools::fail_counts_line(c) ==
+        "4 of 5 pixels invalid: occlusion 1, border 1, agreement 1, left_right 2, speckle 1");
   const cv::Mat f = tools::out_to_float(o);
   CHECK(f.at<float>(0, 0) == 5.1875f);
   CHECK(f.at<float>(0, 1) == tools::kNoMatchDisp);  // occluded: no match exists

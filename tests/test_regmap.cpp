@@ -188,14 +188,32 @@ TEST_CASE("HwConfig defaults are sm_top's parameter defaults", "[regmap]") {
   CHECK(p == sm::HwConfig{}.parameters());
 }
 
+TEST_CASE("verilated_config reads every sm_top parameter a build may override", "[regmap]") {
+  // sim/sm_vconfig.hpp is a list by hand: a parameter missing there would give the
+  // harness the default while the Verilated RTL has the override.
+  const std::string text = sm::test::slurp(SM_RTL_DIR "/../sim/sm_vconfig.hpp");
+  REQUIRE(!text.empty());
+  for (const auto& [name, value] : sm::HwConfig{}.parameters()) {
+    INFO(name);
+    CHECK(text.find("#ifdef SM_P_" + name + "\n") != std::string::npos);
+    CHECK(text.find(" = SM_P_" + name + ";") != std::string::npos);
+  }
+}
+
 TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
   // sm_top's FLUSH_ROWS (its g_bad_flush check) as HwConfig::flush_rows(); validate()
   // rejects the combinations sm_top rejects.
   const std::string text = sm::test::slurp(SM_RTL_DIR "/sm_top.v");
   REQUIRE(!text.empty());
-  CHECK(text.find("localparam FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 + 2 +\n"
-                  "                          (DISP / 2 + 64 + 1 + 7 + 15) / 16 + 1;") != std::string::npos);
-  CHECK(text.find("`SM_BAD_PARAM(g_bad_flush, FLUSH_ROWS >= 64,") != std::string::npos);
+  CHECK(text.find("localparam BASE_FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 + "
+                  "2 +\n"
+                  "                               (DISP / 2 + 64 + 1 + 7 + 15) / 16 + 1;") != std::string::npos);
+  CHECK(
+      text.find("localparam FLUSH_ROWS = BASE_FLUSH_ROWS + ((SPECKLE_ROWS > 0) ? SPECKLE_ROWS + (`SM_SPECKLE_SLACK + 1 "
+                "+ 15) / 16 : 0);") != std::string::npos);
+  CHECK(text.find("localparam MIN_HEIGHT = (FLUSH_ROWS / 4 + 1 > 16) ? FLUSH_ROWS / 4 + 1 : 16;") != std::string::npos);
+  CHECK(text.find("`SM_BAD_PARAM(g_bad_flush, BASE_FLUSH_ROWS >= 64,") != std::string::npos);
+  CHECK(text.find("`SM_BAD_PARAM(g_bad_min_height, MIN_HEIGHT > MAX_HEIGHT,") != std::string::npos);
   sm::HwConfig hw;
   CHECK(hw.flush_rows() == 55);  // paper configuration: 9 rows of margin
   CHECK_NOTHROW(hw.validate());
@@ -211,4 +229,18 @@ TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
   hw.rect_radius = 18;
   hw.band_k = 16;  // 68 rows
   CHECK_THROWS_AS(hw.validate(), std::invalid_argument);
+  // The speckle stage's rows (and two for its queue) lengthen the pipeline; the shortest
+  // frame grows instead, so four frames still outlast it.
+  sm::HwConfig zynq;
+  zynq.pu = 8;
+  zynq.speckle_rows = 32;
+  CHECK(zynq.base_flush_rows() == 55);
+  CHECK(zynq.flush_rows() == 89);
+  CHECK(zynq.min_height() == 23);
+  CHECK(4 * zynq.min_height() > zynq.flush_rows());
+  CHECK(!zynq.pixel_rules());
+  CHECK(sm::HwConfig{}.min_height() == 16);
+  CHECK_NOTHROW(zynq.validate());
+  zynq.max_height = 22;
+  CHECK_THROWS_AS(zynq.validate(), std::invalid_argument);
 }

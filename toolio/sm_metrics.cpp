@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "speckle.hpp"
 #include "validity.hpp"
 
 namespace sm::tools {
@@ -90,7 +91,8 @@ FailCounts fail_counts(const OutImage& o) {
   for (const uint32_t w : o.px) {
     if (out_valid(w)) continue;
     ++c.invalid;
-    for (int k = 0; k < FailCounts::kN; ++k) c.by_rule[k] += out_fails(w) >> k & 1u;
+    const unsigned f = out_fails(w) | ((w & kOutSpeckle) ? 1u << 6 : 0u);
+    for (int k = 0; k < FailCounts::kN; ++k) c.by_rule[k] += f >> k & 1u;
   }
   return c;
 }

@@ -47,10 +47,12 @@ cv::Mat out_to_float(const OutImage& o);
 cv::Mat out_to_conf(const OutImage& o);
 
 // Invalid words of a frame and, per validity rule, how many of them it cleared (a pixel
-// may fail several): the rules in the order of their bits in the word (docs/algorithm.md 9.4).
+// may fail several): the rules in the order of their bits in the word (docs/algorithm.md
+// 9.4), bits 29:24, then the speckle stage's bit 30 (9.8).
 struct FailCounts {
-  static constexpr int kN = 6;  // the word's fails[5:0]
-  static constexpr const char* kRules[kN] = {"occlusion", "border", "uniqueness", "agreement", "texture", "left_right"};
+  static constexpr int kN = 7;
+  static constexpr const char* kRules[kN] = {"occlusion", "border",     "uniqueness", "agreement",
+                                             "texture",   "left_right", "speckle"};
   long pixels = 0, invalid = 0;
   long by_rule[kN] = {};
 };
