@@ -161,6 +161,14 @@ struct Regs : RegValues {
   static Regs defaults(const HwConfig& hw);
 };
 
+// The registers whose reset depends on the configuration beyond the active size (LR_EN and
+// AGREE_EN, rtl/regmap.json's PIXEL_RULES: off where the speckle stage is built), set to
+// their reset at hw: for a tool that changes the configuration after Regs::defaults.
+inline void set_config_resets(const HwConfig& hw, Regs& r) {
+  r.lr_en = hw.pixel_rules();
+  r.agree_en = hw.pixel_rules();
+}
+
 // Word `half` (0 or 1) of the SW_TABLE0/SW_TABLE1 registers: the 16 two-bit codes
 // sw_table[16 * half + k] in bits 2k+1:2k (the one packing of the table in C++).
 uint32_t sw_table_word(const Regs& r, int half);

@@ -21,6 +21,7 @@
 #include "toolio/sm_scenegen.hpp"
 #include "outword.hpp"
 #include "smooth.hpp"
+#include "speckle.hpp"
 #include "pipeline.hpp"
 #include "sm_chessboard_rig.hpp"
 #include "sm_cmd.hpp"
@@ -173,6 +174,8 @@ TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {
   expect_error(run(SM_EVALUATE_EXE, (fx.dir / "nowhere").string() + j), "nowhere: not a directory");
   expect_error(run(SM_EVALUATE_EXE, fx.in.string() + j), "no scenes");
   expect_error(run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --scenes tsukuba" + j), "no scene 'tsukuba'");
+  expect_error(run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --speckle-rows 63" + j),
+               "--speckle-rows: 63: outside 0..62");
   // A scene with a truncated ground truth / mismatched right image.
   const fs::path broken = fx.dir / "broken" / "s";
   fs::create_directories(broken);
@@ -490,6 +493,28 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
     const Run on = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle 20 --disp-file " + f.string());
     CHECK(on.rc == 0);
     CHECK(on.err.find("--speckle was measured with --lr-en 0 --agree-en 0 --smooth-en 0") != std::string::npos);
+  }
+  SECTION("--speckle-rows: the IP's speckle stage (9.8), with LR_EN and AGREE_EN off by default") {
+    // the words before the smoothing, the stage at 4 rows (size 20), then the smoothing
+    auto stage = [&](bool rules) {
+      sm::OutputRegs o;
+      o.lr_en = o.agree_en = rules;
+      const sm::OutImage words = sm::make_output(res.evidence, res.post, 16, o, 0);
+      return sm::smooth_output(sm::speckle_output(words, {1, 20, 8}, 4, 1024), o.smooth_en, o.smooth_t);
+    };
+    const fs::path f = out / "stage.pfm";
+    const Run r =
+        run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --speckle-size 20 --disp-file " + f.string());
+    INFO(r.err);
+    REQUIRE(r.rc == 0);
+    const sm::OutImage want = stage(false);
+    CHECK(sm::tools::fail_counts(want).by_rule[6] > 0);  // the fixture's pair has speckles of at most 20 px
+    check_pfm(f, sm::tools::out_to_float(want));
+    // an explicit register wins over the configuration's reset
+    const Run on = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --speckle-size 20 --lr-en 1 " +
+                                                "--agree-en 1 --disp-file " + f.string());
+    REQUIRE(on.rc == 0);
+    check_pfm(f, sm::tools::out_to_float(stage(true)));
   }
   SECTION("bad requests leave no output at all") {
     expect_error(run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.txt").string()), ".pfm or .png");
