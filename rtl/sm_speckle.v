@@ -52,7 +52,7 @@ module sm_speckle #(
   localparam AW    = $clog2(DEPTH);
   localparam SLW   = $clog2(NSLOT);
   localparam LB    = $clog2(LABELS);               // a label
-  localparam LW    = $clog2(LABELS + 2);           // a code: label, NONE or KEEP
+  localparam LW    = LB + 1;                       // a code: {0, label}, NONE or KEEP
   localparam RW    = $clog2(ROWS + 2);             // row and frame numbers modulo 2^RW > ROWS + 1
   localparam RKW   = 4;                            // rank, saturating (bounds a find, never decides)
   localparam SZW   = 13;                           // region size, saturating at 8191
@@ -149,17 +149,11 @@ module sm_speckle #(
   reg  [MW-1:0] meta [0:NSLOT-1];
   wire sol = q_side[`SM_SIDE_SOL], sof = q_side[`SM_SIDE_SOF];
 
-  // x and labels widened (the widths may be equal: no zero-width replication)
+  // x widened to an address (the widths may be equal: no zero-width replication)
   function automatic [AW-1:0] addr_of(input [XW-1:0] x);
     begin
       addr_of = {AW{1'b0}};
       addr_of[XW-1:0] = x;
-    end
-  endfunction
-  function automatic [LW-1:0] code_of(input [LB-1:0] l);
-    begin
-      code_of = {LW{1'b0}};
-      code_of[LB-1:0] = l;
     end
   endfunction
 
@@ -416,7 +410,7 @@ module sm_speckle #(
         if (e_parent == node_q) begin
           ru_q    <= node_q;
           ent_u_q <= t_rdata;
-          code_q  <= code_of(node_q);
+          code_q  <= {1'b0, node_q};
           ent_r_q <= t_rdata;
           both_q  <= left_lab && left_code_q[LB-1:0] != node_q;
         end else begin
@@ -424,7 +418,7 @@ module sm_speckle #(
         end
       S_GOTL:
         if (both_q) begin
-          code_q  <= code_of(lab_a);
+          code_q  <= {1'b0, lab_a};
           ent_r_q <= {lab_a, (rank_a == rank_b && rank_a != RK_MAX) ? rank_a + 1'b1 : rank_a,
                       size_ab[SZW] ? SZ_MAX : size_ab[SZW-1:0], ent_a[RFW +: RW], ent_a[0 +: RFW] + 1'b1};
         end else begin
@@ -433,7 +427,7 @@ module sm_speckle #(
       S_NEW:
         if (keep_q || (fresh_q == NONE && f_count_q == {LW{1'b0}})) code_q <= KEEP;
         else if (fresh_q != NONE) code_q <= fresh_q;
-      S_POP: code_q <= code_of(f_rdata);
+      S_POP: code_q <= {1'b0, f_rdata};
       S_STORE: begin
         if (in_ok) begin
           left_word_q <= {in_word_q[31], in_word_q[15:0]};
