@@ -314,7 +314,7 @@ module sm_speckle #(
       S_NEW: f_re = 1'b1;
       S_POP: ;
       S_STORE: begin
-        w_we = in_ok;
+        w_we = 1'b1;
         t_re = 1'b1;
         t_raddr = dec_code_q[LB-1:0];
       end
@@ -428,11 +428,9 @@ module sm_speckle #(
         if (keep_q || (fresh_q == NONE && f_count_q == {LW{1'b0}})) code_q <= KEEP;
         else if (fresh_q != NONE) code_q <= fresh_q;
       S_POP: code_q <= {1'b0, f_rdata};
-      S_STORE: begin
-        if (in_ok) begin
-          left_word_q <= {in_word_q[31], in_word_q[15:0]};
-          left_code_q <= code_q;
-        end
+      S_STORE: begin  // (reached only with in_ok)
+        left_word_q <= {in_word_q[31], in_word_q[15:0]};
+        left_code_q <= code_q;
         res_word_q <= dec_word_q;
         ended_q    <= !in_real_q || dmeta[12 +: RW] != fid_q;
         den_q      <= dmeta[MW-2];

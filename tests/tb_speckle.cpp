@@ -2,11 +2,12 @@
 // SpeckleStage, beat by beat: frames of surfaces with islands of every size, invalid
 // pixels and words anywhere, at odd widths; binary combs for the longest finds; frames
 // shorter than ROWS (several frames in the held rows), back to back or with 0..ROWS + 2
-// virtual rows between them; the registers per frame (off, 0, the greatest, ...) and
-// garbage on them between frames, as on every idle beat; random ce gaps, and ce held
-// while the labeller is SLACK beats behind. Every output beat's sideband and word are
-// checked (the first SLACK empty), the real ones' order too, and the run must clear
-// speckles and (small tables) label KEEP pixels, or the bench has tested nothing.
+// virtual rows between them, after beats of no row (the fill after reset); the registers
+// per frame (off, 0, the greatest, ...) and garbage on them between frames, as on every
+// idle beat; random ce gaps, and ce held while the labeller is SLACK beats behind. Every
+// output beat's sideband and word are checked (the first SLACK empty), the real ones'
+// order too, and the run must clear speckles and (small tables) label KEEP pixels, or the
+// bench has tested nothing.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -105,6 +106,9 @@ int main(int argc, char** argv) {
         for (int x = 0; x < w; ++x)
           sched.push_back({static_cast<uint8_t>(x == 0 ? kSol : 0), static_cast<uint32_t>(rng())});
     };
+    // after reset the pipeline's fill: beats of no row (no sol) before the first row starts
+    if (taken == 0)
+      for (int i = 0; i < 5; ++i) sched.push_back({0, static_cast<uint32_t>(rng())});
     for (int f = 0; f < frames; ++f) {
       // tall frames, a row, two rows, frames shorter than the held rows
       const int fh = f % 3 == 0 ? h : f % 3 == 1 ? 1 + f % 2 : std::max(1, std::min(h, kRows / 2 + 1));
