@@ -108,9 +108,7 @@ struct HwConfig {
   // Shortest active frame: 16, or more when the pipeline is deeper than four 16-row
   // frames (the speckle stage): the 4-frame parameter history must outlast the pipeline.
   int min_height() const { return flush_rows() / 4 + 1 > 16 ? flush_rows() / 4 + 1 : 16; }
-  // The per-pixel left-right and agreement rules' reset (LR_EN, AGREE_EN): on, unless the
-  // speckle stage is built, which replaces them (docs/evaluation.md, "Speckles").
-  bool pixel_rules() const { return speckle_rows == 0; }
+
   // Throws std::invalid_argument on an illegal combination: every parameter inside its
   // range of defs::kLimits (rtl/defs.json, the ranges sm_top checks at elaboration), then
   // the rules between parameters.
@@ -161,12 +159,12 @@ struct Regs : RegValues {
   static Regs defaults(const HwConfig& hw);
 };
 
-// The registers whose reset depends on the configuration beyond the active size (LR_EN and
-// AGREE_EN, rtl/regmap.json's PIXEL_RULES: off where the speckle stage is built), set to
-// their reset at hw: for a tool that changes the configuration after Regs::defaults.
-inline void set_config_resets(const HwConfig& hw, Regs& r) {
-  r.lr_en = hw.pixel_rules();
-  r.agree_en = hw.pixel_rules();
+// The speckle mode (docs/algorithm.md 9.8): the stage on and the left-right and agreement
+// rules, which it replaces, off -- the registers of the checked mode measured with it.
+inline void speckle_mode(Regs& r) {
+  r.speckle_en = true;
+  r.lr_en = false;
+  r.agree_en = false;
 }
 
 // Word `half` (0 or 1) of the SW_TABLE0/SW_TABLE1 registers: the 16 two-bit codes

@@ -91,8 +91,6 @@ module sm_axil_regs #(
   // Narrowest active line the pipeline supports (HwConfig::min_width, the WIDTH minimum
   // of the generated map): the DP needs DISP/2 + 3 columns (sm_dp.v), every window 16.
   localparam integer MIN_WIDTH = (DISP / 2 + 3 > 16) ? DISP / 2 + 3 : 16;
-  // LR_EN and AGREE_EN reset on, unless the speckle stage replaces them (HwConfig::pixel_rules).
-  localparam integer PIXEL_RULES = (SPECKLE_ROWS == 0) ? 1 : 0;
   /* verilator lint_off UNUSEDPARAM */  // the generated map holds every field's constants
   // The older Verilator (5.006) calls the tables' 32-bit typed elements unsized when
   // their value comes from an unsized expression; the newer one does not.

@@ -238,7 +238,6 @@ TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
   CHECK(zynq.flush_rows() == 89);
   CHECK(zynq.min_height() == 23);
   CHECK(4 * zynq.min_height() > zynq.flush_rows());
-  CHECK(!zynq.pixel_rules());
   CHECK(sm::HwConfig{}.min_height() == 16);
   CHECK_NOTHROW(zynq.validate());
   zynq.max_height = 22;

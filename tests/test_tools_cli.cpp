@@ -494,7 +494,7 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
     CHECK(on.rc == 0);
     CHECK(on.err.find("--speckle was measured with --lr-en 0 --agree-en 0 --smooth-en 0") != std::string::npos);
   }
-  SECTION("--speckle-rows: the IP's speckle stage (9.8), with LR_EN and AGREE_EN off by default") {
+  SECTION("--speckle-rows: the IP's speckle stage (9.8); SPECKLE_EN is off by default") {
     // the words before the smoothing, the stage at 4 rows (size 20), then the smoothing
     auto stage = [&](bool rules) {
       sm::OutputRegs o;
@@ -503,18 +503,24 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
       return sm::smooth_output(sm::speckle_output(words, {1, 20, 8}, 4, 1024), o.smooth_en, o.smooth_t);
     };
     const fs::path f = out / "stage.pfm";
-    const Run r =
-        run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --speckle-size 20 --disp-file " + f.string());
+    // the speckle mode: the stage on, the left-right and agreement rules off
+    const Run r = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --speckle-en 1 --speckle-size 20 " +
+                                               "--lr-en 0 --agree-en 0 --disp-file " + f.string());
     INFO(r.err);
     REQUIRE(r.rc == 0);
     const sm::OutImage want = stage(false);
     CHECK(sm::tools::fail_counts(want).by_rule[6] > 0);  // the fixture's pair has speckles of at most 20 px
     check_pfm(f, sm::tools::out_to_float(want));
-    // an explicit register wins over the configuration's reset
-    const Run on = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --speckle-size 20 --lr-en 1 " +
-                                                "--agree-en 1 --disp-file " + f.string());
+    // the stage on, the rules at their defaults (on)
+    const Run on =
+        run(SM_STEREO_MODEL_EXE,
+            lr + " --mode checked --speckle-rows 4 --speckle-en 1 --speckle-size 20 --disp-file " + f.string());
     REQUIRE(on.rc == 0);
     check_pfm(f, sm::tools::out_to_float(stage(true)));
+    // built but off (the reset): the words of the core without it
+    const Run off = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --disp-file " + f.string());
+    REQUIRE(off.rc == 0);
+    check_pfm(f, sm::tools::out_to_float(sm::stream_words(res.evidence, res.post, 16, sm::OutputRegs{})));
   }
   SECTION("bad requests leave no output at all") {
     expect_error(run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.txt").string()), ".pfm or .png");
