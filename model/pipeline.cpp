@@ -233,6 +233,8 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   t = clock::now();
   r.post = post_process(r.dp, regs, hw, &r.post_steps, threads);
   lap("post");
+  // (the banded path labels objects while the words are made; the speckle stage, which the
+  // labeller reads after, needs the frame's words first)
   if (band_count(h, threads) == 1 || hw.speckle_rows > 0) {
     r.out = speckle_words(make_output(r.evidence, r.post, nd, output_regs(regs), 0, threads), regs, hw);
     lap("output");

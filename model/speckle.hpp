@@ -33,11 +33,12 @@ namespace sm {
 constexpr uint32_t kOutSpeckle = 0x40000000u;  // invalid word's bit 30: cleared as a speckle
 constexpr unsigned kSpeckleSizeMax = 8191;     // region sizes saturate here (13 bits)
 
-// The stage's registers (SPECKLE_CTRL), latched at a frame's first beat.
+// The stage's registers (SPECKLE_EN, SPECKLE_SIZE, SPECKLE_DIFF), latched at a frame's
+// first beat; the defaults are their reset values (rtl/regmap.json).
 struct SpeckleRegs {
-  uint8_t en = 1;        // 0: every word leaves as it came (ROWS rows later)
-  uint16_t size = 1000;  // regions of at most size pixels are speckles (0..4095)
-  uint8_t diff = 8;      // Q.4 step between 4-neighbours that still joins them (1/2 pixel)
+  uint8_t en = RegValues{}.speckle_en;       // 0: every word leaves as it came (ROWS rows later)
+  uint16_t size = RegValues{}.speckle_size;  // regions of at most size pixels are speckles (0..4095)
+  uint8_t diff = RegValues{}.speckle_diff;   // Q.4 step between 4-neighbours that still joins them
 };
 
 struct SpeckleStats {

@@ -202,7 +202,7 @@ SpeckleCheck ideal_check(int max_size, int max_diff, int delay_rows) {
 }
 
 // The stream's words under the rules of r with speckles made invalid by `check`.
-OutImage speckle_words(const Frame& f, const OutputRegs& r, const SpeckleCheck& check, SpeckleAt at) {
+OutImage study_words(const Frame& f, const OutputRegs& r, const SpeckleCheck& check, SpeckleAt at) {
   OutImage words = make_output(f.ev, f.post, f.levels, r, 0);
   auto apply = [&](OutImage& o) {
     if (!check) return;
@@ -219,7 +219,7 @@ OutImage speckle_words(const Frame& f, const OutputRegs& r, const SpeckleCheck& 
 
 Row score_speckle(const std::vector<Frame>& fr, const OutputRegs& r, const SpeckleCheck& check, SpeckleAt at) {
   Row m;
-  for (const auto& f : fr) add_frame(m, disp_metrics(out_to_float(speckle_words(f, r, check, at)), f.gt, f.mask));
+  for (const auto& f : fr) add_frame(m, disp_metrics(out_to_float(study_words(f, r, check, at)), f.gt, f.mask));
   const double n = static_cast<double>(fr.size());
   for (double* v : {&m.b05, &m.b1, &m.b2, &m.mae, &m.dens, &m.b1v}) *v /= n;
   return m;

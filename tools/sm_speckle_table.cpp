@@ -14,6 +14,7 @@ cv::Mat speckle_keep_table(const cv::Mat& q4, int max_size, int max_diff, int de
       words.at(x, y) = make_out_word(v >= 0, 0, static_cast<unsigned>(v >= 0 ? v : 0));
     }
   SpeckleRegs regs;
+  regs.en = 1;
   regs.size = static_cast<uint16_t>(max_size);
   regs.diff = static_cast<uint8_t>(max_diff);
   const OutImage out = speckle_output(words, regs, delay_rows, labels, stats);
