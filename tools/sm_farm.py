@@ -93,6 +93,15 @@ def no_retry(fn):
     return task
 
 
+def quiet_dask_logs():
+    """Dask's own log lines off for the whole run: the tool reports a failure in one line
+    of its own. LocalCluster's silence_logs lowers the handlers only while the cluster
+    starts and restores them when it closes, so a comm that a killed task left closing
+    could still print an INFO line and its traceback after the error line (seen in CI)."""
+    for name in ["distributed"] + [n for n in logging.root.manager.loggerDict if n.startswith("distributed.")]:
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+
+
 def make_client(opts):
     """A client of the --scheduler cluster or of a new LocalCluster (docs/farm.md). The
     LocalCluster's workers are threads of this process unless --worker-processes: a task
@@ -104,6 +113,8 @@ def make_client(opts):
     sys.modules.setdefault("numpy", None)
     import dask
     from distributed import Client, LocalCluster
+
+    quiet_dask_logs()
 
     if opts.scheduler:
         return Client(opts.scheduler), None
