@@ -20,6 +20,9 @@ uint8_t row_mask(int rows) {
 
 constexpr uint8_t kRankMax = 15;  // ranks saturate (4 bits): a find's bound, not its result
 
+// Sizes and counts of failing pixels saturate at kSpeckleSizeMax (13 bits).
+uint16_t sat_add(uint16_t a, unsigned b) { return static_cast<uint16_t>(std::min<unsigned>(kSpeckleSizeMax, a + b)); }
+
 bool near(uint32_t a, uint32_t b, unsigned diff) {
   return out_valid(a) && out_valid(b) &&
          static_cast<unsigned>(std::abs(static_cast<int>(out_q4(a)) - static_cast<int>(out_q4(b)))) <= diff;
@@ -39,6 +42,7 @@ SpeckleStage::SpeckleStage(int max_width, int rows, int labels)
       meta_(static_cast<size_t>(rows + 1)),
       parent_(static_cast<size_t>(labels)),
       size_(parent_.size()),
+      bad_(parent_.size()),
       refs_(parent_.size()),
       fifo_(parent_.size()),
       rank_(parent_.size()),
@@ -56,6 +60,7 @@ void SpeckleStage::start_row(uint8_t side, const SpeckleRegs& regs) {
     fid_ = static_cast<uint8_t>((fid_ + 1) & row_mask_);
     en_ = regs.en;
     size_reg_ = regs.size;
+    trust_reg_ = regs.trust;
     diff_ = regs.diff;
   }
   meta_[static_cast<size_t>(slot_)] = {(side & defs::kSideReal) != 0,
@@ -63,7 +68,8 @@ void SpeckleStage::start_row(uint8_t side, const SpeckleRegs& regs) {
                                        en_ != 0,
                                        static_cast<uint8_t>(side >> defs::kSideTagLsb & 3),
                                        fid_,
-                                       size_reg_};
+                                       size_reg_,
+                                       trust_reg_};
   x_ = 0;
   started_ = true;
 }
@@ -75,14 +81,15 @@ uint16_t SpeckleStage::find(uint16_t l) {
   return l;
 }
 
-void SpeckleStage::add_pixel(uint16_t r) {
-  size_[r] = static_cast<uint16_t>(std::min<unsigned>(kSpeckleSizeMax, size_[r] + 1u));
+void SpeckleStage::add_pixel(uint16_t r, bool lr_bad) {
+  size_[r] = sat_add(size_[r], 1);
+  bad_[r] = sat_add(bad_[r], lr_bad);
   last_[r] = row_;
   ++refs_[r];
 }
 
 // A new region of one pixel; keep_ when no label is free.
-uint16_t SpeckleStage::take_label() {
+uint16_t SpeckleStage::take_label(bool lr_bad) {
   uint16_t n = 0;
   if (fresh_ < labels_) {
     n = fresh_++;
@@ -96,8 +103,9 @@ uint16_t SpeckleStage::take_label() {
   parent_[n] = n;
   rank_[n] = 0;
   size_[n] = 0;
+  bad_[n] = 0;
   refs_[n] = 0;
-  add_pixel(n);
+  add_pixel(n, lr_bad);
   stats_.peak_labels = std::max(stats_.peak_labels, ++in_use_);
   return n;
 }
@@ -108,7 +116,8 @@ uint16_t SpeckleStage::merge(uint16_t a, uint16_t b) {
   if (rank_[a] == rank_[b] && rank_[a] < kRankMax) ++rank_[a];
   parent_[b] = a;
   ++refs_[a];
-  size_[a] = static_cast<uint16_t>(std::min<unsigned>(kSpeckleSizeMax, size_[a] + size_[b]));
+  size_[a] = sat_add(size_[a], size_[b]);
+  bad_[a] = sat_add(bad_[a], bad_[b]);
   return a;
 }
 
@@ -136,8 +145,9 @@ uint16_t SpeckleStage::label(uint32_t word, bool real) {
   const uint16_t ru = up < labels_ ? find(up) : none_;
   uint16_t r = ru != none_ ? ru : left < labels_ ? left : none_;
   if (ru != none_ && left < labels_ && ru != left) r = merge(ru, left);
-  if (r == none_) return keep ? keep_ : take_label();
-  add_pixel(r);
+  const bool lr_bad = (out_conf(word) & 0x80u) == 0;  // confidence bit 7: |lr - d| <= 1
+  if (r == none_) return keep ? keep_ : take_label(lr_bad);
+  add_pixel(r, lr_bad);
   if (keep) size_[r] = kSpeckleSizeMax;
   return r;
 }
@@ -150,6 +160,10 @@ uint32_t SpeckleStage::verdict(uint16_t code, uint32_t word, const RowMeta& m, b
   if (!kept) {
     const uint16_t r = find(code);
     kept = (!ended && ((row_ - last_[r]) & row_mask_) <= 1) || size_[r] > m.size;
+    if (!kept && size_[r] > m.trust && (static_cast<unsigned>(bad_[r]) << kSpeckleTrustShift) < size_[r]) {
+      kept = true;
+      stats_.trusted += m.en;
+    }
     release(code);
   }
   return kept || !m.en ? word : kOutSpeckle;

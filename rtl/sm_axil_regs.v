@@ -78,7 +78,7 @@ module sm_axil_regs #(
     // SUBPIX_FIT, SUBPIX}
     output wire [48:0]       cfg_out,
     output wire [6:0]        cfg_smooth,      // {SMOOTH_T, SMOOTH_EN}
-    output wire [20:0]       cfg_speckle,     // {SPECKLE_DIFF, SPECKLE_SIZE, SPECKLE_EN}
+    output wire [32:0]       cfg_speckle,     // {SPECKLE_TRUST, SPECKLE_DIFF, SPECKLE_SIZE, SPECKLE_EN}
     /* verilator coverage_on */
     // object list read port: obj_rd_data is sampled two clocks after obj_rd_idx changes
     output reg  [OIW-1:0]    obj_rd_idx,
@@ -178,8 +178,8 @@ module sm_axil_regs #(
                     shadow_q[SM_FILL_BG_VALUE_SOFF], shadow_q[SM_OCC_EN_VALUE_SOFF],
                     shadow_q[SM_SUBPIX_FIT_VALUE_SOFF], shadow_q[SM_SUBPIX_VALUE_SOFF +: 2]};
   assign cfg_smooth = {shadow_q[SM_SMOOTH_T_VALUE_SOFF +: 6], shadow_q[SM_SMOOTH_EN_VALUE_SOFF]};
-  assign cfg_speckle = {shadow_q[SM_SPECKLE_DIFF_VALUE_SOFF +: 8], shadow_q[SM_SPECKLE_SIZE_VALUE_SOFF +: 12],
-                        shadow_q[SM_SPECKLE_EN_VALUE_SOFF]};
+  assign cfg_speckle = {shadow_q[SM_SPECKLE_TRUST_VALUE_SOFF +: 12], shadow_q[SM_SPECKLE_DIFF_VALUE_SOFF +: 8],
+                        shadow_q[SM_SPECKLE_SIZE_VALUE_SOFF +: 12], shadow_q[SM_SPECKLE_EN_VALUE_SOFF]};
 
   // ---- address decoding (the byte-lane bits a[1:0] are ignored by design)
   /* verilator lint_off UNUSEDSIGNAL */

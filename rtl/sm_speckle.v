@@ -18,7 +18,9 @@
 // Verdict, after the entering pixel is labelled: the pixel ROWS rows above leaves kept if
 // its root was reached on the entering row or the one above (the region may still grow)
 // unless its frame has ended (virtual or next frame's beat entering), or if its region
-// holds more than size pixels.
+// holds more than size pixels, or if it holds more than trust pixels of which fewer than
+// 1/16 fail the left-right check (confidence bit 7 clear): a small object both views
+// agree on, which a robot must not lose, rather than a mismatch island.
 //
 // Timing: a beat takes 10 clocks plus the pointers its two finds follow (4 at most on the
 // 14 scenes at 1,024 labels), so the block suits the folded configurations (16 clocks a
@@ -38,9 +40,10 @@ module sm_speckle #(
     input  wire                  rst_n,
     input  wire                  ce,
     output wire                  ready,   // the output beat of the next ce is decided: ce may come
-    input  wire                  en,      // en, size, diff: latched at a frame's first beat;
-    input  wire [11:0]           size,    // en 0 passes every word (ROWS rows later)
+    input  wire                  en,      // en, size, diff, trust: latched at a frame's first
+    input  wire [11:0]           size,    // beat; en 0 passes every word (ROWS rows later)
     input  wire [7:0]            diff,
+    input  wire [11:0]           trust,
     input  wire [`SM_SIDE_W-1:0] s_side,
     input  wire [31:0]           s_word,  // {1, 7'b0, confidence, Q.4} or {0, 0, fails, 24'b0}
     output reg  [`SM_SIDE_W-1:0] m_side,
@@ -55,10 +58,16 @@ module sm_speckle #(
   localparam LW    = LB + 1;                       // a code: {0, label}, NONE or KEEP
   localparam RW    = $clog2(ROWS + 2);             // row and frame numbers modulo 2^RW > ROWS + 1
   localparam RKW   = 4;                            // rank, saturating (bounds a find, never decides)
-  localparam SZW   = 13;                           // region size, saturating at 8191
+  localparam SZW   = 13;                           // region size and its pixels failing left-right,
+                                                   // saturating at 8191
   localparam RFW   = $clog2(DEPTH + LABELS + 1);   // references: pixels held and labels pointing
-  localparam EW    = LB + RKW + SZW + RW + RFW;    // table entry {parent, rank, size, last, refs}
-  localparam MW    = 1 + 1 + 2 + RW + 12;          // row meta {sof, en, tag, fid, size}
+  // table entry {parent, rank, size, bad, last, refs}: the fields' lsbs
+  localparam LA_L  = RFW;
+  localparam BD_L  = LA_L + RW;
+  localparam SZ_L  = BD_L + SZW;
+  localparam RK_L  = SZ_L + SZW;
+  localparam EW    = RK_L + RKW + LB;
+  localparam MW    = 1 + 1 + 2 + RW + 12 + 12;     // row meta {sof, en, tag, fid, trust, size}
   localparam [LW-1:0] NONE = LABELS[LW-1:0];
   localparam [LW-1:0] KEEP = NONE + 1'b1;
   localparam [SZW-1:0] SZ_MAX = {SZW{1'b1}};
@@ -86,22 +95,23 @@ module sm_speckle #(
   // Entering + being labelled + decided + prefill = SLACK at every ce, so neither queue
   // overflows; the prefill stands for the beats the labeller is ahead of at reset.
   localparam QW = $clog2(SLACK);
-  reg  [21+`SM_SIDE_W+31:0] q_in [0:SLACK-1];  // {en, size, diff, side, word}
+  reg  [33+`SM_SIDE_W+31:0] q_in [0:SLACK-1];  // {en, trust, size, diff, side, word}
   reg  [`SM_SIDE_W+31:0] q_out [0:SLACK-1];
   reg  [QW-1:0] in_wp_q, in_rp_q, out_wp_q, out_rp_q;
   reg  [QW:0]   in_n_q, out_n_q, fill_q;
   reg           done_q;  // the beat just decided waits in res_*_q for the output queue
   assign ready = fill_q != {(QW + 1){1'b0}} || out_n_q != {(QW + 1){1'b0}};
   wire take = ce && ready;
-  wire [21+`SM_SIDE_W+31:0] q_head = q_in[in_rp_q];
+  wire [33+`SM_SIDE_W+31:0] q_head = q_in[in_rp_q];
   wire [`SM_SIDE_W-1:0] q_side = q_head[`SM_SIDE_W+31:32];
   wire [31:0]           q_word = q_head[31:0];
-  wire                  en_in = q_head[20+`SM_SIDE_W+32];
+  wire                  en_in = q_head[32+`SM_SIDE_W+32];
+  wire [11:0]           trust_in = q_head[20+`SM_SIDE_W+32 +: 12];
   wire [11:0]           size_in = q_head[8+`SM_SIDE_W+32 +: 12];
   wire [7:0]            diff_in = q_head[`SM_SIDE_W+32 +: 8];
   assign pop = state_q == S_IDLE && in_n_q != {(QW + 1){1'b0}};
   always @(posedge clk) begin
-    if (take) q_in[in_wp_q] <= {en, size, diff, s_side, s_word};
+    if (take) q_in[in_wp_q] <= {en, trust, size, diff, s_side, s_word};
     if (done_q) q_out[out_wp_q] <= {res_side_q, res_word_q};
   end
   always @(posedge clk) begin
@@ -143,7 +153,7 @@ module sm_speckle #(
   reg  [SLW-1:0] slot_cur_q, slot_dec_q;
   reg  [RW-1:0] row_q, fid_q;
   reg           en_q, cur_sof_q;
-  reg  [11:0]   size_q;
+  reg  [11:0]   size_q, trust_q;
   reg  [7:0]    diff_q;
   reg  [NSLOT-1:0] real_q;    // the held rows that belong to a frame
   reg  [MW-1:0] meta [0:NSLOT-1];
@@ -207,12 +217,13 @@ module sm_speckle #(
       if (sol) cur_sof_q <= sof;
       if (sol && sof) begin
         en_q   <= en_in;
-        size_q <= size_in;
-        diff_q <= diff_in;
+        size_q  <= size_in;
+        trust_q <= trust_in;
+        diff_q  <= diff_in;
       end
       if (sol)
-        meta[next_slot(slot_cur_q)] <= sof ? {sof, en_in, q_side[`SM_SIDE_TAG], fid_q + 1'b1, size_in}
-                                           : {1'b0, en_q, q_side[`SM_SIDE_TAG], fid_q, size_q};
+        meta[next_slot(slot_cur_q)] <= sof ? {sof, en_in, q_side[`SM_SIDE_TAG], fid_q + 1'b1, trust_in, size_in}
+                                           : {1'b0, en_q, q_side[`SM_SIDE_TAG], fid_q, trust_q, size_q};
     end
   end
 
@@ -221,7 +232,7 @@ module sm_speckle #(
   reg  [31:0]    dec_word_q;
   reg  [16:0]    left_word_q;  // {valid, Q.4} of the entering row's last beat
   reg            up_j_q, left_j_q, keep_q, both_q, ended_q, den_q, rel_q;
-  reg  [11:0]    dsize_q;
+  reg  [11:0]    dsize_q, dtrust_q;
   reg  [LB-1:0]  node_q, ru_q;
   reg  [EW-1:0]  ent_u_q, ent_r_q;  // the upper root's entry; the survivor's, merged
 
@@ -255,9 +266,10 @@ module sm_speckle #(
 
   // the entry read last, in fields
   wire [LB-1:0]  e_parent = t_rdata[EW-1 -: LB];
-  wire [RKW-1:0] e_rank   = t_rdata[RFW+RW+SZW +: RKW];
-  wire [SZW-1:0] e_size   = t_rdata[RFW+RW +: SZW];
-  wire [RW-1:0]  e_last   = t_rdata[RFW +: RW];
+  wire [RKW-1:0] e_rank   = t_rdata[RK_L +: RKW];
+  wire [SZW-1:0] e_size   = t_rdata[SZ_L +: SZW];
+  wire [SZW-1:0] e_bad    = t_rdata[BD_L +: SZW];
+  wire [RW-1:0]  e_last   = t_rdata[LA_L +: RW];
   wire [RFW-1:0] e_refs   = t_rdata[0 +: RFW];
 
   // ---- the beat's work ----
@@ -268,20 +280,26 @@ module sm_speckle #(
   wire           up_lab = up_j_q && up_code_q < NONE;
   wire           left_lab = left_j_q && left_code_q < NONE;
   // merge of the upper root (ent_u_q, ru_q) and the left one (t_rdata, left_code_q)
-  wire           left_wins = e_rank > ent_u_q[RFW+RW+SZW +: RKW];
+  wire           left_wins = e_rank > ent_u_q[RK_L +: RKW];
   wire [EW-1:0]  ent_a = left_wins ? t_rdata : ent_u_q;
   wire [EW-1:0]  ent_b = left_wins ? ent_u_q : t_rdata;
   wire [LB-1:0]  lab_a = left_wins ? left_code_q[LB-1:0] : ru_q;
-  wire [RKW-1:0] rank_a = ent_a[RFW+RW+SZW +: RKW], rank_b = ent_b[RFW+RW+SZW +: RKW];
+  wire [RKW-1:0] rank_a = ent_a[RK_L +: RKW], rank_b = ent_b[RK_L +: RKW];
   // the survivor's parent is itself and its last row the entering one: not read
-  wire unused_ent = ^{ent_a[EW-1 -: LB], ent_b[EW-1 -: LB], ent_r_q[RFW +: RW]};
-  wire [SZW:0]   size_ab = {1'b0, ent_a[RFW+RW +: SZW]} + {1'b0, ent_b[RFW+RW +: SZW]};
-  // the survivor's entry and the new pixel's
-  wire [SZW-1:0] r_size = ent_r_q[RFW+RW +: SZW];
+  wire unused_ent = ^{ent_a[EW-1 -: LB], ent_b[EW-1 -: LB], ent_r_q[LA_L +: RW]};
+  wire [SZW:0]   size_ab = {1'b0, ent_a[SZ_L +: SZW]} + {1'b0, ent_b[SZ_L +: SZW]};
+  wire [SZW:0]   bad_ab = {1'b0, ent_a[BD_L +: SZW]} + {1'b0, ent_b[BD_L +: SZW]};
+  // the survivor's entry and the new pixel's (lr_bad: it fails the left-right check)
+  wire           lr_bad = !in_word_q[23];
+  wire [SZW-1:0] r_size = ent_r_q[SZ_L +: SZW];
   wire [SZW-1:0] r_size1 = keep_q || r_size == SZ_MAX ? SZ_MAX : r_size + 1'b1;
+  wire [SZW-1:0] r_bad = ent_r_q[BD_L +: SZW];
+  wire [SZW-1:0] r_bad1 = r_bad == SZ_MAX ? SZ_MAX : r_bad + {{(SZW - 1){1'b0}}, lr_bad};
   wire [RFW-1:0] e_refs1 = e_refs - 1'b1;
   wire [RW-1:0]  age = row_q - e_last;
-  wire           kept = (!ended_q && age <= AGE1) || {1'b0, e_size} > {2'b0, dsize_q};
+  // trusted: more than trust pixels, fewer than 1/16 of them failing left-right
+  wire           trusted = {1'b0, e_size} > {2'b0, dtrust_q} && {e_bad, 4'b0} < {4'b0, e_size};
+  wire           kept = (!ended_q && age <= AGE1) || {1'b0, e_size} > {2'b0, dsize_q} || trusted;
 
   always @(*) begin
     w_we = 1'b0; w_re = 1'b0; w_raddr = base_up_q + addr_of(x_q);
@@ -309,7 +327,7 @@ module sm_speckle #(
       S_ADD: begin
         t_we = 1'b1;
         t_waddr = code_q[LB-1:0];
-        t_wdata = {ent_r_q[EW-1 -: LB + RKW], r_size1, row_q, ent_r_q[0 +: RFW] + 1'b1};
+        t_wdata = {ent_r_q[EW-1 -: LB + RKW], r_size1, r_bad1, row_q, ent_r_q[0 +: RFW] + 1'b1};
       end
       S_NEW: f_re = 1'b1;
       S_POP: ;
@@ -330,7 +348,8 @@ module sm_speckle #(
     // a new label's entry: its own root, rank 0, one pixel, held once
     if (state_q == S_NEW || state_q == S_POP) begin
       t_waddr = state_q == S_POP ? f_rdata : fresh_q[LB-1:0];
-      t_wdata = {t_waddr, {RKW{1'b0}}, {{(SZW - 1){1'b0}}, 1'b1}, row_q, {{(RFW - 1){1'b0}}, 1'b1}};
+      t_wdata = {t_waddr, {RKW{1'b0}}, {{(SZW - 1){1'b0}}, 1'b1}, {{(SZW - 1){1'b0}}, lr_bad}, row_q,
+                 {{(RFW - 1){1'b0}}, 1'b1}};
       t_we = state_q == S_POP || (!keep_q && fresh_q != NONE);
     end
   end
@@ -420,7 +439,8 @@ module sm_speckle #(
         if (both_q) begin
           code_q  <= {1'b0, lab_a};
           ent_r_q <= {lab_a, (rank_a == rank_b && rank_a != RK_MAX) ? rank_a + 1'b1 : rank_a,
-                      size_ab[SZW] ? SZ_MAX : size_ab[SZW-1:0], ent_a[RFW +: RW], ent_a[0 +: RFW] + 1'b1};
+                      size_ab[SZW] ? SZ_MAX : size_ab[SZW-1:0], bad_ab[SZW] ? SZ_MAX : bad_ab[SZW-1:0],
+                      ent_a[LA_L +: RW], ent_a[0 +: RFW] + 1'b1};
         end else begin
           ent_r_q <= t_rdata;
         end
@@ -432,9 +452,10 @@ module sm_speckle #(
         left_word_q <= {in_word_q[31], in_word_q[15:0]};
         left_code_q <= code_q;
         res_word_q <= dec_word_q;
-        ended_q    <= !in_real_q || dmeta[12 +: RW] != fid_q;
+        ended_q    <= !in_real_q || dmeta[24 +: RW] != fid_q;
         den_q      <= dmeta[MW-2];
         dsize_q    <= dmeta[11:0];
+        dtrust_q   <= dmeta[23:12];
         node_q     <= dec_code_q[LB-1:0];
         rel_q      <= 1'b1;
       end

@@ -115,7 +115,7 @@ module sm_top #(
   wire [15:0]   cfg_obj_min_pixels;
   wire [48:0]   cfg_out;
   wire [6:0]    cfg_smooth;
-  wire [20:0]   cfg_speckle;
+  wire [32:0]   cfg_speckle;
   wire          grid_we;
   wire [31:0]   grid_wdata;
   wire [GAW-1:0] grid_waddr;  // {camera, bank, point}
@@ -245,8 +245,8 @@ module sm_top #(
   localparam P_H    = P_OBJ + 32;
   localparam P_OUT  = P_H + YW;        // the output stage's registers (sm_outfields' s_cfg)
   localparam P_SMO  = P_OUT + 49;      // smoothing: enable, then the threshold
-  localparam P_SPK  = P_SMO + 7;       // speckle stage: enable, size, diff
-  localparam PW     = P_SPK + 21;
+  localparam P_SPK  = P_SMO + 7;       // speckle stage: enable, size, diff, trust
+  localparam PW     = P_SPK + 33;
   wire [PW-1:0] fr_par = {cfg_speckle, cfg_smooth, cfg_out, cfg_height, cfg_obj_min_pixels, cfg_obj_tol, cfg_obj_near, cfg_filter_enable,
                           cfg_edge_t, cfg_occ_edge, cfg_occ, cfg_sw_table, cfg_grid_bank, cfg_rect_enable};
 
@@ -403,13 +403,13 @@ module sm_top #(
   wire [31:0] sk_word;
   generate
     if (SPECKLE_ROWS > 0) begin : g_speckle
-      wire [20:0] par_spk;  // {diff, size, en}
-      sm_frame_sel #(.PW(PW), .LSB(P_SPK), .W(21), .NEXT(0)) u_fsel_spk (
+      wire [32:0] par_spk;  // {trust, diff, size, en}
+      sm_frame_sel #(.PW(PW), .LSB(P_SPK), .W(33), .NEXT(0)) u_fsel_spk (
           .clk(aclk), .rst_n(rst_n), .ce(ce), .ev_side(f3_side), .wr_side(beat_side), .wr_par(fr_par), .par(par_spk)
       );
       sm_speckle #(.MAX_WIDTH(MAX_WIDTH), .ROWS(SPECKLE_ROWS), .LABELS(SPECKLE_LABELS), .SLACK(`SM_SPECKLE_SLACK)) u_speckle (
           .clk(aclk), .rst_n(rst_n), .ce(ce), .ready(spk_ready), .en(par_spk[0]), .size(par_spk[12:1]),
-          .diff(par_spk[20:13]), .s_side(out_side), .s_word(out_word), .m_side(sk_side), .m_word(sk_word)
+          .diff(par_spk[20:13]), .trust(par_spk[32:21]), .s_side(out_side), .s_word(out_word), .m_side(sk_side), .m_word(sk_word)
       );
     end else begin : g_no_speckle
       assign spk_ready = 1'b1;

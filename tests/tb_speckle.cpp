@@ -6,8 +6,8 @@
 // per frame (off, 0, the greatest, ...) and garbage on them between frames, as on every
 // idle beat; random ce gaps, and ce held while the labeller is SLACK beats behind. Every
 // output beat's sideband and word are checked (the first SLACK empty), the real ones'
-// order too, and the run must clear speckles and (small tables) label KEEP pixels, or the
-// bench has tested nothing.
+// order too, and the run must clear speckles, keep trusted regions (few pixels failing
+// left-right) and (small tables) label KEEP pixels, or the bench has tested nothing.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -26,25 +26,32 @@ using namespace sm::test;
 namespace {
 
 // A surface of a few slanted planes with steps, islands (1..12 pixels) at levels of their
-// own, a tenth invalid and now and then a word anywhere (16 bits of Q.4).
-OutImage random_frame(std::mt19937& rng, int w, int h) {
+// own, a tenth invalid and now and then a word anywhere (16 bits of Q.4). Confidence bit 7
+// (left-right passed): in a frame with `trusty` set, all but one pixel in 12 on the surface
+// and on every other island, so some regions are trusted and some are not, and every
+// fourth island is 4 x 4 with one pixel failing (16 x 1 failing = 16 pixels: the rule's
+// edge, not trusted); else at random.
+OutImage random_frame(std::mt19937& rng, int w, int h, bool trusty) {
   OutImage m(w, h);
   const int step = 8 + static_cast<int>(rng() % 40);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const int q = 400 + (x * 3 / std::max(1, w / 3)) * step + y + static_cast<int>(rng() % 7);
       const bool valid = rng() % 10 != 0;
-      const unsigned byte = rng() & 0xff;
+      unsigned byte = rng() & 0xff;
+      if (trusty) byte = (byte & 0x7f) | (rng() % 12 != 0 ? 0x80 : 0);
       m.at(x, y) = make_out_word(valid, byte, rng() % 40 == 0 ? rng() & 0xffff : static_cast<unsigned>(q), byte);
     }
   const int islands = w * h / 12;
   for (int i = 0; i < islands; ++i) {
-    const int iw = 1 + static_cast<int>(rng() % 4), ih = 1 + static_cast<int>(rng() % 3);
+    const bool edge = trusty && i % 4 == 1;
+    const int iw = edge ? 4 : 1 + static_cast<int>(rng() % 4), ih = edge ? 4 : 1 + static_cast<int>(rng() % 3);
     const int x0 = static_cast<int>(rng() % static_cast<unsigned>(w)),
               y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
-    const unsigned q = 2000 + rng() % 3000;
+    const unsigned q = 2000 + rng() % 3000, conf = trusty && i % 2 == 0 ? 0xda : 0x5a;
     for (int y = y0; y < std::min(h, y0 + ih); ++y)
-      for (int x = x0; x < std::min(w, x0 + iw); ++x) m.at(x, y) = make_out_word(true, 0x5a, q + (rng() & 1));
+      for (int x = x0; x < std::min(w, x0 + iw); ++x)
+        m.at(x, y) = make_out_word(true, edge && (x > x0 || y > y0) ? 0xda : conf, q + (rng() & 1));
   }
   return m;
 }
@@ -92,8 +99,9 @@ int main(int argc, char** argv) {
   t.reset(3);
   t.ce_schedule(97, idle, gap);
   SpeckleStage model(SM_P_MAX_WIDTH, kRows, SM_P_LABELS);
-  // (en, size, diff) per frame, in turn
-  const SpeckleRegs regs[] = {{1, 6, 8}, {1, 0, 0}, {1, 4095, 255}, {0, 6, 8}, {1, 2, 16}, {1, 40, 3}};
+  // (en, size, diff, trust) per frame, in turn
+  const SpeckleRegs regs[] = {{1, 20, 8, 2}, {1, 0, 0, 0},     {1, 4095, 255, 100},
+                              {0, 6, 8, 0},  {1, 2, 16, 4095}, {1, 40, 3, 5}};
   constexpr long kSlack = SM_P_SLACK;  // output beat k is the model's beat k - SLACK
   long taken = 0, cleared = 0, held = 0;
   std::vector<SpeckleStage::Beat> want;  // the model's output beats, in order
@@ -113,7 +121,7 @@ int main(int argc, char** argv) {
       // tall frames, a row, two rows, frames shorter than the held rows
       const int fh = f % 3 == 0 ? h : f % 3 == 1 ? 1 + f % 2 : std::max(1, std::min(h, kRows / 2 + 1));
       heights.push_back(fh);
-      in.push_back(f % 4 == 3 ? comb_frame(w, fh) : random_frame(rng, w, fh));
+      in.push_back(f % 4 == 3 ? comb_frame(w, fh) : random_frame(rng, w, fh, f % 2 == 0 || f % 6 == 5));
       for (int y = 0; y < fh; ++y)
         for (int x = 0; x < w; ++x)
           sched.push_back({static_cast<uint8_t>(kReal | (x == 0 ? kSol : 0) | (x + y == 0 ? kSof : 0) | (f & 3) << 3),
@@ -144,8 +152,9 @@ int main(int argc, char** argv) {
       tb->en = first ? r.en : rng() & 1;
       tb->size = first ? r.size : rng() & 0xfff;
       tb->diff = first ? r.diff : rng() & 0xff;
+      tb->trust = first ? r.trust : rng() & 0xfff;
       const SpeckleRegs seen{static_cast<uint8_t>(tb->en), static_cast<uint16_t>(tb->size),
-                             static_cast<uint8_t>(tb->diff)};
+                             static_cast<uint8_t>(tb->diff), static_cast<uint16_t>(tb->trust)};
       tb.tick();
       if (!c) continue;
       ++k;
@@ -169,9 +178,13 @@ int main(int argc, char** argv) {
   }
   const SpeckleStats& st = model.stats();
   t.check(cleared > 0, "no speckle was cleared: the stimulus tests nothing");
+  // (two labels: nearly every region is KEEP, so none is judged)
+  if (SM_P_LABELS > 2) t.check(st.trusted > 0, "no region was trusted: SPECKLE_TRUST untested");
   if (SM_P_LABELS < 64) t.check(st.keep_pixels > 0, "the table never filled: KEEP untested");
-  return t.finish(fmt::format("tb_speckle MAX_WIDTH={} ROWS={} LABELS={} SLACK={} widths {}", SM_P_MAX_WIDTH, kRows,
-                              SM_P_LABELS, kSlack, widths.size()),
-                  fmt::format(" ({} beats, {} cleared, {} KEEP, peak {} labels, longest find {}, ce held {} times)",
-                              taken, cleared, st.keep_pixels, st.peak_labels, st.longest_find, held));
+  return t.finish(
+      fmt::format("tb_speckle MAX_WIDTH={} ROWS={} LABELS={} SLACK={} widths {}", SM_P_MAX_WIDTH, kRows, SM_P_LABELS,
+                  kSlack, widths.size()),
+      fmt::format(" ({} beats, {} cleared, {} trusted, {} KEEP, peak {} labels, longest find {}, ce held {} "
+                  "times)",
+                  taken, cleared, st.trusted, st.keep_pixels, st.peak_labels, st.longest_find, held));
 }

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "sm_speckle.hpp"
 #include "sm_speckle_table.hpp"
@@ -135,4 +136,42 @@ TEST_CASE("speckle check with a label table: labels come back once their pixels 
   const cv::Mat one = speckle_keep_table(q4, 1, 0, 2, 1, &st);
   CHECK(st.keep_pixels > 0);
   CHECK(cv::countNonZero(one) == st.keep_pixels);
+}
+
+// A region of at most SPECKLE_SIZE pixels is still kept when it holds more than
+// SPECKLE_TRUST pixels and fewer than 1/16 of them fail the left-right check (confidence
+// bit 7 clear). Three 12 x 12 squares (144 pixels) at levels of their own on invalid
+// ground, with 0, 8 and 9 pixels failing: 8 x 16 < 144 is trusted, 9 x 16 = 144 is not.
+TEST_CASE("speckle stage: a region both views agree on is trusted", "[speckle]") {
+  sm::OutImage in(60, 20);
+  const int fails[] = {0, 8, 9};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 144; ++i) {
+      const int x = 4 + 20 * k + i % 12, y = 4 + i / 12;
+      const unsigned conf = i < fails[k] ? 0x7f : 0x80;
+      in.at(x, y) = sm::make_out_word(true, conf, static_cast<unsigned>(160 * (k + 1)));
+    }
+  auto kept = [&](uint16_t trust, int rows) {
+    sm::SpeckleRegs regs;
+    regs.en = 1;
+    regs.size = 1000;
+    regs.diff = 8;
+    regs.trust = trust;
+    sm::SpeckleStats st;
+    const sm::OutImage out = sm::speckle_output(in, regs, rows, 64, &st);
+    std::vector<int> n(3, 0);
+    for (int k = 0; k < 3; ++k) n[static_cast<size_t>(k)] = sm::out_valid(out.at(4 + 20 * k, 4));
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 144; ++i)  // a region's pixels share its verdict
+        CHECK(sm::out_valid(out.at(4 + 20 * k + i % 12, 4 + i / 12)) == (n[static_cast<size_t>(k)] != 0));
+    CHECK(st.trusted == 144 * (n[0] + n[1]));
+    return n;
+  };
+  for (const int rows : {14, 32}) {  // (decided after the squares' last row)
+    CAPTURE(rows);
+    CHECK(kept(100, rows) == std::vector<int>{1, 1, 0});
+    CHECK(kept(143, rows) == std::vector<int>{1, 1, 0});
+    CHECK(kept(144, rows) == std::vector<int>{0, 0, 0});  // more than SPECKLE_TRUST pixels
+    CHECK(kept(4095, rows) == std::vector<int>{0, 0, 0});
+  }
 }

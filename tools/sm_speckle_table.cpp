@@ -17,6 +17,7 @@ cv::Mat speckle_keep_table(const cv::Mat& q4, int max_size, int max_diff, int de
   regs.en = 1;
   regs.size = static_cast<uint16_t>(max_size);
   regs.diff = static_cast<uint8_t>(max_diff);
+  regs.trust = 4095;  // the maps carry no confidence: no region is trusted
   const OutImage out = speckle_output(words, regs, delay_rows, labels, stats);
   cv::Mat keep = cv::Mat::zeros(q4.rows, q4.cols, CV_8U);
   for (int y = 0; y < q4.rows; ++y)

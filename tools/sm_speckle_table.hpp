@@ -11,7 +11,8 @@
 namespace sm::tools {
 
 // q4: CV_16S disparity (negative = invalid). Returns CV_8U, 1 where a valid pixel is kept
-// by sm::speckle_output at max_size, max_diff, ROWS delay_rows and LABELS labels.
+// by sm::speckle_output at max_size, max_diff, ROWS delay_rows and LABELS labels (the maps
+// carry no confidence, so no region is trusted: the size rule alone).
 cv::Mat speckle_keep_table(const cv::Mat& q4, int max_size, int max_diff, int delay_rows, int labels,
                            SpeckleStats* stats = nullptr);
 

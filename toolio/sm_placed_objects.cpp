@@ -1,0 +1,42 @@
+#include "sm_placed_objects.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace sm::tools {
+
+namespace {
+
+PlacedCheck box_of(const PlacedObject& o, const SceneParams& p) {
+  PlacedCheck c;
+  c.obj = o;
+  c.x0 = std::max(0, static_cast<int>(std::floor(o.cx - o.rx)));
+  c.x1 = std::min(p.width - 1, static_cast<int>(std::ceil(o.cx + o.rx)));
+  c.y0 = std::max(0, static_cast<int>(std::floor(o.cy - o.ry)));
+  c.y1 = std::min(p.height - 1, static_cast<int>(std::ceil(o.cy + o.ry)));
+  return c;
+}
+
+bool reports(const Object& l, const PlacedCheck& c) {
+  return std::abs(static_cast<int>(l.mean_disp) - c.obj.disp) <= 2 && l.x0 <= c.x1 && l.x1 >= c.x0 && l.y0 <= c.y1 &&
+         l.y1 >= c.y0;
+}
+
+}  // namespace
+
+std::vector<PlacedCheck> check_placed_objects(const SceneParams& p, const SyntheticScene& s,
+                                              const std::vector<Object>& listed, int min_pixels, int near) {
+  std::vector<PlacedCheck> out;
+  for (const PlacedObject& o : placed_objects(p)) {
+    PlacedCheck c = box_of(o, p);
+    for (int y = c.y0; y <= c.y1; ++y)
+      for (int x = c.x0; x <= c.x1; ++x) c.visible += s.gt.at<float>(y, x) == static_cast<float>(o.disp);
+    c.counts = c.visible >= min_pixels && o.disp >= near;
+    c.found = std::any_of(listed.begin(), listed.end(), [&](const Object& l) { return reports(l, c); });
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace sm::tools
