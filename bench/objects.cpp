@@ -4,7 +4,9 @@
 // speckle mode (SPECKLE_EN 1, LR_EN 0, AGREE_EN 0), and the speckle mode with no region
 // trusted (SPECKLE_TRUST 4095). An object counts when at least OBJ_MIN_PIXELS of it are
 // visible at or above OBJ_NEAR (test_scene's rule); a missed one is listed as
-// disparity/visible pixels. docs/evaluation.md, "Speckles".
+// disparity/visible pixels (matched/kept: the % of them the post filters give its level,
+// +-2, and the % the output word keeps valid there; a low matched share is the matcher's
+// miss, a high kept share the labeller's). docs/evaluation.md, "Speckles".
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -47,7 +49,7 @@ std::vector<sm::tools::PlacedCheck> missed(const sm::tools::SceneParams& p, cons
       sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, r, false);
   std::vector<sm::tools::PlacedCheck> out;
   *counted = 0;
-  for (const auto& c : sm::tools::check_placed_objects(p, s, res.objects.objects, r.obj_min_pixels, r.obj_near)) {
+  for (const auto& c : sm::tools::check_placed_objects(p, s, res, r.obj_min_pixels, r.obj_near)) {
     *counted += c.counts;
     if (c.counts && !c.found) out.push_back(c);
   }
@@ -56,7 +58,9 @@ std::vector<sm::tools::PlacedCheck> missed(const sm::tools::SceneParams& p, cons
 
 std::string list(const std::vector<sm::tools::PlacedCheck>& v) {
   std::string s;
-  for (const auto& c : v) s += fmt::format("{}{}/{}", s.empty() ? "" : " ", c.obj.disp, c.visible);
+  for (const auto& c : v)
+    s += fmt::format("{}{}/{} ({}/{})", s.empty() ? "" : " ", c.obj.disp, c.visible, 100 * c.matched / c.visible,
+                     100 * c.kept / c.visible);
   return s.empty() ? "-" : s;
 }
 

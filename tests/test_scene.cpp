@@ -277,8 +277,7 @@ TEST_CASE("scene objects: the model reports every object the generator placed", 
       sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, r, false);
   CHECK_FALSE(res.objects.table_full);
   int checked = 0;
-  for (const sm::tools::PlacedCheck& c :
-       sm::tools::check_placed_objects(p, s, res.objects.objects, r.obj_min_pixels, r.obj_near)) {
+  for (const sm::tools::PlacedCheck& c : sm::tools::check_placed_objects(p, s, res, r.obj_min_pixels, r.obj_near)) {
     if (!c.counts) continue;
     ++checked;
     INFO("object at disparity " << c.obj.disp << ", box (" << c.x0 << "," << c.y0 << ")-(" << c.x1 << "," << c.y1

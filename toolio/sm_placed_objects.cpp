@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "outword.hpp"
+
 namespace sm::tools {
 
 namespace {
@@ -23,15 +25,30 @@ bool reports(const Object& l, const PlacedCheck& c) {
          l.y1 >= c.y0;
 }
 
+// Counts the pixels of c's box that show the object in both views (a pixel the right
+// camera cannot see has nothing to match), and those the post filters and the output word
+// give its disparity (within 2).
+void count_pixels(PlacedCheck& c, const SyntheticScene& s, const PipelineResult& res) {
+  auto near_disp = [&](int level) { return std::abs(level - c.obj.disp) <= 2; };
+  for (int y = c.y0; y <= c.y1; ++y)
+    for (int x = c.x0; x <= c.x1; ++x) {
+      if (s.gt.at<float>(y, x) != static_cast<float>(c.obj.disp) || s.nonocc.at<uint8_t>(y, x) == 0) continue;
+      ++c.visible;
+      c.matched += near_disp(static_cast<int>(disp_value(res.post.at(x, y))));
+      const uint32_t w = res.out.at(x, y);
+      c.kept += out_valid(w) && near_disp(static_cast<int>((out_q4(w) + 8) >> 4));
+    }
+}
+
 }  // namespace
 
-std::vector<PlacedCheck> check_placed_objects(const SceneParams& p, const SyntheticScene& s,
-                                              const std::vector<Object>& listed, int min_pixels, int near) {
+std::vector<PlacedCheck> check_placed_objects(const SceneParams& p, const SyntheticScene& s, const PipelineResult& res,
+                                              int min_pixels, int near) {
   std::vector<PlacedCheck> out;
+  const std::vector<Object>& listed = res.objects.objects;
   for (const PlacedObject& o : placed_objects(p)) {
     PlacedCheck c = box_of(o, p);
-    for (int y = c.y0; y <= c.y1; ++y)
-      for (int x = c.x0; x <= c.x1; ++x) c.visible += s.gt.at<float>(y, x) == static_cast<float>(o.disp);
+    count_pixels(c, s, res);
     c.counts = c.visible >= min_pixels && o.disp >= near;
     c.found = std::any_of(listed.begin(), listed.end(), [&](const Object& l) { return reports(l, c); });
     out.push_back(c);

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "post.hpp"
+#include "pipeline.hpp"
 #include "sm_scenegen.hpp"
 
 namespace sm::tools {
@@ -13,14 +13,17 @@ namespace sm::tools {
 struct PlacedCheck {
   PlacedObject obj;
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // its box in the image, inclusive
-  int visible = 0;                     // pixels of the box where the ground truth is its disparity
+  int visible = 0;                     // pixels of the box showing it in both views (gt, nonocc)
   bool counts = false;                 // visible >= min_pixels and disparity >= near: must be reported
   bool found = false;                  // a listed object at its disparity (+-2) whose box meets its box
+  int matched = 0;                     // visible pixels whose post-filter level is within 2 of its disparity
+  int kept = 0;                        // ... and whose output word is valid at a level within 2 of it
 };
 
-// Every object placed_objects(p) gives, checked against `listed` (s = render_scene(p);
-// min_pixels and near: the OBJ_MIN_PIXELS and OBJ_NEAR the list was made with).
-std::vector<PlacedCheck> check_placed_objects(const SceneParams& p, const SyntheticScene& s,
-                                              const std::vector<Object>& listed, int min_pixels, int near);
+// Every object placed_objects(p) gives, checked against the object list of `res`, the
+// model's run on s = render_scene(p) (min_pixels and near: the OBJ_MIN_PIXELS and OBJ_NEAR
+// it ran with). matched and kept tell a miss of the matcher from one of the labeller.
+std::vector<PlacedCheck> check_placed_objects(const SceneParams& p, const SyntheticScene& s, const PipelineResult& res,
+                                              int min_pixels, int near);
 
 }  // namespace sm::tools
