@@ -55,7 +55,7 @@ sm_rtl_test(NAME tb_speckle_odd TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}
 sm_rtl_test(NAME tb_speckle_two TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_speckle.cpp
             PARAMS MAX_WIDTH=16 ROWS=7 LABELS=2 SLACK=8 ARGS --widths 16,9 --height 13 --frames 6 --gap 16)
 sm_rtl_test(NAME tb_speckle_zynq TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_speckle.cpp
-            PARAMS MAX_WIDTH=320 ROWS=32 LABELS=1024 SLACK=16 ARGS --widths 320,67 --height 40 --frames 4 --gap 16 --idle 5)
+            PARAMS MAX_WIDTH=320 ROWS=32 LABELS=1024 SLACK=16 ARGS --widths 320,67 --height 40 --frames 7 --gap 16 --idle 5)
 
 # The output study's speckle check against OpenCV's filterSpeckles and a streaming known answer.
 if(TARGET sm_speckle)

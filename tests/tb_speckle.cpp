@@ -1,13 +1,14 @@
 // Block test of sm_speckle (the speckle stage, docs/algorithm.md 9.8) against the model's
 // SpeckleStage, beat by beat: frames of surfaces with islands of every size, invalid
 // pixels and words anywhere, at odd widths; binary combs for the longest finds; frames
-// shorter than ROWS (several frames in the held rows), back to back or with 0..ROWS + 2
-// virtual rows between them, after beats of no row (the fill after reset); the registers
-// per frame (off, 0, the greatest, ...) and garbage on them between frames, as on every
-// idle beat; random ce gaps, and ce held while the labeller is SLACK beats behind. Every
-// output beat's sideband and word are checked (the first SLACK empty), the real ones'
-// order too, and the run must clear speckles, keep trusted regions (few pixels failing
-// left-right) and (small tables) label KEEP pixels, or the bench has tested nothing.
+// shorter than ROWS (several frames in the held rows), a flat frame whose region's counts
+// saturate, back to back or with 0..ROWS + 2 virtual rows between them, after beats of no
+// row (the fill after reset); the registers per frame (off, 0, the greatest, ...) and
+// garbage on them between frames, as on every idle beat; random ce gaps, and ce held while
+// the labeller is SLACK beats behind. Every output beat's sideband and word are checked
+// (the first SLACK empty), the real ones' order too, and the run must clear speckles, keep
+// trusted regions (few pixels failing left-right) and (small tables) label KEEP pixels, or
+// the bench has tested nothing.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -73,6 +74,15 @@ OutImage comb_frame(int w, int h) {
   return m;
 }
 
+// One flat region of every pixel, all failing left-right: at 320 x 40 its size and its
+// count of failing pixels saturate (8,191).
+OutImage flat_frame(int w, int h) {
+  OutImage m(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) m.at(x, y) = make_out_word(true, 0x11, 640);
+  return m;
+}
+
 struct Beat {
   uint8_t side = 0;
   uint32_t word = 0;
@@ -121,12 +131,18 @@ int main(int argc, char** argv) {
       // tall frames, a row, two rows, frames shorter than the held rows
       const int fh = f % 3 == 0 ? h : f % 3 == 1 ? 1 + f % 2 : std::max(1, std::min(h, kRows / 2 + 1));
       heights.push_back(fh);
-      in.push_back(f % 4 == 3 ? comb_frame(w, fh) : random_frame(rng, w, fh, f % 2 == 0 || f % 6 == 5));
+      in.push_back(f % 7 == 6   ? flat_frame(w, fh)
+                   : f % 4 == 3 ? comb_frame(w, fh)
+                                : random_frame(rng, w, fh, f % 2 == 0 || f % 6 == 5));
       for (int y = 0; y < fh; ++y)
         for (int x = 0; x < w; ++x)
           sched.push_back({static_cast<uint8_t>(kReal | (x == 0 ? kSol : 0) | (x + y == 0 ? kSof : 0) | (f & 3) << 3),
                            in.back().at(x, y), x + y == 0 ? f : -1});
-      virtual_rows(rng() % 3 == 0 ? 0 : static_cast<int>(rng() % (kRows + 3)));
+      // before the flat frame every held pixel is decided, so its region gets a label
+      if ((f + 1) % 7 == 6)
+        virtual_rows(kRows + 2);
+      else
+        virtual_rows(rng() % 3 == 0 ? 0 : static_cast<int>(rng() % (kRows + 3)));
     }
     // the last frame out (and the held rows of width w before the next width)
     virtual_rows(kRows + 1 + static_cast<int>((kSlack + w - 1) / w));
