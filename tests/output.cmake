@@ -56,6 +56,11 @@ sm_rtl_test(NAME tb_speckle_two TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}
             PARAMS MAX_WIDTH=16 ROWS=7 LABELS=2 SLACK=8 ARGS --widths 16,9 --height 13 --frames 6 --gap 16)
 sm_rtl_test(NAME tb_speckle_zynq TOP sm_speckle SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_speckle.cpp
             PARAMS MAX_WIDTH=320 ROWS=32 LABELS=1024 SLACK=16 ARGS --widths 320,67 --height 40 --frames 7 --gap 16 --idle 5)
+# A bench's list with an empty item is refused (CLI11 alone would drop the item and test
+# fewer widths): toolio/sm_cli.hpp's check_delimited, as in every tool.
+add_test(NAME tb_speckle_bad_widths COMMAND tb_speckle --widths 37,,40)
+set_tests_properties(tb_speckle_bad_widths PROPERTIES LABELS robust
+                     PASS_REGULAR_EXPRESSION "--widths: '37,,40': an empty item in a ','-separated list")
 
 # The output study's speckle check against OpenCV's filterSpeckles and a streaming known answer.
 if(TARGET sm_speckle)

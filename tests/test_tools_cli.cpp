@@ -119,6 +119,10 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
     expect_error(model(o + " --disp 16 --speckle 10,"), "expected SIZE or SIZE,DIFF");
     expect_error(model(o + " --disp 16 --speckle 10 --speckle 20"), "--speckle");
   }
+  SECTION("empty item in a list") {  // CLI11 alone would drop it and run on a shorter list
+    expect_error(model(o + " --disp 16 --sw-table 1,,2"), "--sw-table: '1,,2': an empty item in a ','-separated list");
+    expect_error(model(o + " --disp 16 --sw-table=1,2,"), "--sw-table: '1,2,': an empty item");
+  }
   SECTION("unwritable output") {
     expect_error(model(" --disp 16 -o " + (out / "no" / "d.png").string()), "cannot write");
   }
@@ -176,6 +180,8 @@ TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {
   expect_error(run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --scenes tsukuba" + j), "no scene 'tsukuba'");
   expect_error(run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --speckle-rows 63" + j),
                "--speckle-rows: 63: outside 0..62");
+  expect_error(run(SM_EVALUATE_EXE, (fx.dir / "dataset").string() + " --scenes small,,small" + j),
+               "--scenes: 'small,,small': an empty item");
   // A scene with a truncated ground truth / mismatched right image.
   const fs::path broken = fx.dir / "broken" / "s";
   fs::create_directories(broken);

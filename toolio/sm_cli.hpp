@@ -30,9 +30,44 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+namespace detail {
+
+// The value given to `o` at argv[i] ("--name value", "--name=value", "-n value"), if any.
+inline std::optional<std::string> option_value(const CLI::Option& o, int argc, char** argv, int i) {
+  const std::string a = argv[i];
+  for (const std::string& n : o.get_lnames()) {
+    if (a == "--" + n && i + 1 < argc) return std::string(argv[i + 1]);
+    if (a.rfind("--" + n + "=", 0) == 0) return a.substr(n.size() + 3);
+  }
+  for (const std::string& n : o.get_snames())
+    if (a == "-" + n && i + 1 < argc) return std::string(argv[i + 1]);
+  return std::nullopt;
+}
+
+}  // namespace detail
+
+// CLI11 drops the empty items of a delimited value ("a,,b" gives a and b): a value of a
+// delimited option with an empty item (doubled, leading or trailing delimiter, or none at
+// all) is refused instead, naming the option, so a typo never runs on a shorter list.
+inline void check_delimited(const CLI::App& app, int argc, char** argv) {
+  for (const CLI::Option* o : app.get_options()) {
+    const char d = o->get_delimiter();
+    if (d == '\0') continue;
+    for (int i = 1; i < argc && std::string(argv[i]) != "--"; ++i) {
+      const std::optional<std::string> v = detail::option_value(*o, argc, argv, i);
+      if (!v) continue;
+      const std::string s = std::string(1, d) + *v + std::string(1, d);
+      if (s.find(std::string(2, d)) != std::string::npos)
+        throw UsageError(fmt::format("{}: '{}': an empty item in a '{}'-separated list", o->get_name(), *v, d));
+    }
+  }
+}
+
 // Parses argv into app. --help (and --help-all): printed by CLI11, returns 0 (the tool
-// stops). Any other parse error: throws UsageError with CLI11's one-line message.
+// stops). Any other parse error, or an empty item of a delimited value: throws UsageError
+// with a one-line message.
 inline std::optional<int> parse_cli(CLI::App& app, int argc, char** argv) {
+  check_delimited(app, argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

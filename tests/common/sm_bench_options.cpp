@@ -1,6 +1,11 @@
 #include "sm_bench_options.hpp"
 
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "toolio/sm_cli.hpp"
 
 namespace sm::test {
 
@@ -57,7 +62,11 @@ BenchOption BenchOptions::flag(const std::string& name, bool& v, const std::stri
 
 std::optional<int> BenchOptions::parse(int argc, char** argv) {
   try {
+    sm::tools::check_delimited(impl_->app, argc, argv);
     impl_->app.parse(argc, argv);
+  } catch (const sm::tools::UsageError& e) {
+    fmt::print(stderr, "{}\n", e.what());
+    return sm::tools::kExitUsage;
   } catch (const CLI::ParseError& e) {
     return impl_->app.exit(e);
   }
