@@ -39,14 +39,9 @@ std::vector<sm::tools::PlacedCheck> missed(const sm::tools::SceneParams& p, cons
     hw.speckle_rows = 32;
   }
   sm::Regs r = sm::Regs::defaults(hw);
-  r.width = p.width;
-  r.height = p.height;
-  r.grid_l = sm::RectGrid::identity(p.width, p.height);
-  r.grid_r = r.grid_l;
   if (m.speckle) sm::speckle_mode(r);
   if (!m.trust) r.speckle_trust = 4095;
-  const sm::PipelineResult res =
-      sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, r, false);
+  const sm::PipelineResult res = sm::tools::run_on_scene(p, s, hw, r);
   std::vector<sm::tools::PlacedCheck> out;
   *counted = 0;
   for (const auto& c : sm::tools::check_placed_objects(p, s, res, r.obj_min_pixels, r.obj_near)) {
@@ -94,8 +89,9 @@ int run(int argc, char** argv) {
     for (size_t k = 0; k < std::size(kModes); ++k) {
       const auto miss = missed(p, s, kModes[k], &counted);
       missed_total[k] += static_cast<int>(miss.size());
-      row += fmt::format(" {} |", list(miss));
-      js["seeds"][std::to_string(seed)][kModes[k].name] = list(miss);
+      const std::string cell = list(miss);
+      row += fmt::format(" {} |", cell);
+      js["seeds"][std::to_string(seed)][kModes[k].name] = cell;
       std::fprintf(stderr, "\rseed %d/%d", seed, seeds);
     }
     counted_total += counted;

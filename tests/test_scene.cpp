@@ -268,16 +268,14 @@ TEST_CASE("scene objects: the model reports every object the generator placed", 
   }
   const sm::tools::SyntheticScene s = render_scene(p);
   sm::Regs r = sm::Regs::defaults(hw);
-  r.width = p.width;
-  r.height = p.height;
-  r.grid_l = sm::RectGrid::identity(p.width, p.height);
-  r.grid_r = r.grid_l;
   if (speckle_mode) sm::speckle_mode(r);
-  const sm::PipelineResult res =
-      sm::run_pipeline(sm::tools::to_image8(s.left), sm::tools::to_image8(s.right), hw, r, false);
+  const sm::PipelineResult res = sm::tools::run_on_scene(p, s, hw, r);
   CHECK_FALSE(res.objects.table_full);
+  const std::vector<sm::tools::PlacedCheck> checks =
+      sm::tools::check_placed_objects(p, s, res, r.obj_min_pixels, r.obj_near);
+  REQUIRE(static_cast<int>(checks.size()) == p.objects);
   int checked = 0;
-  for (const sm::tools::PlacedCheck& c : sm::tools::check_placed_objects(p, s, res, r.obj_min_pixels, r.obj_near)) {
+  for (const sm::tools::PlacedCheck& c : checks) {
     if (!c.counts) continue;
     ++checked;
     INFO("object at disparity " << c.obj.disp << ", box (" << c.x0 << "," << c.y0 << ")-(" << c.x1 << "," << c.y1

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "outword.hpp"
+#include "sm_io.hpp"
 
 namespace sm::tools {
 
@@ -41,6 +42,14 @@ void count_pixels(PlacedCheck& c, const SyntheticScene& s, const PipelineResult&
 }
 
 }  // namespace
+
+PipelineResult run_on_scene(const SceneParams& p, const SyntheticScene& s, const HwConfig& hw, Regs r) {
+  r.width = p.width;
+  r.height = p.height;
+  r.grid_l = RectGrid::identity(p.width, p.height);
+  r.grid_r = r.grid_l;
+  return run_pipeline(to_image8(s.left), to_image8(s.right), hw, r, false);
+}
 
 std::vector<PlacedCheck> check_placed_objects(const SceneParams& p, const SyntheticScene& s, const PipelineResult& res,
                                               int min_pixels, int near) {

@@ -20,6 +20,10 @@ struct PlacedCheck {
   int kept = 0;                        // ... and whose output word is valid at a level within 2 of it
 };
 
+// The model at hw with the registers r on s = render_scene(p), r's active size and
+// rectification grids made the scene's (identity: the generator's views are rectified).
+PipelineResult run_on_scene(const SceneParams& p, const SyntheticScene& s, const HwConfig& hw, Regs r);
+
 // Every object placed_objects(p) gives, checked against the object list of `res`, the
 // model's run on s = render_scene(p) (min_pixels and near: the OBJ_MIN_PIXELS and OBJ_NEAR
 // it ran with). matched and kept tell a miss of the matcher from one of the labeller.
