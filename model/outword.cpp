@@ -26,10 +26,10 @@ namespace {
   f.fail = fails != 0;
   f.border_en = r.occ_en != 0;
   const uint8_t c = confidence(ev, x, y, f.d);
-  f.lr_ok = (c & 0x80) != 0;
+  f.lr_ok = (c & kConfLrOk) != 0;
   f.matched = ev.matched.at(x, y) != 0;
-  f.agree_ok = (c & 0x20) != 0;
-  f.ratio = static_cast<uint8_t>(f.fail ? fails_slot(fails) : c & 0x1fu);
+  f.agree_ok = (c & kConfAgreeOk) != 0;
+  f.ratio = static_cast<uint8_t>(f.fail ? fails_slot(fails) : c & kConfRatio);
   f.fb = !r.occ_en && r.fill_bg && !f.matched ? ev.fill_bg.at(x, y) : static_cast<uint8_t>(nd - 1);
   return f;
 }
@@ -47,7 +47,8 @@ namespace {
   const bool border = x < d_out;
   const bool border_fail = f.border_en && border;
   const bool valid = disp_valid(p) && !f.fail && !border_fail;
-  const unsigned conf = f.lr_ok << 7 | (f.matched && !border) << 6 | f.agree_ok << 5 | f.ratio;
+  const unsigned conf = (f.lr_ok ? kConfLrOk : 0u) | (f.matched && !border ? kConfMatched : 0u) |
+                        (f.agree_ok ? kConfAgreeOk : 0u) | f.ratio;
   return make_out_word(valid, conf, static_cast<unsigned>(std::clamp(q4, 0, 16 * (nd - 1))),
                        fails_from_slot(f.fail ? f.ratio : 0u, border_fail));
 }

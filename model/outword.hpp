@@ -15,6 +15,9 @@ namespace sm {
 
 using OutImage = Plane<uint32_t>;
 constexpr uint32_t kOutValid = 0x80000000u;
+// The evidence byte's fields (docs/algorithm.md 9.3), the confidence of the words before the
+// smoothing: |lr - d| <= 1, matched with x >= d_out, |d - dw| <= 1, and the ratio.
+constexpr unsigned kConfLrOk = 0x80u, kConfMatched = 0x40u, kConfAgreeOk = 0x20u, kConfRatio = 0x1fu;
 inline uint32_t make_out_word(bool valid, unsigned conf, unsigned q4, unsigned fails = 0) {
   return valid ? kOutValid | (conf & 0xffu) << 16 | (q4 & 0xffffu) : (fails & 0x3fu) << 24;
 }

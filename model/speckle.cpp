@@ -145,7 +145,7 @@ uint16_t SpeckleStage::label(uint32_t word, bool real) {
   const uint16_t ru = up < labels_ ? find(up) : none_;
   uint16_t r = ru != none_ ? ru : left < labels_ ? left : none_;
   if (ru != none_ && left < labels_ && ru != left) r = merge(ru, left);
-  const bool lr_bad = (out_conf(word) & 0x80u) == 0;  // confidence bit 7: |lr - d| <= 1
+  const bool lr_bad = (out_conf(word) & kConfLrOk) == 0;
   if (r == none_) return keep ? keep_ : take_label(lr_bad);
   add_pixel(r, lr_bad);
   if (keep) size_[r] = kSpeckleSizeMax;

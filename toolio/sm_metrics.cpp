@@ -91,7 +91,8 @@ FailCounts fail_counts(const OutImage& o) {
   for (const uint32_t w : o.px) {
     if (out_valid(w)) continue;
     ++c.invalid;
-    const unsigned f = out_fails(w) | ((w & kOutSpeckle) ? 1u << 6 : 0u);
+    // the speckle bit (word bit 30) counts after the six rules of bits 29:24
+    const unsigned f = out_fails(w) | ((w & kOutSpeckle) ? kFailLr << 1 : 0u);
     for (int k = 0; k < FailCounts::kN; ++k) c.by_rule[k] += f >> k & 1u;
   }
   return c;
