@@ -108,6 +108,11 @@ struct HwConfig {
   // Shortest active frame: 16, or more when the pipeline is deeper than four 16-row
   // frames (the speckle stage): the 4-frame parameter history must outlast the pipeline.
   int min_height() const { return flush_rows() / 4 + 1 > 16 ? flush_rows() / 4 + 1 : 16; }
+  // The checked mode's reset (rtl/regmap.json's SPECKLE_MODE and PIXEL_RULES): the speckle
+  // mode where the stage is built (SPECKLE_EN on, LR_EN and AGREE_EN off), the per-pixel
+  // left-right and agreement rules elsewhere (docs/evaluation.md, "Speckles").
+  bool speckle_mode() const { return speckle_rows > 0; }
+  bool pixel_rules() const { return !speckle_mode(); }
 
   // Throws std::invalid_argument on an illegal combination: every parameter inside its
   // range of defs::kLimits (rtl/defs.json, the ranges sm_top checks at elaboration), then
@@ -159,13 +164,18 @@ struct Regs : RegValues {
   static Regs defaults(const HwConfig& hw);
 };
 
-// The speckle mode (docs/algorithm.md 9.8): the stage on and the left-right and agreement
-// rules, which it replaces, off -- the registers of the checked mode measured with it.
-inline void speckle_mode(Regs& r) {
-  r.speckle_en = true;
-  r.lr_en = false;
-  r.agree_en = false;
+// The checked mode's rules: the speckle mode (docs/algorithm.md 9.8: the stage on, the
+// left-right and agreement rules it replaces off) or the per-pixel rules (the reverse).
+inline void set_checked_rules(Regs& r, bool speckle) {
+  r.speckle_en = speckle;
+  r.lr_en = !speckle;
+  r.agree_en = !speckle;
 }
+
+// The registers whose reset depends on the configuration beyond the active size
+// (SPECKLE_EN, LR_EN, AGREE_EN: HwConfig::speckle_mode), set to their reset at hw: for a
+// tool that changes the configuration after Regs::defaults.
+inline void set_config_resets(const HwConfig& hw, Regs& r) { set_checked_rules(r, hw.speckle_mode()); }
 
 // Word `half` (0 or 1) of the SW_TABLE0/SW_TABLE1 registers: the 16 two-bit codes
 // sw_table[16 * half + k] in bits 2k+1:2k (the one packing of the table in C++).

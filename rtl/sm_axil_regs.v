@@ -91,6 +91,11 @@ module sm_axil_regs #(
   // Narrowest active line the pipeline supports (HwConfig::min_width, the WIDTH minimum
   // of the generated map): the DP needs DISP/2 + 3 columns (sm_dp.v), every window 16.
   localparam integer MIN_WIDTH = (DISP / 2 + 3 > 16) ? DISP / 2 + 3 : 16;
+  // The checked mode's reset (HwConfig::speckle_mode / pixel_rules): where the speckle stage
+  // is built it replaces the per-pixel left-right and agreement rules (SPECKLE_EN 1, LR_EN
+  // and AGREE_EN 0), chosen on the 14 scenes.
+  localparam integer SPECKLE_MODE = (SPECKLE_ROWS > 0) ? 1 : 0;
+  localparam integer PIXEL_RULES = 1 - SPECKLE_MODE;
   /* verilator lint_off UNUSEDPARAM */  // the generated map holds every field's constants
   // The older Verilator (5.006) calls the tables' 32-bit typed elements unsized when
   // their value comes from an unsized expression; the newer one does not.

@@ -28,7 +28,8 @@ module sm_top #(
     parameter PU          = 0,
     // The speckle stage (docs/algorithm.md 9.8): rows a word waits for its region's
     // verdict, 0 for none. Its labeller takes about 10 clocks a pixel, so it suits the
-    // folded configurations; where it is built, LR_EN and AGREE_EN reset to 0.
+    // folded configurations; where it is built, the registers reset into its speckle mode
+    // (SPECKLE_EN 1, LR_EN and AGREE_EN 0: sm_axil_regs).
     parameter SPECKLE_ROWS   = 0,
     parameter SPECKLE_LABELS = 1024  // its label-table entries
 ) (

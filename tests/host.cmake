@@ -10,6 +10,9 @@ sm_host_test(tb_axil_regs sm_axil_regs tb_axil_regs.cpp
              PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 MAX_OBJECTS=4)
 sm_host_test(tb_axil_regs_paper sm_axil_regs tb_axil_regs.cpp
              PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 DISP=128 MAX_OBJECTS=8 LABELS rtl slow)
+# with a speckle stage: the checked rules reset into its speckle mode
+sm_host_test(tb_axil_regs_speckle sm_axil_regs tb_axil_regs.cpp
+             PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 DISP=16 MAX_OBJECTS=4 SPECKLE_ROWS=4)
 sm_host_test(tb_seq sm_seq tb_seq.cpp PARAMS MAX_WIDTH=64 MAX_HEIGHT=48 FLUSH_ROWS=3)
 sm_host_test(tb_seq_paper sm_seq tb_seq.cpp PARAMS MAX_WIDTH=320 MAX_HEIGHT=240 FLUSH_ROWS=28
              ARGS --paper LABELS rtl slow)

@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <type_traits>
 
 #include "sm_cmd.hpp"
@@ -30,10 +31,11 @@ int64_t reset(const std::string& name, const sm::HwConfig& hw) { return field(na
 }  // namespace
 
 TEST_CASE("reset values are the model's defaults", "[regmap]") {
-  for (const auto& [w, h] : {std::pair{320, 240}, std::pair{64, 48}}) {
+  for (const auto& [w, h, rows] : {std::tuple{320, 240, 0}, std::tuple{64, 48, 0}, std::tuple{320, 240, 32}}) {
     sm::HwConfig hw;
     hw.max_width = w;
     hw.max_height = h;
+    hw.speckle_rows = rows;
     const sm::Regs d = sm::Regs::defaults(hw);
     // every value register: its reset is the default of the sm::Regs member of its name
 #define SM_X(NAME, member) CHECK(reset(#NAME ".VALUE", hw) == static_cast<int64_t>(d.member));
@@ -86,6 +88,31 @@ TEST_CASE("the defaults are the paper's (independent of the generated code)", "[
   static_assert(std::is_same_v<decltype(d.rect_enable), bool> && std::is_same_v<decltype(d.occ), uint8_t>);
   static_assert(std::is_same_v<decltype(d.filter_enable), uint8_t>);
   static_assert(std::is_same_v<decltype(d.obj_min_pixels), uint16_t>);
+}
+
+TEST_CASE("the checked rules reset by configuration (independent of the generated code)", "[regmap]") {
+  // Where the speckle stage is built (the zynq configuration) it resets into its speckle
+  // mode, elsewhere the per-pixel left-right and agreement rules are on (docs/evaluation.md,
+  // "Speckles"); set_config_resets gives a tool's changed configuration the same values.
+  sm::HwConfig paper, zynq;
+  zynq.pu = 8;
+  zynq.speckle_rows = 32;
+  const sm::Regs p = sm::Regs::defaults(paper), z = sm::Regs::defaults(zynq);
+  CHECK(!p.speckle_en);
+  CHECK(p.lr_en);
+  CHECK(p.agree_en);
+  CHECK(z.speckle_en);
+  CHECK(!z.lr_en);
+  CHECK(!z.agree_en);
+  sm::Regs moved = p;
+  sm::set_config_resets(zynq, moved);
+#define SM_X(NAME, member) CHECK(moved.member == z.member);
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+  sm::set_config_resets(paper, moved);
+#define SM_X(NAME, member) CHECK(moved.member == p.member);
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
 }
 
 TEST_CASE("every value register's member holds the register's range", "[regmap]") {

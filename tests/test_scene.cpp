@@ -252,23 +252,25 @@ TEST_CASE("impossible scene parameters are rejected", "[unit][scene]") {
 TEST_CASE("scene objects: the model reports every object the generator placed", "[unit][objects]") {
   const SceneParams p = sm::test::scene_params(320, 240, 128, 1, 6);
   // the paper configuration, and zynq's with its speckle stage (a speckle is never an
-  // object), at the defaults and in the speckle mode (its trusted regions keep the object at
-  // disparity 57 with 258 visible pixels, under SPECKLE_SIZE)
+  // object) at its defaults, the speckle mode (its trusted regions keep the object at
+  // disparity 57 with 258 visible pixels, under SPECKLE_SIZE), and with the paper's
+  // per-pixel rules instead
   sm::HwConfig hw;
-  bool speckle_mode = false;
+  bool pixel_rules = false;
   SECTION("paper") {}
   SECTION("zynq") {
     hw.pu = 8;
     hw.speckle_rows = 32;
   }
-  SECTION("zynq, speckle mode") {
+  SECTION("zynq, per-pixel rules") {
     hw.pu = 8;
     hw.speckle_rows = 32;
-    speckle_mode = true;
+    pixel_rules = true;
   }
   const sm::tools::SyntheticScene s = render_scene(p);
   sm::Regs r = sm::Regs::defaults(hw);
-  if (speckle_mode) sm::speckle_mode(r);
+  CHECK(r.speckle_en == (hw.speckle_rows > 0));  // the stage resets into its speckle mode
+  if (pixel_rules) sm::set_checked_rules(r, false);
   const sm::PipelineResult res = sm::tools::run_on_scene(p, s, hw, r);
   CHECK_FALSE(res.objects.table_full);
   const std::vector<sm::tools::PlacedCheck> checks =

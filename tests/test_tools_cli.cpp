@@ -500,33 +500,51 @@ TEST_CASE("stereo_model --disp-file writes the disparity losslessly", "[unit][to
     CHECK(on.rc == 0);
     CHECK(on.err.find("--speckle was measured with --lr-en 0 --agree-en 0 --smooth-en 0") != std::string::npos);
   }
-  SECTION("--speckle-rows: the IP's speckle stage (9.8); SPECKLE_EN is off by default") {
-    // the words before the smoothing, the stage at 4 rows (size 20), then the smoothing
-    auto stage = [&](bool rules) {
+  SECTION("--speckle-rows: the IP's speckle stage (9.8), which resets into its speckle mode") {
+    // the words before the smoothing, the stage at 4 rows (size 20) on or off, then the smoothing
+    auto stage = [&](bool rules, bool on) {
       sm::OutputRegs o;
       o.lr_en = o.agree_en = rules;
       const sm::OutImage words = sm::make_output(res.evidence, res.post, 16, o, 0);
-      return sm::smooth_output(sm::speckle_output(words, {1, 20, 8}, 4, 1024), o.smooth_en, o.smooth_t);
+      const sm::SpeckleRegs sr{static_cast<uint8_t>(on), 20, 8};
+      return sm::smooth_output(sm::speckle_output(words, sr, 4, 1024), o.smooth_en, o.smooth_t);
     };
     const fs::path f = out / "stage.pfm";
-    // the speckle mode: the stage on, the left-right and agreement rules off
-    const Run r = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --speckle-en 1 --speckle-size 20 " +
-                                               "--lr-en 0 --agree-en 0 --disp-file " + f.string());
+    // the reset where the stage is built: the stage on, the left-right and agreement rules off
+    const Run r =
+        run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --speckle-size 20 --disp-file " + f.string());
     INFO(r.err);
     REQUIRE(r.rc == 0);
-    const sm::OutImage want = stage(false);
+    const sm::OutImage want = stage(false, true);
     CHECK(sm::tools::fail_counts(want).by_rule[6] > 0);  // the fixture's pair has speckles of at most 20 px
     check_pfm(f, sm::tools::out_to_float(want));
-    // the stage on, the rules at their defaults (on)
-    const Run on =
-        run(SM_STEREO_MODEL_EXE,
-            lr + " --mode checked --speckle-rows 4 --speckle-en 1 --speckle-size 20 --disp-file " + f.string());
+    // the stage on with the rules on
+    const Run on = run(SM_STEREO_MODEL_EXE, lr +
+                                                " --mode checked --speckle-rows 4 --speckle-size 20 --lr-en 1 "
+                                                "--agree-en 1 --disp-file " +
+                                                f.string());
     REQUIRE(on.rc == 0);
-    check_pfm(f, sm::tools::out_to_float(stage(true)));
-    // built but off (the reset): the words of the core without it
-    const Run off = run(SM_STEREO_MODEL_EXE, lr + " --mode checked --speckle-rows 4 --disp-file " + f.string());
+    check_pfm(f, sm::tools::out_to_float(stage(true, true)));
+    // the stage off with the rules on: the words of the core without it
+    const Run off = run(SM_STEREO_MODEL_EXE, lr +
+                                                 " --mode checked --speckle-rows 4 --speckle-en 0 --lr-en 1 "
+                                                 "--agree-en 1 --disp-file " +
+                                                 f.string());
     REQUIRE(off.rc == 0);
     check_pfm(f, sm::tools::out_to_float(sm::stream_words(res.evidence, res.post, 16, sm::OutputRegs{})));
+    // a register file's configuration resets the same way, and the file's own registers win,
+    // also over the resets of a configuration the options change after it
+    const fs::path regs = out / "regs.json";
+    std::ofstream(regs) << R"({"speckle_rows": 4, "speckle_size": 20})";
+    REQUIRE(
+        run(SM_STEREO_MODEL_EXE, lr + " --mode checked --regs " + regs.string() + " --disp-file " + f.string()).rc ==
+        0);
+    check_pfm(f, sm::tools::out_to_float(stage(false, true)));
+    std::ofstream(regs) << R"({"speckle_size": 20, "lr_en": 1, "agree_en": 1})";
+    REQUIRE(run(SM_STEREO_MODEL_EXE,
+                lr + " --mode checked --regs " + regs.string() + " --speckle-rows 4 --disp-file " + f.string())
+                .rc == 0);
+    check_pfm(f, sm::tools::out_to_float(stage(true, true)));
   }
   SECTION("bad requests leave no output at all") {
     expect_error(run(SM_STEREO_MODEL_EXE, lr + " --disp-file " + (out / "d.txt").string()), ".pfm or .png");

@@ -136,14 +136,18 @@ RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r) {
   std::map<std::string, const defs::Limit*> hw_keys;
   for (const auto& l : defs::kLimits) hw_keys[lower_case(l.name)] = &l;
   RegsFile out;
+  bool hw_set = false;
   for (auto it = j.begin(); it != j.end(); ++it) {
     out.keys.push_back(it.key());
     if (auto h = hw_keys.find(it.key()); h != hw_keys.end()) {
       const defs::Limit& l = *h->second;
       const int64_t x = integer(it.key(), it.value(), {l.min, l.max});
       *hw.field(l.name) = static_cast<int>(x);
+      hw_set = true;
     }
   }
+  // the file's configuration's resets (the file's registers below still win)
+  if (hw_set) set_config_resets(hw, r);
 
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& k = it.key();

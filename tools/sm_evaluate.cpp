@@ -83,7 +83,7 @@ int round16(int levels) { return (levels + 15) / 16 * 16; }
 
 // --threads: the model's thread count (set once before any method runs; same output for any).
 int model_threads = 1;
-int model_speckle_rows = 0;  // --speckle-rows: the model's SPECKLE_ROWS (the zynq configuration: 32), on
+int model_speckle_rows = 0;  // --speckle-rows: the model's SPECKLE_ROWS (the zynq configuration: 32)
 
 // A scene's disparity file in the --results folder: <scene>.pfm or <scene>.png.
 std::string result_file(const std::string& dir, const std::string& scene) {
@@ -178,8 +178,7 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
          hw.max_width = s.left.cols;
          hw.max_height = s.left.rows;
          hw.speckle_rows = model_speckle_rows;
-         sm::Regs regs = sm::Regs::defaults(hw);
-         if (model_speckle_rows > 0) sm::speckle_mode(regs);
+         sm::Regs regs = sm::Regs::defaults(hw);  // (with the stage: its speckle mode)
          regs.occ = static_cast<uint8_t>(occ);
          regs.filter_enable = 15;
          if (!regs_file.empty()) {
@@ -397,9 +396,11 @@ int run(int argc, char** argv) {
                  "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
                  "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
                  "the scene's, --occ wins when given");
-  app.add_option("--speckle-rows", model_speckle_rows,
-                 "model: the speckle stage's rows, SPECKLE_ROWS (0: none, as at the paper configuration; 32: the "
-                 "zynq configuration's), in the speckle mode: SPECKLE_EN 1, LR_EN 0, AGREE_EN 0")
+  app.add_option(
+         "--speckle-rows", model_speckle_rows,
+         "model: the speckle stage's rows, SPECKLE_ROWS (0: none, as at the paper configuration; 32: the "
+         "zynq configuration's); with the stage the registers reset into its speckle mode: SPECKLE_EN 1, LR_EN 0, "
+         "AGREE_EN 0")
       ->check(sm::tools::int_in(sm::defs::limit("SPECKLE_ROWS").min, sm::defs::limit("SPECKLE_ROWS").max))
       ->capture_default_str();
   app.add_option("--threads", model_threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")

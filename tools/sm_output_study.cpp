@@ -27,6 +27,7 @@
 #include "sm_output_bound.hpp"
 #include "sm_speckle.hpp"
 #include "sm_speckle_table.hpp"
+#include "speckle.hpp"
 
 using namespace sm;
 using namespace sm::tools;
@@ -324,6 +325,40 @@ void study_speckle(const std::vector<Frame>& fr) {
   print_speckle_table(fr);
 }
 
+// The dense stream's confidence with the speckle stage's verdict (9.8, on the dense words
+// before the smoothing, zynq's 1,024 labels) as one more cue: the confidence of every
+// pixel the stage would clear is halved. Size 0: the confidence as streamed.
+void study_speckle_conf(const std::vector<Frame>& fr) {
+  struct Case {
+    int size, trust, diff, rows;
+  };
+  const Case cases[] = {{0, 0, 0, 0},        {1000, 100, 8, 32},  {500, 100, 8, 32},  {2000, 100, 8, 32},
+                        {4000, 100, 8, 32},  {1000, 4095, 8, 32}, {1000, 100, 4, 32}, {1000, 100, 12, 32},
+                        {1000, 100, 16, 32}, {1000, 100, 8, 16},  {1000, 100, 8, 62}};
+  const OutputRegs dense = dense_mode(OutputRegs{});
+  fmt::print("\nDense confidence, halved where the speckle stage would clear the pixel:\n\n");
+  fmt::print("| {:>5} | {:>5} | {:>4} | {:>4} |  AUC   | oracle | ratio |\n", "size", "trust", "diff", "rows");
+  fmt::print("|-------|-------|------|------|--------|--------|-------|\n");
+  for (const Case& c : cases) {
+    double auc = 0, oracle = 0;
+    for (const auto& f : fr) {
+      OutImage o = stream_words(f.ev, f.post, f.levels, dense);
+      if (c.size > 0) {
+        const SpeckleRegs sr{1, static_cast<uint16_t>(c.size), static_cast<uint8_t>(c.diff),
+                             static_cast<uint16_t>(c.trust)};
+        const OutImage cleared = speckle_output(make_output(f.ev, f.post, f.levels, dense, 0), sr, c.rows, 1024);
+        for (size_t i = 0; i < o.px.size(); ++i)
+          if (cleared.px[i] == kOutSpeckle) o.px[i] = (o.px[i] & ~0x00ff0000u) | (out_conf(o.px[i]) / 2) << 16;
+      }
+      const Sparsification sp = sparsification(out_to_float(o), out_to_conf(o), f.gt, f.mask);
+      auc += sp.auc;
+      oracle += sp.oracle_auc;
+    }
+    fmt::print("| {:>5} | {:>5} | {:>4} | {:>4} | {:6.3f} | {:6.3f} | {:5.2f} |\n", c.size, c.trust, c.diff, c.rows,
+               auc / static_cast<double>(fr.size()), oracle / static_cast<double>(fr.size()), auc / oracle);
+  }
+}
+
 void study_conf(const std::vector<Frame>& fr) {
   header(true);
   for (int v = 0; v < kConfidenceVariants; ++v)
@@ -411,11 +446,12 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
   app.add_option("--study", studies,
-                 "comma-separated subset of subpix,valid,conf,bound,speckle (bound: a random forest on the "
-                 "evidence, leave one scene out, ~3 min; speckle: the rules then a speckle check; neither is in "
-                 "the default set)")
+                 "comma-separated subset of subpix,valid,conf,bound,speckle,speckle-conf (bound: a random forest "
+                 "on the evidence, leave one scene out, ~3 min; speckle: the rules then a speckle check; "
+                 "speckle-conf: the speckle stage's verdict in the confidence; none of these three is in the "
+                 "default set)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle"}));
+      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle", "speckle-conf"}));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
   if (!dump_dir.empty()) check_output_folder("--dump-features", dump_dir);
   quiet_opencv();
@@ -438,6 +474,8 @@ int run(int argc, char** argv) {
       study_conf(fr);
     else if (s == "speckle")
       study_speckle(fr);
+    else if (s == "speckle-conf")
+      study_speckle_conf(fr);
     else
       study_bound(fr);
   }

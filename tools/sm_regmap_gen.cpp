@@ -85,9 +85,10 @@ struct ParamExpr {
   const char* expr;
 };
 constexpr ParamExpr kParamExprs[] = {
-    {"MAX_WIDTH", "hw.max_width"},     {"MAX_HEIGHT", "hw.max_height"},    {"DISP", "hw.disp"},
-    {"MAX_OBJECTS", "hw.max_objects"}, {"MIN_WIDTH", "hw.min_width()"},    {"PU", "hw.levels_per_clock()"},
-    {"MIN_HEIGHT", "hw.min_height()"}, {"SPECKLE_ROWS", "hw.speckle_rows"}};
+    {"MAX_WIDTH", "hw.max_width"},      {"MAX_HEIGHT", "hw.max_height"},     {"DISP", "hw.disp"},
+    {"MAX_OBJECTS", "hw.max_objects"},  {"MIN_WIDTH", "hw.min_width()"},     {"PU", "hw.levels_per_clock()"},
+    {"MIN_HEIGHT", "hw.min_height()"},  {"SPECKLE_ROWS", "hw.speckle_rows"}, {"SPECKLE_MODE", "hw.speckle_mode()"},
+    {"PIXEL_RULES", "hw.pixel_rules()"}};
 
 std::string param_expr(const std::string& p) {
   for (const auto& e : kParamExprs)

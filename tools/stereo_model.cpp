@@ -83,6 +83,16 @@ void resize_to_active(cv::Mat& left, cv::Mat& right, int w, int h, const std::st
   }
 }
 
+// The resets of the configuration hw, which the options changed after --regs (SPECKLE_EN,
+// LR_EN, AGREE_EN: sm::set_config_resets), but for the registers the file sets.
+void keep_file_regs(const sm::tools::RegsFile& file_keys, const sm::HwConfig& hw, sm::Regs& r) {
+  const sm::Regs from_file = r;
+  sm::set_config_resets(hw, r);
+  if (file_keys.has("speckle_en")) r.speckle_en = from_file.speckle_en;
+  if (file_keys.has("lr_en")) r.lr_en = from_file.lr_en;
+  if (file_keys.has("agree_en")) r.agree_en = from_file.agree_en;
+}
+
 int run(int argc, char** argv) {
   std::string left, right, out, colour, disp_file, regs_json, calib, stage = "post", objects_json;
   sm::HwConfig hw;
@@ -138,7 +148,7 @@ int run(int argc, char** argv) {
                      ->capture_default_str()},
       {"SPECKLE_ROWS", app.add_option("--speckle-rows", hw.speckle_rows,
                                       "SPECKLE_ROWS: the speckle stage's rows (0: none; the zynq configuration: 32; "
-                                      "SPECKLE_EN turns it on)")
+                                      "the stage then resets into its speckle mode: SPECKLE_EN 1, LR_EN 0, AGREE_EN 0)")
                            ->capture_default_str()},
       {"SPECKLE_LABELS",
        app.add_option("--speckle-labels", hw.speckle_labels, "SPECKLE_LABELS: its label-table entries")
@@ -181,12 +191,14 @@ int run(int argc, char** argv) {
   hw.max_width = left_m.cols;
   hw.max_height = left_m.rows;
   int act_w = left_m.cols, act_h = left_m.rows;
+  sm::tools::RegsFile file_keys;  // what --regs sets
   if (!regs_json.empty()) {
     hw.max_width = sm::defs::limit("MAX_WIDTH").max;
     hw.max_height = sm::defs::limit("MAX_HEIGHT").max;
     r.width = act_w;
     r.height = act_h;
     const sm::tools::RegsFile rf = sm::tools::apply_regs_json(regs_json, hw, r);
+    file_keys = rf;
     if (calib.empty()) calib = rf.calib;  // the file's "calib" key, unless --calib is given
     act_w = r.width;
     act_h = r.height;
@@ -196,8 +208,13 @@ int run(int argc, char** argv) {
   }
   const sm::Image8 L = sm::tools::to_image8(left_m);
   const sm::Image8 R = sm::tools::to_image8(right_m);
+  bool cli_hw_set = false;
   for (const auto& [name, opt] : hw_opts)
-    if (opt->count()) *hw.field(name) = *cli_hw.field(name);
+    if (opt->count()) {
+      *hw.field(name) = *cli_hw.field(name);
+      cli_hw_set = true;
+    }
+  if (cli_hw_set) keep_file_regs(file_keys, hw, r);
   try {
     hw.validate();
   } catch (const std::invalid_argument& e) {
