@@ -52,13 +52,13 @@ SizeOptions add_input_options(CLI::App& app, const HwConfig& hw, SimOptions& o) 
                  "frames to stream: at most this many of a sequence or video (default: all of them); a pair or "
                  "scene is repeated (default 2)")
       ->check(tools::int_in(1, 100000));
-  // The active size's real limits: MIN_WIDTH..MAX_WIDTH and 16..MAX_HEIGHT (docs/registers.md).
+  // The active size's real limits: MIN_WIDTH..MAX_WIDTH and MIN_HEIGHT..MAX_HEIGHT (docs/registers.md).
   SizeOptions s;
   s.width = app.add_option("--width", o.width, "active width")
                 ->check(tools::int_in(hw.min_width(), hw.max_width))
                 ->capture_default_str();
   s.height = app.add_option("--height", o.height, "active height")
-                 ->check(tools::int_in(16, hw.max_height))
+                 ->check(tools::int_in(hw.min_height(), hw.max_height))
                  ->capture_default_str();
   return s;
 }
