@@ -348,7 +348,7 @@ void study_speckle_conf(const std::vector<Frame>& fr) {
                              static_cast<uint16_t>(c.trust)};
         const OutImage cleared = speckle_output(make_output(f.ev, f.post, f.levels, dense, 0), sr, c.rows, 1024);
         for (size_t i = 0; i < o.px.size(); ++i)
-          if (cleared.px[i] == kOutSpeckle) o.px[i] = (o.px[i] & ~0x00ff0000u) | (out_conf(o.px[i]) / 2) << 16;
+          if (cleared.px[i] == kOutSpeckle) o.px[i] = make_out_word(true, out_conf(o.px[i]) / 2, out_q4(o.px[i]));
       }
       const Sparsification sp = sparsification(out_to_float(o), out_to_conf(o), f.gt, f.mask);
       auc += sp.auc;
