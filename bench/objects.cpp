@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "configs.hpp"
 #include "pipeline.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_placed_objects.hpp"
@@ -34,11 +35,7 @@ constexpr Mode kModes[] = {{"paper", false, false, true},
 // The placed objects that count and are missing from the model's list in `m`.
 std::vector<sm::tools::PlacedCheck> missed(const sm::tools::SceneParams& p, const sm::tools::SyntheticScene& s,
                                            const Mode& m, int* counted) {
-  sm::HwConfig hw;
-  if (m.zynq) {
-    hw.pu = 8;
-    hw.speckle_rows = 32;
-  }
+  const sm::HwConfig hw = sm::named_config(m.zynq ? "zynq" : "paper");
   sm::Regs r = sm::Regs::defaults(hw);
   if (m.pixel_rules) sm::set_checked_rules(r, false);
   if (!m.trust) r.speckle_trust = 4095;

@@ -13,7 +13,9 @@
 #include <string>
 #include <tuple>
 #include <type_traits>
+#include <vector>
 
+#include "configs.hpp"
 #include "sm_cmd.hpp"
 #include "sm_regmap.hpp"
 #include "sm_types.hpp"
@@ -94,9 +96,7 @@ TEST_CASE("the checked rules reset by configuration (independent of the generate
   // Where the speckle stage is built (the zynq configuration) it resets into its speckle
   // mode, elsewhere the per-pixel left-right and agreement rules are on (docs/evaluation.md,
   // "Speckles"); set_config_resets gives a tool's changed configuration the same values.
-  sm::HwConfig paper, zynq;
-  zynq.pu = 8;
-  zynq.speckle_rows = 32;
+  const sm::HwConfig paper = sm::named_config("paper"), zynq = sm::named_config("zynq");
   const sm::Regs p = sm::Regs::defaults(paper), z = sm::Regs::defaults(zynq);
   CHECK(!p.speckle_en);
   CHECK(p.lr_en);
@@ -113,6 +113,36 @@ TEST_CASE("the checked rules reset by configuration (independent of the generate
 #define SM_X(NAME, member) CHECK(moved.member == p.member);
   SM_REGMAP_VALUE_REGS(SM_X)
 #undef SM_X
+}
+
+TEST_CASE("the named configurations are the build's (independent of the generated code)", "[regmap]") {
+  // CMakeLists.txt's SM_*_PARAMS, written out here once more; the others stay HwConfig{}'s
+  auto check = [](const std::string& name, std::map<std::string, int> want) {
+    INFO(name);
+    const sm::HwConfig hw = sm::named_config(name);
+    CHECK_NOTHROW(hw.validate());
+    for (const auto& [param, value] : sm::HwConfig{}.parameters())
+      if (!want.count(param)) want[param] = value;
+    CHECK(hw.parameters() == want);
+  };
+  const std::map<std::string, int> paper{{"MAX_WIDTH", 320}, {"MAX_HEIGHT", 240}, {"DISP", 128},
+                                         {"CENSUS", 15},     {"SW", 5},           {"RECT_RADIUS", 18}};
+  std::map<std::string, int> zynq = paper, vga = paper;
+  zynq.insert({{"PU", 8}, {"SPECKLE_ROWS", 32}, {"SPECKLE_LABELS", 1024}});
+  vga.insert({{"PU", 8}});
+  vga["MAX_WIDTH"] = 640;
+  vga["MAX_HEIGHT"] = 480;
+  const std::map<std::string, int> small{{"MAX_WIDTH", 64}, {"MAX_HEIGHT", 48}, {"DISP", 16},
+                                         {"CENSUS", 7},     {"SW", 3},          {"RECT_RADIUS", 4}};
+  std::map<std::string, int> small_fold = small;
+  small_fold["PU"] = 4;
+  check("paper", paper);
+  check("zynq", zynq);
+  check("vga", vga);
+  check("small", small);
+  check("small_fold", small_fold);
+  CHECK(sm::config_names() == std::vector<std::string>{"paper", "zynq", "vga", "small", "small_fold"});
+  CHECK_THROWS_AS(sm::named_config("zynq7020"), std::invalid_argument);
 }
 
 TEST_CASE("every value register's member holds the register's range", "[regmap]") {
@@ -258,9 +288,7 @@ TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
   CHECK_THROWS_AS(hw.validate(), std::invalid_argument);
   // The speckle stage's rows (and two for its queue) lengthen the pipeline; the shortest
   // frame grows instead, so four frames still outlast it.
-  sm::HwConfig zynq;
-  zynq.pu = 8;
-  zynq.speckle_rows = 32;
+  sm::HwConfig zynq = sm::named_config("zynq");
   CHECK(zynq.base_flush_rows() == 55);
   CHECK(zynq.flush_rows() == 89);
   CHECK(zynq.min_height() == 23);

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calib_file.hpp"
+#include "configs.hpp"
 #include "pipeline.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_placed_objects.hpp"
@@ -255,16 +256,12 @@ TEST_CASE("scene objects: the model reports every object the generator placed", 
   // object) at its defaults, the speckle mode (its trusted regions keep the object at
   // disparity 57 with 258 visible pixels, under SPECKLE_SIZE), and with the paper's
   // per-pixel rules instead
-  sm::HwConfig hw;
+  sm::HwConfig hw = sm::named_config("paper");
   bool pixel_rules = false;
   SECTION("paper") {}
-  SECTION("zynq") {
-    hw.pu = 8;
-    hw.speckle_rows = 32;
-  }
+  SECTION("zynq") { hw = sm::named_config("zynq"); }
   SECTION("zynq, per-pixel rules") {
-    hw.pu = 8;
-    hw.speckle_rows = 32;
+    hw = sm::named_config("zynq");
     pixel_rules = true;
   }
   const sm::tools::SyntheticScene s = render_scene(p);

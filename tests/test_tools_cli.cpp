@@ -278,10 +278,26 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   CHECK(j2["scenes"][0]["methods"]["model"]["bad1_pct"] == s["methods"]["model"]["bad1_pct"]);
   CHECK(j2["scenes"][0]["methods"]["model"]["streak"][0]["max_rows"] == 2);
   CHECK(j2["scenes"][0]["methods"].size() == 9);  // the model's eight outputs and bm
+  // --config: the model at a named configuration's parameters (small: census 7, SW 3), the
+  // same as those parameters from a register file, and recorded in the JSON
+  const fs::path small_regs = out / "small.json";
+  std::ofstream(small_regs) << R"({"census": 7, "sw": 3, "rect_radius": 4})";
+  const std::string model16 = (fx.dir / "dataset").string() + " --levels 16 -q --methods model --json ";
+  const Run r3 = run(SM_EVALUATE_EXE, model16 + (out / "r3.json").string() + " --config small");
+  const Run r4 = run(SM_EVALUATE_EXE, model16 + (out / "r4.json").string() + " --regs " + small_regs.string());
+  REQUIRE(r3.rc == 0);
+  REQUIRE(r4.rc == 0);
+  const auto j3 = nlohmann::json::parse(slurp(out / "r3.json")), j4 = nlohmann::json::parse(slurp(out / "r4.json"));
+  CHECK(j3["model_config"] == "small");
+  CHECK(j["model_config"] == "paper");
+  const auto& m3 = j3["scenes"][0]["methods"]["model"];
+  CHECK(m3["bad1_pct"] == j4["scenes"][0]["methods"]["model"]["bad1_pct"]);
+  CHECK(m3["bad1_pct"] != s["methods"]["model"]["bad1_pct"]);
   const std::string ds = (fx.dir / "dataset").string() + " -q";
+  expect_error(run(SM_EVALUATE_EXE, ds + " --config zynq7020"), "--config");
   expect_error(run(SM_EVALUATE_EXE, ds + " --peer-levels 40"), "--peer-levels 40");
   expect_error(run(SM_EVALUATE_EXE, ds + " --methods model,bm,model"), "twice");
-  expect_only(out, {"r.json", "r2.json", "img"});
+  expect_only(out, {"r.json", "r2.json", "r3.json", "r4.json", "small.json", "img"});
 }
 
 TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {

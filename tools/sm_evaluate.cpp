@@ -38,6 +38,7 @@
 #include "toolio/sm_metrics.hpp"
 #include "toolio/sm_regs_json.hpp"
 #include "calib_file.hpp"
+#include "configs.hpp"
 #include "toolio/sm_scenegen.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
@@ -83,7 +84,9 @@ int round16(int levels) { return (levels + 15) / 16 * 16; }
 
 // --threads: the model's thread count (set once before any method runs; same output for any).
 int model_threads = 1;
-int model_speckle_rows = 0;  // --speckle-rows: the model's SPECKLE_ROWS (the zynq configuration: 32)
+std::string model_config = "paper";   // --config: the model's configuration (sm::named_config)
+int model_speckle_rows = 0;           // --speckle-rows: SPECKLE_ROWS in place of the configuration's ...
+bool model_speckle_rows_set = false;  // ... when given
 
 // A scene's disparity file in the --results folder: <scene>.pfm or <scene>.png.
 std::string result_file(const std::string& dir, const std::string& scene) {
@@ -173,11 +176,11 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
       {"model",
        {"model_dp", "model_f0", "model_f1", "model_f1f2", "model", "model_subpix", "model_checked", "model_host"},
        [occ, occ_given, regs_file](const sm::tools::Scene& s, int levels) {
-         sm::HwConfig hw;  // paper defaults: CENSUS 15, SW 5
+         sm::HwConfig hw = sm::named_config(model_config);  // its sizes and levels: the scene's
          hw.disp = levels;
          hw.max_width = s.left.cols;
          hw.max_height = s.left.rows;
-         hw.speckle_rows = model_speckle_rows;
+         if (model_speckle_rows_set) hw.speckle_rows = model_speckle_rows;
          sm::Regs regs = sm::Regs::defaults(hw);  // (with the stage: its speckle mode)
          regs.occ = static_cast<uint8_t>(occ);
          regs.filter_enable = 15;
@@ -396,17 +399,22 @@ int run(int argc, char** argv) {
                  "model: register file (stereo_model --regs format: registers and compile-time parameters such as "
                  "sw_table, filter_enable, band_k, cost_shift) applied on top of the defaults; sizes and levels stay "
                  "the scene's, --occ wins when given");
-  app.add_option(
-         "--speckle-rows", model_speckle_rows,
-         "model: the speckle stage's rows, SPECKLE_ROWS (0: none, as at the paper configuration; 32: the "
-         "zynq configuration's); with the stage the registers reset into its speckle mode: SPECKLE_EN 1, LR_EN 0, "
-         "AGREE_EN 0")
-      ->check(sm::tools::int_in(sm::defs::limit("SPECKLE_ROWS").min, sm::defs::limit("SPECKLE_ROWS").max))
+  app.add_option("--config", model_config,
+                 "model: the configuration whose parameters and register resets it models (sizes and levels "
+                 "stay the scene's; zynq: its speckle stage and speckle mode)")
+      ->check(CLI::IsMember(sm::config_names()))
       ->capture_default_str();
+  CLI::Option* speckle_opt =
+      app.add_option("--speckle-rows", model_speckle_rows,
+                     "model: the speckle stage's rows, SPECKLE_ROWS, in place of the configuration's (0: none, as "
+                     "at the paper configuration; 32: the zynq configuration's); with the stage the registers "
+                     "reset into its speckle mode: SPECKLE_EN 1, LR_EN 0, AGREE_EN 0")
+          ->check(sm::tools::int_in(sm::defs::limit("SPECKLE_ROWS").min, sm::defs::limit("SPECKLE_ROWS").max));
   app.add_option("--threads", model_threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
+  model_speckle_rows_set = speckle_opt->count() > 0;
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
     throw ToolError(fmt::format("--levels {}: must be 0 or even 4..254", levels));
   check_files(regs_file, levels, json_path, disp_dir);
@@ -498,6 +506,8 @@ int run(int argc, char** argv) {
       "by more than 1, with every row between evaluated and gt within 1 (toolio/sm_io.hpp, streaks)";
   jout["peer_levels"] = peer_levels ? json(peer_levels) : json("scene");
   jout["threads"] = model_threads;  // the model's; OpenCV runs on one
+  jout["model_config"] = model_config;
+  if (model_speckle_rows_set) jout["model_speckle_rows"] = model_speckle_rows;
   jout["scenes"] = json::array();
   struct Cell {
     sm::tools::BadStats bad;
