@@ -21,6 +21,7 @@
 #include "toolio/sm_scenegen.hpp"
 #include "outword.hpp"
 #include "smooth.hpp"
+#include "configs.hpp"
 #include "speckle.hpp"
 #include "pipeline.hpp"
 #include "sm_chessboard_rig.hpp"
@@ -168,6 +169,21 @@ TEST_CASE("stereo_model writes the model's disparity", "[unit][tools][cli]") {
           fx.L() + " " + fx.R() + " --disp 16 --census 7 --sw 3 --occ 20 --threads 3 -o " + (out / "d3.png").string());
   REQUIRE(r3.rc == 0);
   CHECK(cv::norm(cv::imread((out / "d3.png").string(), cv::IMREAD_UNCHANGED), ref, cv::NORM_INF) == 0);
+  // --config: a named configuration's parameters (small: DISP 16, CENSUS 7, SW 3, RECT_RADIUS 4),
+  // the sizes the image's; zynq's 128 levels do not fit a 64-pixel line
+  sm::HwConfig small = sm::named_config("small");
+  const sm::PipelineResult res4 =
+      sm::run_pipeline(sm::tools::load_grey(fx.L()), sm::tools::load_grey(fx.R()), small, regs, false);
+  const Run r4 =
+      run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --config small --occ 20 -o " + (out / "d4.png").string());
+  REQUIRE(r4.rc == 0);
+  CHECK(cv::norm(cv::imread((out / "d4.png").string(), cv::IMREAD_UNCHANGED),
+                 sm::tools::disp_to_grey(sm::tools::disp_to_float(res4.post), 16), cv::NORM_INF) == 0);
+  expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --config zynq -o " + (out / "d5.png").string()),
+               "bad hardware configuration");
+  expect_error(run(SM_STEREO_MODEL_EXE, fx.L() + " " + fx.R() + " --config zynq7020 -o " + (out / "d5.png").string()),
+               "--config");
+  CHECK_FALSE(fs::exists(out / "d5.png"));
 }
 
 TEST_CASE("sm_evaluate rejects bad datasets cleanly", "[unit][tools][cli]") {

@@ -23,6 +23,7 @@
 #include <tuple>
 
 #include "calib_file.hpp"
+#include "configs.hpp"
 #include "toolio/sm_depth_options.hpp"
 #include "toolio/sm_host_speckle.hpp"
 #include "toolio/sm_cli.hpp"
@@ -125,6 +126,12 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember({"integer", "dense", "checked"}))
       ->capture_default_str();
   app.add_option("--confidence", conf_png, "write the 8-bit confidence of --mode dense/checked as a grey PNG");
+  std::string config = "paper";
+  app.add_option("--config", config,
+                 "the configuration whose parameters and register resets it models (sizes: the image's; --regs "
+                 "and the options below apply on top)")
+      ->check(CLI::IsMember(sm::config_names()))
+      ->capture_default_str();
   app.add_option("--regs", regs_json, "JSON file of HwConfig/Regs fields (keys = field names)");
   app.add_option("--calib", calib, "calibration JSON (model/calib_file.hpp): rectification grids");
   // each option by the sm_top parameter it sets (HwConfig::field)
@@ -183,11 +190,13 @@ int run(int argc, char** argv) {
     throw ToolError(fmt::format("{}: size {}x{} differs from {} ({}x{})", right, right_m.cols, right_m.rows, left,
                                 left_m.cols, left_m.rows));
 
-  // Defaults (MAX_WIDTH x MAX_HEIGHT = active size = image size), then --regs, then explicit
-  // options. The file may set the active size (width, height): checked against its own
-  // MAX_WIDTH / MAX_HEIGHT or the largest the IP allows, the images are resized to it.
+  // The configuration (MAX_WIDTH x MAX_HEIGHT = active size = image size) and its resets,
+  // then --regs, then explicit options. The file may set the active size (width, height):
+  // checked against its own MAX_WIDTH / MAX_HEIGHT or the largest the IP allows, the images
+  // are resized to it.
   const sm::HwConfig cli_hw = hw;
-  hw = sm::HwConfig{};
+  hw = sm::named_config(config);
+  sm::set_config_resets(hw, r);
   hw.max_width = left_m.cols;
   hw.max_height = left_m.rows;
   int act_w = left_m.cols, act_h = left_m.rows;
