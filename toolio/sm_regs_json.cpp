@@ -84,6 +84,16 @@ std::vector<ValueRegister> value_registers() {
   return v;
 }
 
+void set_config_resets_keeping(const RegsFile& f, const HwConfig& hw, Regs& r) {
+  const Regs from_file = r;
+  set_config_resets(hw, r);
+  // a value register's file key is its sm::Regs member's name
+#define SM_X(NAME, member) \
+  if (f.has(#member)) r.member = from_file.member;
+  SM_REGMAP_VALUE_REGS(SM_X)
+#undef SM_X
+}
+
 int64_t register_value(const std::string& name, const Regs& r) {
 #define SM_X(NAME, member) \
   if (name == #NAME) return static_cast<int64_t>(r.member);

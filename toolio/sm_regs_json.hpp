@@ -38,6 +38,11 @@ struct RegsFile {
 // caller applies `calib` once the active size is known). Throws ToolError.
 RegsFile apply_regs_json(const std::string& path, HwConfig& hw, Regs& r);
 
+// The resets of hw that depend on the configuration (sm::set_config_resets), for a tool
+// that changes the configuration after applying the file f to r: every value register f
+// sets keeps the file's value.
+void set_config_resets_keeping(const RegsFile& f, const HwConfig& hw, Regs& r);
+
 // The value registers a tool sets (rtl/regmap.json: every register whose fields are all
 // rw and shadowed, CONTROL aside; SW_TABLE0/1 are words of 16 weight codes), by address.
 struct ValueRegister {

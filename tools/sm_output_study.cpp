@@ -335,18 +335,25 @@ void study_speckle_conf(const std::vector<Frame>& fr) {
   const Case cases[] = {{0, 0, 0, 0},        {1000, 100, 8, 32},  {500, 100, 8, 32},  {2000, 100, 8, 32},
                         {4000, 100, 8, 32},  {1000, 4095, 8, 32}, {1000, 100, 4, 32}, {1000, 100, 12, 32},
                         {1000, 100, 16, 32}, {1000, 100, 8, 16},  {1000, 100, 8, 62}};
+  // each frame's dense words before the smoothing (the stage's input) and as streamed, once
   const OutputRegs dense = dense_mode(OutputRegs{});
+  std::vector<OutImage> raw, streamed;
+  for (const auto& f : fr) {
+    raw.push_back(make_output(f.ev, f.post, f.levels, dense, 0));
+    streamed.push_back(smooth_output(raw.back(), dense.smooth_en, dense.smooth_t));
+  }
   fmt::print("\nDense confidence, halved where the speckle stage would clear the pixel:\n\n");
   fmt::print("| {:>5} | {:>5} | {:>4} | {:>4} |  AUC   | oracle | ratio |\n", "size", "trust", "diff", "rows");
   fmt::print("|-------|-------|------|------|--------|--------|-------|\n");
   for (const Case& c : cases) {
     double auc = 0, oracle = 0;
-    for (const auto& f : fr) {
-      OutImage o = stream_words(f.ev, f.post, f.levels, dense);
+    for (size_t k = 0; k < fr.size(); ++k) {
+      const Frame& f = fr[k];
+      OutImage o = streamed[k];
       if (c.size > 0) {
         const SpeckleRegs sr{1, static_cast<uint16_t>(c.size), static_cast<uint8_t>(c.diff),
                              static_cast<uint16_t>(c.trust)};
-        const OutImage cleared = speckle_output(make_output(f.ev, f.post, f.levels, dense, 0), sr, c.rows, 1024);
+        const OutImage cleared = speckle_output(raw[k], sr, c.rows, 1024);
         for (size_t i = 0; i < o.px.size(); ++i)
           if (cleared.px[i] == kOutSpeckle) o.px[i] = make_out_word(true, out_conf(o.px[i]) / 2, out_q4(o.px[i]));
       }

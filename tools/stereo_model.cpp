@@ -84,16 +84,6 @@ void resize_to_active(cv::Mat& left, cv::Mat& right, int w, int h, const std::st
   }
 }
 
-// The resets of the configuration hw, which the options changed after --regs (SPECKLE_EN,
-// LR_EN, AGREE_EN: sm::set_config_resets), but for the registers the file sets.
-void keep_file_regs(const sm::tools::RegsFile& file_keys, const sm::HwConfig& hw, sm::Regs& r) {
-  const sm::Regs from_file = r;
-  sm::set_config_resets(hw, r);
-  if (file_keys.has("speckle_en")) r.speckle_en = from_file.speckle_en;
-  if (file_keys.has("lr_en")) r.lr_en = from_file.lr_en;
-  if (file_keys.has("agree_en")) r.agree_en = from_file.agree_en;
-}
-
 int run(int argc, char** argv) {
   std::string left, right, out, colour, disp_file, regs_json, calib, stage = "post", objects_json;
   sm::HwConfig hw;
@@ -223,7 +213,8 @@ int run(int argc, char** argv) {
       *hw.field(name) = *cli_hw.field(name);
       cli_hw_set = true;
     }
-  if (cli_hw_set) keep_file_regs(file_keys, hw, r);
+  // the resets of the configuration the options changed, but for the file's registers
+  if (cli_hw_set) sm::tools::set_config_resets_keeping(file_keys, hw, r);
   try {
     hw.validate();
   } catch (const std::invalid_argument& e) {
