@@ -68,3 +68,8 @@ if(TARGET sm_speckle)
   # The host's check (toolio) against that union-find and known answers.
   sm_unit_test(test_host_speckle LIBS sm_speckle sm_toolio DISCOVER)
 endif()
+# The trellis's min-marginals (sm_output_study --study dp-margin) against every path of tiny
+# lines and the model's trellis.
+if(TARGET sm_dp_margin)
+  sm_unit_test(test_dp_margin LIBS sm_dp_margin sm_model DISCOVER)
+endif()

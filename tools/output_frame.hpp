@@ -18,6 +18,7 @@ struct OutputFrame {
   DispImage post;
   cv::Mat left;      // CV_8UC1, the pair's left view as the pipeline read it
   cv::Mat gt, mask;  // CV_32F ground truth (0 unknown) and the optional non-occlusion mask
+  cv::Mat margin;    // CV_32S trellis margin of the dense output's level (sm_dp_margin.hpp), when asked
 };
 
 }  // namespace sm::tools

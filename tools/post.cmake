@@ -16,6 +16,10 @@ add_library(sm_speckle STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_speckle.cpp ${CMAKE_C
 target_include_directories(sm_speckle PUBLIC ${CMAKE_CURRENT_LIST_DIR})
 target_link_libraries(sm_speckle PUBLIC opencv_core sm_model)
 target_compile_options(sm_speckle PRIVATE ${SM_WARNINGS})
+# The trellis's min-marginals (sm_output_study --study dp-margin).
+add_library(sm_dp_margin STATIC ${CMAKE_CURRENT_LIST_DIR}/sm_dp_margin.cpp)
+target_include_directories(sm_dp_margin PUBLIC ${CMAKE_CURRENT_LIST_DIR})
+target_compile_options(sm_dp_margin PRIVATE ${SM_WARNINGS})
 add_executable(sm_output_study ${CMAKE_CURRENT_LIST_DIR}/sm_output_study.cpp)
-target_link_libraries(sm_output_study PRIVATE sm_output_bound sm_speckle CLI11::CLI11 nlohmann_json::nlohmann_json)
+target_link_libraries(sm_output_study PRIVATE sm_output_bound sm_speckle sm_dp_margin CLI11::CLI11 nlohmann_json::nlohmann_json)
 target_compile_options(sm_output_study PRIVATE ${SM_WARNINGS})

@@ -3,7 +3,7 @@
 // disparity, then scores the sub-pixel estimators, validity rules and confidence formulas
 // of model/outword.hpp on all scenes at once (14-scene means), so each default is chosen
 // on every scene.
-//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf,bound,speckle]
+//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf,bound,speckle,speckle-conf,dp-margin]
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -20,10 +21,12 @@
 #include "toolio/sm_metrics.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "confidence.hpp"
+#include "configs.hpp"
 #include "output_frame.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
 #include "smooth.hpp"
+#include "sm_dp_margin.hpp"
 #include "sm_output_bound.hpp"
 #include "sm_speckle.hpp"
 #include "sm_speckle_table.hpp"
@@ -38,7 +41,28 @@ using Frame = OutputFrame;
 
 bool classic(const std::string& n) { return n == "tsukuba" || n == "venus" || n == "teddy" || n == "cones"; }
 
-Frame run_scene(const std::string& dir, int levels) {
+// The trellis margin (sm_dp_margin.hpp) of every pixel's level in the streamed dense words,
+// from the frame's aggregated costs and its rows' occlusion penalties.
+cv::Mat trellis_margins(const PipelineResult& r, const Regs& regs, int levels, const OutImage& words) {
+  const int w = r.agg.w, h = r.agg.h;
+  cv::Mat out(h, w, CV_32S);
+  std::vector<uint8_t> pen;
+  for (int y = 0; y < h; ++y) {
+    edge_penalties(&r.rl.px[static_cast<size_t>(y) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
+    const std::vector<int64_t> m = dp_min_marginals(r.agg.pix(0, y), w, pen.data(), levels);
+    for (int x = 0; x < w; ++x) {
+      const int d =
+          std::clamp((static_cast<int>(out_q4(words.px[static_cast<size_t>(y) * w + x])) + 8) >> 4, 0, levels - 1);
+      out.at<int32_t>(y, x) = static_cast<int32_t>(
+          std::clamp<int64_t>(dp_margin(&m[static_cast<size_t>(x) * levels], levels, d),
+                              std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max()));
+    }
+  }
+  return out;
+}
+
+// margins: also the trellis margins (keeps the frame's cost volumes while it runs).
+Frame run_scene(const std::string& dir, int levels, bool margins) {
   const Scene s = load_scene(dir);
   Frame f;
   f.name = std::filesystem::path(dir).filename().string();
@@ -49,7 +73,12 @@ Frame run_scene(const std::string& dir, int levels) {
   hw.max_height = s.left.rows;
   Regs regs = Regs::defaults(hw);
   regs.filter_enable = 15;
-  auto r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, false);
+  auto r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, margins);
+  if (margins) {
+    const OutputRegs dense = dense_mode(OutputRegs{});
+    const OutImage words = make_output(r.evidence, r.post, f.levels, dense, 0);
+    f.margin = trellis_margins(r, regs, f.levels, smooth_output(words, dense.smooth_en, dense.smooth_t));
+  }
   f.ev = std::move(r.evidence);
   f.post = std::move(r.post);
   f.left = s.left;
@@ -328,6 +357,16 @@ void study_speckle(const std::vector<Frame>& fr) {
 // The dense stream's confidence with the speckle stage's verdict (9.8, on the dense words
 // before the smoothing, zynq's 1,024 labels) as one more cue: the confidence of every
 // pixel the stage would clear is halved. Size 0: the confidence as streamed.
+// The streamed words with the confidence halved where the speckle stage (sr, rows) would
+// clear the pixel; raw: the words the stage sees (before the smoothing).
+OutImage halve_speckles(OutImage streamed, const OutImage& raw, const SpeckleRegs& sr, int rows) {
+  const OutImage cleared = speckle_output(raw, sr, rows, HwConfig{}.speckle_labels);
+  for (size_t i = 0; i < streamed.px.size(); ++i)
+    if (cleared.px[i] == kOutSpeckle)
+      streamed.px[i] = make_out_word(true, out_conf(streamed.px[i]) / 2, out_q4(streamed.px[i]));
+  return streamed;
+}
+
 void study_speckle_conf(const std::vector<Frame>& fr) {
   struct Case {
     int size, trust, diff, rows;
@@ -349,20 +388,62 @@ void study_speckle_conf(const std::vector<Frame>& fr) {
     double auc = 0, oracle = 0;
     for (size_t k = 0; k < fr.size(); ++k) {
       const Frame& f = fr[k];
-      OutImage o = streamed[k];
-      if (c.size > 0) {
-        const SpeckleRegs sr{1, static_cast<uint16_t>(c.size), static_cast<uint8_t>(c.diff),
-                             static_cast<uint16_t>(c.trust)};
-        const OutImage cleared = speckle_output(raw[k], sr, c.rows, 1024);
-        for (size_t i = 0; i < o.px.size(); ++i)
-          if (cleared.px[i] == kOutSpeckle) o.px[i] = make_out_word(true, out_conf(o.px[i]) / 2, out_q4(o.px[i]));
-      }
+      const SpeckleRegs sr{1, static_cast<uint16_t>(c.size), static_cast<uint8_t>(c.diff),
+                           static_cast<uint16_t>(c.trust)};
+      const OutImage o = c.size > 0 ? halve_speckles(streamed[k], raw[k], sr, c.rows) : streamed[k];
       const Sparsification sp = sparsification(out_to_float(o), out_to_conf(o), f.gt, f.mask);
       auc += sp.auc;
       oracle += sp.oracle_auc;
     }
     fmt::print("| {:>5} | {:>5} | {:>4} | {:>4} | {:6.3f} | {:6.3f} | {:5.2f} |\n", c.size, c.trust, c.diff, c.rows,
                auc / static_cast<double>(fr.size()), oracle / static_cast<double>(fr.size()), auc / oracle);
+  }
+}
+
+// The streamed dense confidence c with the trellis margin m added: a c + clamp(m, lo, hi),
+// saturated to 8 bits (a 0: the margin alone; hi 0: c alone); also with c halved where
+// zynq's speckle stage, enabled at its registers' resets, would clear the pixel.
+void study_dp_margin(const std::vector<Frame>& fr) {
+  struct Case {
+    double a;
+    int lo, hi;
+  };
+  const Case cases[] = {{1, 0, 0},      {0, -255, 255},  {0.5, 0, 20}, {0.5, 0, 40}, {0.5, 0, 60},
+                        {0.5, -20, 40}, {0.5, -255, 40}, {1, 0, 40},   {1, -20, 60}};
+  const OutputRegs dense = dense_mode(OutputRegs{});
+  SpeckleRegs sr;
+  sr.en = 1;
+  std::vector<cv::Mat> est, conf, conf_sp;  // each frame's streamed dense words, once
+  for (const Frame& f : fr) {
+    const OutImage raw = make_output(f.ev, f.post, f.levels, dense, 0);
+    const OutImage o = smooth_output(raw, dense.smooth_en, dense.smooth_t);
+    est.push_back(out_to_float(o));
+    conf.push_back(out_to_conf(o));
+    conf_sp.push_back(out_to_conf(halve_speckles(o, raw, sr, named_config("zynq").speckle_rows)));
+  }
+  // The AUC over the oracle's, 14-scene means, of one case over the confidences c.
+  auto ratio = [&](const Case& c, const std::vector<cv::Mat>& cs) {
+    double auc = 0, oracle = 0;
+    for (size_t k = 0; k < fr.size(); ++k) {
+      cv::Mat score(cs[k].size(), CV_8U);
+      for (int y = 0; y < score.rows; ++y)
+        for (int x = 0; x < score.cols; ++x)
+          score.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(c.a * cs[k].at<uint8_t>(y, x) +
+                                                               std::clamp(fr[k].margin.at<int32_t>(y, x), c.lo, c.hi));
+      const Sparsification sp = sparsification(est[k], score, fr[k].gt, fr[k].mask);
+      auc += sp.auc;
+      oracle += sp.oracle_auc;
+    }
+    return auc / oracle;
+  };
+  fmt::print("\nDense confidence c plus the trellis margin m (forward and backward pass), AUC / oracle:\n\n");
+  fmt::print("| score                      | c as streamed | c halved on speckles |\n");
+  fmt::print("|----------------------------|--------------:|---------------------:|\n");
+  for (const Case& c : cases) {
+    const std::string name = c.hi == 0  ? "c"
+                             : c.a == 0 ? fmt::format("clamp(m, {}, {})", c.lo, c.hi)
+                                        : fmt::format("{} c + clamp(m, {}, {})", c.a, c.lo, c.hi);
+    fmt::print("| {:<26} | {:13.2f} | {:20.2f} |\n", name, ratio(c, conf), ratio(c, conf_sp));
   }
 }
 
@@ -453,22 +534,23 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
   app.add_option("--study", studies,
-                 "comma-separated subset of subpix,valid,conf,bound,speckle,speckle-conf (bound: a random forest "
-                 "on the evidence, leave one scene out, ~3 min; speckle: the rules then a speckle check; "
-                 "speckle-conf: the speckle stage's verdict in the confidence; none of these three is in the "
-                 "default set)")
+                 "comma-separated subset of subpix,valid,conf,bound,speckle,speckle-conf,dp-margin (bound: a random "
+                 "forest on the evidence, leave one scene out, ~3 min; speckle: the rules then a speckle check; "
+                 "speckle-conf: the speckle stage's verdict in the confidence; dp-margin: the trellis's "
+                 "min-marginals in the confidence; none of these four is in the default set)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle", "speckle-conf"}));
+      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle", "speckle-conf", "dp-margin"}));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
   if (!dump_dir.empty()) check_output_folder("--dump-features", dump_dir);
   quiet_opencv();
   const auto dirs = selected_scenes(dataset, scenes);
+  const bool margins = std::find(studies.begin(), studies.end(), "dp-margin") != studies.end();
   if (dirs.size() < 2 && std::find(studies.begin(), studies.end(), "bound") != studies.end())
     throw ToolError("--study bound: needs two scenes or more (each is scored by a forest trained on the others)");
   std::vector<Frame> fr;
   for (const auto& d : dirs) {
     fmt::print(stderr, "sm_output_study: {} ...\n", std::filesystem::path(d).filename().string());
-    fr.push_back(run_scene(d, levels));
+    fr.push_back(run_scene(d, levels, margins));
   }
   if (!dump_dir.empty()) dump_features(fr, dump_dir);
   fmt::print("{} scenes; means over all of them (b1 cl4: bad-1.0 of the classic four)\n", fr.size());
@@ -483,6 +565,8 @@ int run(int argc, char** argv) {
       study_speckle(fr);
     else if (s == "speckle-conf")
       study_speckle_conf(fr);
+    else if (s == "dp-margin")
+      study_dp_margin(fr);
     else
       study_bound(fr);
   }

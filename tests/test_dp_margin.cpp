@@ -1,0 +1,102 @@
+// Unit tests of the trellis min-marginals (tools/sm_dp_margin.hpp) against independent
+// truth: every path of tiny lines enumerated, and the model's trellis (the optimal path's
+// matched pixels have a min-marginal of 0).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "dp.hpp"
+#include "sm_dp_margin.hpp"
+
+namespace {
+
+using sm::tools::kNoPath;
+
+// Every path (0, 0) -> (2n, 0), written from the definition (docs/algorithm.md 6): from
+// (i - 1, d) a path goes to (i, d), or to an occlusion node (i, d +- 1) at the penalty of
+// its left pixel; a matched node (i + d odd) adds the cost of left pixel (i - 1 + d) / 2.
+// best[x * disp + d]: the cheapest path matching x at d; all: the cheapest of all.
+struct Enumerate {
+  const std::vector<uint8_t>& a;
+  const std::vector<uint8_t>& pen;
+  int n, disp;
+  std::vector<int64_t> best;
+  int64_t all = kNoPath;
+  std::vector<int> matched;  // x * disp + d of the matched nodes on the current path
+
+  void walk(int i, int d, int64_t cost) {
+    if (i == 2 * n) {
+      if (d != 0) return;
+      all = std::min(all, cost);
+      for (int k : matched) best[static_cast<size_t>(k)] = std::min(best[static_cast<size_t>(k)], cost);
+      return;
+    }
+    for (int nd : {d, d - 1, d + 1}) {
+      if (nd < 0 || nd >= disp) continue;
+      const bool occ = (i + 1 + nd) % 2 == 0;
+      if (nd != d && !occ) continue;
+      if (occ) {
+        walk(i + 1, nd, cost + (nd != d ? pen[static_cast<size_t>((i + 1 + nd) / 2)] : 0));
+        continue;
+      }
+      const int xl = (i + nd) / 2, xr = (i - nd) / 2;
+      if (xr < 0 || xl >= n) continue;  // such a node never reaches the end node
+      matched.push_back(xl * disp + nd);
+      walk(i + 1, nd, cost + a[static_cast<size_t>(xl) * disp + nd]);
+      matched.pop_back();
+    }
+  }
+};
+
+}  // namespace
+
+TEST_CASE("dp_min_marginals equal exhaustive enumeration", "[dp_margin]") {
+  std::mt19937 rng(2026);
+  for (int disp : {2, 3, 4})
+    for (int n = 1; n <= 5; ++n)
+      for (int rep = 0; rep < 20; ++rep) {
+        std::vector<uint8_t> a(static_cast<size_t>(n) * disp), pen(static_cast<size_t>(n) + 1);
+        for (auto& v : a) v = static_cast<uint8_t>(rng() % 16);
+        for (auto& p : pen) p = static_cast<uint8_t>(rng() % 12);
+        Enumerate e{a, pen, n, disp, std::vector<int64_t>(a.size(), kNoPath), kNoPath, {}};
+        e.walk(0, 0, 0);
+        const std::vector<int64_t> m = sm::tools::dp_min_marginals(a.data(), n, pen.data(), disp);
+        INFO("disp " << disp << " n " << n << " rep " << rep);
+        REQUIRE(e.all < kNoPath);
+        for (size_t k = 0; k < a.size(); ++k) CHECK(m[k] == (e.best[k] < kNoPath ? e.best[k] - e.all : kNoPath));
+      }
+}
+
+TEST_CASE("dp_min_marginals are 0 on the model trellis's matched pixels", "[dp_margin]") {
+  std::mt19937 rng(99);
+  sm::HwConfig hw;  // MAX_WIDTH 320, CENSUS 15 >> 2: CW 6
+  hw.disp = 37;
+  sm::DpScratch s;
+  sm::DpLine line;
+  const int n = 101;
+  std::vector<uint8_t> a(static_cast<size_t>(n) * hw.disp), pen(static_cast<size_t>(n) + 1);
+  for (auto& v : a) v = static_cast<uint8_t>(rng() % 64);
+  for (auto& p : pen) p = static_cast<uint8_t>(20 + rng() % 40);
+  sm::trellis_line_pen(a.data(), n, pen.data(), hw, s, line);
+  const std::vector<int64_t> m = sm::tools::dp_min_marginals(a.data(), n, pen.data(), hw.disp);
+  int matched = 0;
+  for (int x = 0; x < n; ++x) {
+    const int64_t* mx = &m[static_cast<size_t>(x) * hw.disp];
+    CHECK(*std::min_element(mx, mx + hw.disp) >= 0);
+    if (line.match[static_cast<size_t>(x)] < 0) continue;
+    ++matched;
+    CHECK(mx[line.match[static_cast<size_t>(x)]] == 0);
+  }
+  CHECK(matched > n / 2);
+}
+
+TEST_CASE("dp_margin: the cheapest match two levels away less the cheapest within one", "[dp_margin]") {
+  const std::vector<int64_t> m = {9, 0, 3, 7, 5, kNoPath};
+  CHECK(sm::tools::dp_margin(m.data(), 6, 1) == 5 - 0);        // near {9, 0, 3}, far {7, 5}
+  CHECK(sm::tools::dp_margin(m.data(), 6, 4) == 0 - 5);        // near {7, 5}, far {9, 0, 3}
+  const std::vector<int64_t> lone = {0, 4, kNoPath, kNoPath};  // nothing two levels away: sure
+  CHECK(sm::tools::dp_margin(lone.data(), 4, 0) == kNoPath);
+  CHECK(sm::tools::dp_margin(lone.data(), 4, 3) == -kNoPath);  // level 3 unreachable: no trust
+}

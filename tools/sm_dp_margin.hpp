@@ -1,0 +1,29 @@
+// The trellis's own margin as a confidence cue (sm_output_study --study dp-margin,
+// docs/evaluation.md "The trellis's margin"): min-marginals of one line's trellis
+// (docs/algorithm.md 6), from a forward and a backward pass. The core's sm_dp runs the
+// forward pass only; the backward one would be a second trellis, so this is a study of
+// what that trellis would buy, not a model of the RTL.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace sm::tools {
+
+// No path matches the pixel at that level (the level exceeds what the line allows).
+constexpr int64_t kNoPath = INT64_MAX / 4;
+
+// M(x, d) at [x * disp + d], x = 0..n-1: the cost of the cheapest path that matches left
+// pixel x at level d, minus the cost of the optimal path (so >= 0, and 0 on the optimal
+// path's matched nodes), or kNoPath. agg, n and pen as trellis_line_pen's (pen: n + 1
+// penalties, one per left pixel of the occlusion nodes).
+std::vector<int64_t> dp_min_marginals(const uint8_t* agg, int n, const uint8_t* pen, int disp);
+
+// The margin of level d at one pixel (m: its disp min-marginals): the cheapest match two
+// levels or more away from d, less the cheapest within one level of d; a large margin means
+// no other surface along the row comes close. -kNoPath when no path matches the pixel
+// within one level of d (d is out of the line's reach there, as at the left border x < d),
+// else kNoPath when none matches it two levels or more away.
+int64_t dp_margin(const int64_t* m, int disp, int d);
+
+}  // namespace sm::tools
