@@ -306,6 +306,11 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   const auto j3 = nlohmann::json::parse(slurp(out / "r3.json")), j4 = nlohmann::json::parse(slurp(out / "r4.json"));
   CHECK(j3["model_config"] == "small");
   CHECK(j["model_config"] == "paper");
+  // --speckle-rows is recorded when given, 0 included, and only then
+  const Run r5 = run(SM_EVALUATE_EXE, model16 + (out / "r5.json").string() + " --speckle-rows 0");
+  REQUIRE(r5.rc == 0);
+  CHECK(nlohmann::json::parse(slurp(out / "r5.json"))["model_speckle_rows"] == 0);
+  CHECK(!j.contains("model_speckle_rows"));
   const auto& m3 = j3["scenes"][0]["methods"]["model"];
   CHECK(m3["bad1_pct"] == j4["scenes"][0]["methods"]["model"]["bad1_pct"]);
   CHECK(m3["bad1_pct"] != s["methods"]["model"]["bad1_pct"]);
@@ -313,7 +318,7 @@ TEST_CASE("sm_evaluate reports every method on a synthetic scene", "[unit][tools
   expect_error(run(SM_EVALUATE_EXE, ds + " --config zynq7020"), "--config");
   expect_error(run(SM_EVALUATE_EXE, ds + " --peer-levels 40"), "--peer-levels 40");
   expect_error(run(SM_EVALUATE_EXE, ds + " --methods model,bm,model"), "twice");
-  expect_only(out, {"r.json", "r2.json", "r3.json", "r4.json", "small.json", "img"});
+  expect_only(out, {"r.json", "r2.json", "r3.json", "r4.json", "r5.json", "small.json", "img"});
 }
 
 TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {

@@ -84,9 +84,8 @@ int round16(int levels) { return (levels + 15) / 16 * 16; }
 
 // --threads: the model's thread count (set once before any method runs; same output for any).
 int model_threads = 1;
-std::string model_config = "paper";   // --config: the model's configuration (sm::named_config)
-int model_speckle_rows = 0;           // --speckle-rows: SPECKLE_ROWS in place of the configuration's ...
-bool model_speckle_rows_set = false;  // ... when given
+std::string model_config = "paper";     // --config: the model's configuration (sm::named_config)
+std::optional<int> model_speckle_rows;  // --speckle-rows: SPECKLE_ROWS in place of the configuration's
 
 // A scene's disparity file in the --results folder: <scene>.pfm or <scene>.png.
 std::string result_file(const std::string& dir, const std::string& scene) {
@@ -180,7 +179,7 @@ std::vector<Method> all_methods(int occ, bool occ_given, const std::string& regs
          hw.disp = levels;
          hw.max_width = s.left.cols;
          hw.max_height = s.left.rows;
-         if (model_speckle_rows_set) hw.speckle_rows = model_speckle_rows;
+         if (model_speckle_rows) hw.speckle_rows = *model_speckle_rows;
          sm::Regs regs = sm::Regs::defaults(hw);  // (with the stage: its speckle mode)
          regs.occ = static_cast<uint8_t>(occ);
          regs.filter_enable = 15;
@@ -404,17 +403,15 @@ int run(int argc, char** argv) {
                  "stay the scene's; zynq: its speckle stage and speckle mode)")
       ->check(CLI::IsMember(sm::config_names()))
       ->capture_default_str();
-  CLI::Option* speckle_opt =
-      app.add_option("--speckle-rows", model_speckle_rows,
-                     "model: the speckle stage's rows, SPECKLE_ROWS, in place of the configuration's (0: none, as "
-                     "at the paper configuration; 32: the zynq configuration's); with the stage the registers "
-                     "reset into its speckle mode: SPECKLE_EN 1, LR_EN 0, AGREE_EN 0")
-          ->check(sm::tools::int_in(sm::defs::limit("SPECKLE_ROWS").min, sm::defs::limit("SPECKLE_ROWS").max));
+  app.add_option("--speckle-rows", model_speckle_rows,
+                 "model: the speckle stage's rows, SPECKLE_ROWS, in place of the configuration's (0: none, as "
+                 "at the paper configuration; 32: the zynq configuration's); with the stage the registers "
+                 "reset into its speckle mode: SPECKLE_EN 1, LR_EN 0, AGREE_EN 0")
+      ->check(sm::tools::int_in(sm::defs::limit("SPECKLE_ROWS").min, sm::defs::limit("SPECKLE_ROWS").max));
   app.add_option("--threads", model_threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  model_speckle_rows_set = speckle_opt->count() > 0;
   if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
     throw ToolError(fmt::format("--levels {}: must be 0 or even 4..254", levels));
   check_files(regs_file, levels, json_path, disp_dir);
@@ -507,7 +504,7 @@ int run(int argc, char** argv) {
   jout["peer_levels"] = peer_levels ? json(peer_levels) : json("scene");
   jout["threads"] = model_threads;  // the model's; OpenCV runs on one
   jout["model_config"] = model_config;
-  if (model_speckle_rows_set) jout["model_speckle_rows"] = model_speckle_rows;
+  if (model_speckle_rows) jout["model_speckle_rows"] = *model_speckle_rows;
   jout["scenes"] = json::array();
   struct Cell {
     sm::tools::BadStats bad;
