@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "pipeline.hpp"
 
@@ -23,7 +24,9 @@ int run(int argc, char** argv) {
   app.add_option("--scene", scene_dir, "scene folder (left.png right.png), resized to MAX_WIDTH x MAX_HEIGHT")
       ->required();
   app.add_option("--out", out, "output folder")->required();
-  app.add_option("--frames", frames, "frames (the pair repeated)")->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--frames", frames, "frames (the pair repeated)")
+      ->check(sm::tools::int_in(1, 100))
+      ->capture_default_str();
   app.add_option("--max-width", hw.max_width)->capture_default_str();
   app.add_option("--max-height", hw.max_height)->capture_default_str();
   app.add_option("--disp", hw.disp)->capture_default_str();

@@ -17,6 +17,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/stereo.hpp>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "frame_stages.hpp"
 
@@ -69,10 +70,10 @@ int run(int argc, char** argv) {
   bool no_opencv = false;
   CLI::App app{"Model speed (1 and N threads) vs OpenCV StereoSGBM / StereoBinarySGBM (1 thread), medians"};
   app.add_option("--scene", scene_dir, "scene folder with left.png/right.png (resized to WxH)")->capture_default_str();
-  app.add_option("--runs", runs, "repetitions (median)")->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--runs", runs, "repetitions (median)")->check(sm::tools::int_in(1, 1000))->capture_default_str();
   app.add_option("--levels", levels, "disparity levels of every method (even, 4..254)")->capture_default_str();
-  app.add_option("--width", width, "frame width")->check(CLI::Range(16, 4096))->capture_default_str();
-  app.add_option("--height", height, "frame height")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--width", width, "frame width")->check(sm::tools::int_in(16, 4096))->capture_default_str();
+  app.add_option("--height", height, "frame height")->check(sm::tools::int_in(16, 4096))->capture_default_str();
   app.add_option("--census", census, "model census window (paper: 15)")->capture_default_str();
   app.add_option("--sw", sw, "model support-weight window (paper: 5)")->capture_default_str();
   // The three options below only widen the bit-exactness check (other arithmetic ranges,
@@ -82,9 +83,10 @@ int run(int argc, char** argv) {
                  "model weight codes 0..3 by |dI| >> 3 (up to 32; the "
                  "rest 0; default: the register defaults)")
       ->delimiter(',');
-  app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")->check(CLI::Range(0, 255));
+  app.add_option("--occ", occ, "model occlusion penalty (default: the register default)")
+      ->check(sm::tools::int_in(0, 255));
   app.add_option("--threads", threads, "threads of the model's second timing (the first is 1 thread)")
-      ->check(CLI::Range(1, 64))
+      ->check(sm::tools::int_in(1, 64))
       ->capture_default_str();
   app.add_option("--json", json_path, "write the medians as JSON");
   app.add_flag("--no-opencv", no_opencv, "time the model only");

@@ -18,6 +18,7 @@
 
 #include "configs.hpp"
 #include "pipeline.hpp"
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_placed_objects.hpp"
 
@@ -62,7 +63,7 @@ int run(int argc, char** argv) {
   std::string json_path;
   CLI::App app{"objects the scene generator placed, found or missed in the model's object list, per mode"};
   app.add_option("--seeds", seeds, "scenes: seeds 1..N (seed 1: the built-in scene)")
-      ->check(CLI::Range(1, 1000))
+      ->check(sm::tools::int_in(1, 1000))
       ->capture_default_str();
   app.add_option("--json", json_path, "write the table as JSON");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 
 namespace {
@@ -22,8 +23,8 @@ int run(int argc, char** argv) {
   CLI::App app{"Resize a stereo dataset to the IP's active size (for RTL-vs-model accuracy)"};
   app.add_option("dataset", dataset, "dataset folder or one scene folder")->required();
   app.add_option("--out", out, "output folder (one subfolder per scene)")->required();
-  app.add_option("--width", width, "target width")->check(CLI::Range(16, 4096))->capture_default_str();
-  app.add_option("--height", height, "target height")->check(CLI::Range(16, 4096))->capture_default_str();
+  app.add_option("--width", width, "target width")->check(sm::tools::int_in(16, 4096))->capture_default_str();
+  app.add_option("--height", height, "target height")->check(sm::tools::int_in(16, 4096))->capture_default_str();
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
   sm::tools::quiet_opencv();
   const auto scenes = sm::tools::list_scenes(dataset);

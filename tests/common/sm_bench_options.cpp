@@ -14,7 +14,7 @@ BenchOption& BenchOption::required() {
   return *this;
 }
 BenchOption& BenchOption::range(long long lo, long long hi) {
-  opt_->check(CLI::Range(lo, hi));
+  opt_->check(sm::tools::int_in(lo, hi));
   return *this;
 }
 BenchOption& BenchOption::delimiter(char c) {
