@@ -354,9 +354,6 @@ void study_speckle(const std::vector<Frame>& fr) {
   print_speckle_table(fr);
 }
 
-// The dense stream's confidence with the speckle stage's verdict (9.8, on the dense words
-// before the smoothing, zynq's 1,024 labels) as one more cue: the confidence of every
-// pixel the stage would clear is halved. Size 0: the confidence as streamed.
 // The streamed words with the confidence halved where the speckle stage (sr, rows) would
 // clear the pixel; raw: the words the stage sees (before the smoothing).
 OutImage halve_speckles(OutImage streamed, const OutImage& raw, const SpeckleRegs& sr, int rows) {
@@ -367,6 +364,9 @@ OutImage halve_speckles(OutImage streamed, const OutImage& raw, const SpeckleReg
   return streamed;
 }
 
+// The dense stream's confidence with the speckle stage's verdict (9.8, on the dense words
+// before the smoothing, zynq's 1,024 labels) as one more cue: the confidence of every
+// pixel the stage would clear is halved. Size 0: the confidence as streamed.
 void study_speckle_conf(const std::vector<Frame>& fr) {
   struct Case {
     int size, trust, diff, rows;
