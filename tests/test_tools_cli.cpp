@@ -338,7 +338,7 @@ TEST_CASE("sm_evaluate on in-memory synthetic scenes", "[unit][tools][cli]") {
   // model_dp, model_f0, model_f1, model_f1f2, model, model_subpix, model_checked, model_host, sgbm
   CHECK(js["scenes"][0]["methods"].size() == 9);
   expect_error(run(SM_EVALUATE_EXE, "--synthetic 1 --synthetic-size 48by32"), "48by32");
-  expect_error(run(SM_EVALUATE_EXE, "--levels 15 --synthetic 1"), "--levels 15");
+  expect_error(run(SM_EVALUATE_EXE, "--levels 15 --synthetic 1"), "--levels 15: must be 0 (per scene) or even, 4..254");
 }
 
 TEST_CASE("sm_scene rejects bad parameters cleanly", "[unit][tools][cli]") {

@@ -290,5 +290,7 @@ TEST_CASE("sm_output_study: refused before any work", "[robust][tools]") {
   expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --scenes nosuch"), 1, "sm_output_study",
                "--scenes: nosuch: not a scene of");
   expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --study foo"), 2, "sm_output_study", "--study: foo");
+  expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --levels 7"), 1, "sm_output_study",
+               "--levels 7: must be 0 (per scene) or even, 4..254");
   expect_empty(fx.out);
 }

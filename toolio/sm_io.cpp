@@ -50,9 +50,10 @@ StderrMute::~StderrMute() {
   }
 }
 
-void check_levels(const char* option, int levels) {
+void check_levels(const char* option, int levels, bool per_scene) {
+  if (per_scene && levels == 0) return;
   if (levels < 4 || levels > 254 || levels % 2)
-    throw ToolError(fmt::format("{} {}: must be even, 4..254", option, levels));
+    throw ToolError(fmt::format("{} {}: must be {}even, 4..254", option, levels, per_scene ? "0 (per scene) or " : ""));
 }
 
 namespace {

@@ -35,8 +35,9 @@ int guarded_main(const char* tool, int (*run)(int, char**), int argc, char** arg
 std::optional<int> parse_args(CLI::App& app, int argc, char** argv);
 
 // The disparity levels of the model and the RTL (DISP): even, 4..254; a ToolError
-// "<option> <levels>: must be even, 4..254" otherwise.
-void check_levels(const char* option, int levels);
+// "<option> <levels>: must be even, 4..254" otherwise. per_scene: 0 is taken too (the tools
+// whose 0 means "each scene's own levels"), and the error says so.
+void check_levels(const char* option, int levels, bool per_scene = false);
 
 // An input file that must exist and be readable, checked before any work: a ToolError
 // "<path>: no such file", "<path>: is a directory" or "<path>: cannot read: <reason>".

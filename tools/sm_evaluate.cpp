@@ -412,8 +412,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  if (levels != 0 && (levels < 4 || levels > 254 || levels % 2))
-    throw ToolError(fmt::format("--levels {}: must be 0 or even 4..254", levels));
+  sm::tools::check_levels("--levels", levels, true);
   check_files(regs_file, levels, json_path, disp_dir);
   sm::tools::quiet_opencv();
   cv::setNumThreads(1);

@@ -529,8 +529,7 @@ int run(int argc, char** argv) {
   app.add_option("--scenes", scenes, "comma-separated scene names (default: all)")->delimiter(',');
   std::string dump_dir;
   int levels = HwConfig{}.disp;
-  app.add_option("--levels", levels, "disparity levels (0: per scene, as sm_evaluate --levels 0)")
-      ->check(int_in(0, 254))
+  app.add_option("--levels", levels, "disparity levels, even, 4..254 (0: per scene, as sm_evaluate --levels 0)")
       ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
   app.add_option("--study", studies,
@@ -541,6 +540,7 @@ int run(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle", "speckle-conf", "dp-margin"}));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
+  check_levels("--levels", levels, true);
   if (!dump_dir.empty()) check_output_folder("--dump-features", dump_dir);
   quiet_opencv();
   const auto dirs = selected_scenes(dataset, scenes);
