@@ -21,8 +21,10 @@ sm_host_test(tb_outfmt_paper sm_outfmt tb_outfmt.cpp PARAMS MAX_WIDTH=320 FIFO_D
              ARGS --paper LABELS rtl slow)
 
 # Register map against independent truth: sm::Regs defaults, the spec's grid size, layout.
+# SM_ZYNQ_PU: the one configuration choice a user may make at configure time (the named
+# configurations are otherwise written out in the test).
 sm_unit_test(test_regmap LIBS sm_model INCLUDES ${SM_GEN_DIR} ${SM_HOST_TESTS}/common
-             DEFINES SM_RTL_DIR="${SM_RTL_DIR}" DEPENDS sm_regmap_gen_files)
+             DEFINES SM_RTL_DIR="${SM_RTL_DIR}" SM_ZYNQ_PU=${SM_ZYNQ_PU} DEPENDS sm_regmap_gen_files)
 
 # The sequencer's framing rules (model/seq.hpp) against hand-written streams; the fault
 # classes' bit order against the register map.

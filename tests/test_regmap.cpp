@@ -116,7 +116,8 @@ TEST_CASE("the checked rules reset by configuration (independent of the generate
 }
 
 TEST_CASE("the named configurations are the build's (independent of the generated code)", "[regmap]") {
-  // CMakeLists.txt's SM_*_PARAMS, written out here once more; the others stay HwConfig{}'s
+  // CMakeLists.txt's SM_*_PARAMS, written out here once more; the others stay HwConfig{}'s.
+  // zynq's and vga's PU is the configure-time choice -DSM_ZYNQ_PU (8 unless changed).
   auto check = [](const std::string& name, std::map<std::string, int> want) {
     INFO(name);
     const sm::HwConfig hw = sm::named_config(name);
@@ -128,8 +129,8 @@ TEST_CASE("the named configurations are the build's (independent of the generate
   const std::map<std::string, int> paper{{"MAX_WIDTH", 320}, {"MAX_HEIGHT", 240}, {"DISP", 128},
                                          {"CENSUS", 15},     {"SW", 5},           {"RECT_RADIUS", 18}};
   std::map<std::string, int> zynq = paper, vga = paper;
-  zynq.insert({{"PU", 8}, {"SPECKLE_ROWS", 32}, {"SPECKLE_LABELS", 1024}});
-  vga.insert({{"PU", 8}});
+  zynq.insert({{"PU", SM_ZYNQ_PU}, {"SPECKLE_ROWS", 32}, {"SPECKLE_LABELS", 1024}});
+  vga.insert({{"PU", SM_ZYNQ_PU}});
   vga["MAX_WIDTH"] = 640;
   vga["MAX_HEIGHT"] = 480;
   const std::map<std::string, int> small{{"MAX_WIDTH", 64}, {"MAX_HEIGHT", 48}, {"DISP", 16},
