@@ -196,13 +196,12 @@ int run(int argc, char** argv) {
     hw.max_height = sm::defs::limit("MAX_HEIGHT").max;
     r.width = act_w;
     r.height = act_h;
-    const sm::tools::RegsFile rf = sm::tools::apply_regs_json(regs_json, hw, r);
-    file_keys = rf;
-    if (calib.empty()) calib = rf.calib;  // the file's "calib" key, unless --calib is given
+    file_keys = sm::tools::apply_regs_json(regs_json, hw, r);
+    if (calib.empty()) calib = file_keys.calib;  // the file's "calib" key, unless --calib is given
     act_w = r.width;
     act_h = r.height;
-    if (!rf.has("max_width")) hw.max_width = act_w;
-    if (!rf.has("max_height")) hw.max_height = act_h;
+    if (!file_keys.has("max_width")) hw.max_width = act_w;
+    if (!file_keys.has("max_height")) hw.max_height = act_h;
     resize_to_active(left_m, right_m, act_w, act_h, regs_json);
   }
   const sm::Image8 L = sm::tools::to_image8(left_m);
