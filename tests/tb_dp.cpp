@@ -153,29 +153,19 @@ uint8_t frame_occ(int kind, std::mt19937& rng) {
 
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_dp block test"};
-  int width = kMaxWidth, rows = 6, frames = 3, idle = 30;
-  uint32_t seed = 1;
+  sm::test::StreamShape shape{kMaxWidth};
   std::string kinds = "012";
   bool require_cases = false;
   int min_gap = 0;
-  t.option("--width", width, "active width");
-  t.option("--rows", rows, "rows per frame");
-  t.option("--frames", frames, "frames back to back");
-  t.option("--seed", seed, "random seed");
-  t.option("--idle", idle, "percent of cycles with ce = 0");
+  // The trellis needs a line of DISP/2 + 3 pixels at least.
+  t.stream_options(shape, kS + kP + 1, kMaxWidth);
   t.option("--kinds", kinds, "cost kind of frame f: kinds[f % size] (0 structured, 1 random, 2 ties, 3 occ 0, 4 jump)");
   t.flag("--require-cases", require_cases,
          "fail unless runs at x = 0, at the line end, inside and no-match lines were compared");
   t.option("--min-gap", min_gap, "with --require-cases: the largest gap between two matches must reach this");
   if (auto rc = t.parse(argc, argv)) return *rc;
-  if (width < kS + kP + 1 || width > kMaxWidth) {
-    fmt::print(stderr, "tb_dp: width {} outside {}..{} (DISP/2 + 3 .. MAX_WIDTH)\n", width, kS + kP + 1, kMaxWidth);
-    return 2;
-  }
-  if (rows < 1 || frames < 1) {
-    fmt::print(stderr, "tb_dp: rows and frames must be >= 1\n");
-    return 2;
-  }
+  const int width = shape.width, rows = shape.rows, frames = shape.frames, idle = shape.idle;
+  const uint32_t seed = shape.seed;
   if (kinds.empty() || kinds.find_first_not_of("01234") != std::string::npos) {
     fmt::print(stderr, "tb_dp: --kinds '{}' must be digits 0..4\n", kinds);
     return 2;

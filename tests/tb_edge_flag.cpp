@@ -24,14 +24,11 @@ constexpr int kCols = SM_P_COLS;
 
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_edge_flag block test"};
-  int width = kMaxWidth, rows = 6, frames = 3, idle = 30;
-  uint32_t seed = 1;
-  t.option("--width", width, "active width").range(16, kMaxWidth);
-  t.option("--rows", rows, "rows per frame").range(1, 4096);
-  t.option("--frames", frames, "frames back to back").range(1, 64);
-  t.option("--seed", seed, "random seed");
-  t.option("--idle", idle, "percent of cycles with ce = 0").range(0, 95);
+  sm::test::StreamShape shape{kMaxWidth};
+  t.stream_options(shape, 16, kMaxWidth);
   if (auto rc = t.parse(argc, argv)) return *rc;
+  const int width = shape.width, rows = shape.rows, frames = shape.frames, idle = shape.idle;
+  const uint32_t seed = shape.seed;
 
   std::mt19937 rng(seed);
   // Pixels of every beat of the schedule, and the frames' thresholds.

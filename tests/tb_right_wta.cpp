@@ -87,22 +87,11 @@ std::vector<uint8_t> right_wta_def(const uint8_t* agg, int w) {
 
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_right_wta block test"};
-  int width = kMaxWidth, rows = 6, frames = 3, idle = 30;
-  uint32_t seed = 1;
-  t.option("--width", width, "active width");
-  t.option("--rows", rows, "rows per frame");
-  t.option("--frames", frames, "frames back to back");
-  t.option("--seed", seed, "random seed");
-  t.option("--idle", idle, "percent of cycles with ce = 0");
+  sm::test::StreamShape shape{kMaxWidth};
+  t.stream_options(shape, 1, kMaxWidth);
   if (auto rc = t.parse(argc, argv)) return *rc;
-  if (width < 1 || width > kMaxWidth) {
-    fmt::print(stderr, "tb_right_wta: width {} outside 1..{} (MAX_WIDTH)\n", width, kMaxWidth);
-    return 2;
-  }
-  if (rows < 1 || frames < 1) {
-    fmt::print(stderr, "tb_right_wta: rows and frames must be >= 1\n");
-    return 2;
-  }
+  const int width = shape.width, rows = shape.rows, frames = shape.frames, idle = shape.idle;
+  const uint32_t seed = shape.seed;
 
   // Costs (vol[f][(y * width + x) * DISP + k]) and the expected levels (want[f][y * width + x]).
   std::mt19937 rng(seed);

@@ -121,18 +121,11 @@ Want model(const uint8_t* a) {
 
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_wta block test"};
-  int width = 37, rows = 6, frames = 3, idle = 30;
-  uint32_t seed = 1;
-  t.option("--width", width, "active width");
-  t.option("--rows", rows, "rows per frame");
-  t.option("--frames", frames, "frames back to back");
-  t.option("--seed", seed, "random seed");
-  t.option("--idle", idle, "percent of cycles with ce = 0");
+  sm::test::StreamShape shape{37};
+  t.stream_options(shape, 1, 4095);
   if (auto rc = t.parse(argc, argv)) return *rc;
-  if (width < 1 || rows < 1 || frames < 1) {
-    fmt::print(stderr, "tb_wta: width, rows and frames must be >= 1\n");
-    return 2;
-  }
+  const int width = shape.width, rows = shape.rows, frames = shape.frames, idle = shape.idle;
+  const uint32_t seed = shape.seed;
 
   const std::vector<int> heights(frames, rows);
   const auto sched = sm::test::make_schedule(width, heights, (kLatency + width) / width + 1);

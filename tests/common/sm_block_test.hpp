@@ -27,6 +27,16 @@
 
 namespace sm::test {
 
+// The stream of the frame-streaming benches: `frames` frames of `rows` rows of `width`
+// beats back to back, stimulus from `seed`, `idle` percent of the clocks with ce low.
+struct StreamShape {
+  int width;
+  int rows = 6;
+  int frames = 3;
+  int idle = 30;
+  uint32_t seed = 1;
+};
+
 template <class Top>
 class BlockTest {
  public:
@@ -43,6 +53,14 @@ class BlockTest {
     return opts_.option(name, v, help);
   }
   BenchOption flag(const std::string& name, bool& v, const std::string& help) { return opts_.flag(name, v, help); }
+  // The options of a StreamShape; the width's legal range is the block's.
+  void stream_options(StreamShape& s, int min_width, int max_width) {
+    option("--width", s.width, "active width").range(min_width, max_width);
+    option("--rows", s.rows, "rows per frame").range(1, 4096);
+    option("--frames", s.frames, "frames back to back").range(1, 64);
+    option("--seed", s.seed, "random seed");
+    option("--idle", s.idle, "percent of cycles with ce = 0").range(0, 95);
+  }
 
   // Parses the command line and opens the trace if one is asked for. Returns the exit
   // code when the bench must stop here (--help, a bad option), nothing otherwise.
