@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "sm_axil.hpp"
+#include "sm_handshakes.hpp"
 #include "sm_host.hpp"
 #include "sm_regmap.hpp"
 #include "sm_tb.hpp"
@@ -321,21 +322,15 @@ class SimEngine {
     host_start(s.host, s.hi, s.oframe);
     t.eval();
     agent_.sample();
-    const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
+    const Handshakes h = Handshakes::sample(t);
     if (t.s_axis_tvalid && !t.s_axis_tready) ++s.res.input_stall_cycles;
-    const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
-    const uint32_t od = t.m_axis_tdata;
-    const bool ou = t.m_axis_tuser, ol = t.m_axis_tlast;
-    const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
-    const uint32_t objd = t.m_axis_obj_tdata;
-    const bool objl = t.m_axis_obj_tlast;
     const uint64_t now = tb_.cycles();
     tb_.tick();
     host_done(
         s.host, s.hi, [&s](uint32_t st) { return s.started(st); }, s.res);
-    if (in_hs) advance_camera(s, now);
-    take_obj(s, obj_hs, objd, objl);
-    if (out_hs) take_pixel(s, od, ou, ol, now);
+    if (h.in) advance_camera(s, now);
+    take_obj(s, h);
+    if (h.out) take_pixel(s, h, now);
   }
 
   // The camera's pixel was taken at cycle `now`: the next one and when it is due.
@@ -369,29 +364,29 @@ class SimEngine {
   }
 
   // One word of the object stream taken at this edge; a packet ends at tlast.
-  void take_obj(RunState& s, bool hs, uint32_t word, bool last) {
-    if (!hs) return;
-    s.pkt.push_back(word);
-    if (last) {
+  void take_obj(RunState& s, const Handshakes& h) {
+    if (!h.obj) return;
+    s.pkt.push_back(h.obj_data);
+    if (h.obj_last) {
       s.res.object_packets.push_back({s.pkt});
       s.pkt.clear();
     }
   }
 
   // One disparity pixel taken at cycle `now`, its framing checked.
-  void take_pixel(RunState& s, uint32_t od, bool ou, bool ol, uint64_t now) {
+  void take_pixel(RunState& s, const Handshakes& h, uint64_t now) {
     SimResult& res = s.res;
     if (s.ox == 0 && s.oy == 0) {
-      if (!ou && res.framing_error.empty())
+      if (!h.out_user && res.framing_error.empty())
         res.framing_error = fmt::format("frame {}: first pixel without tuser", s.oframe);
       s.cur = OutImage(s.width, s.height);
       res.stats[s.oframe].first_out_cycle = now;
-    } else if (ou && res.framing_error.empty()) {
+    } else if (h.out_user && res.framing_error.empty()) {
       res.framing_error = fmt::format("frame {}: tuser at x {} y {}", s.oframe, s.ox, s.oy);
     }
-    if (ol != (s.ox == s.width - 1) && res.framing_error.empty())
-      res.framing_error = fmt::format("frame {}: tlast {} at x {} y {}", s.oframe, ol, s.ox, s.oy);
-    s.cur.at(s.ox, s.oy) = od;
+    if (h.out_last != (s.ox == s.width - 1) && res.framing_error.empty())
+      res.framing_error = fmt::format("frame {}: tlast {} at x {} y {}", s.oframe, h.out_last, s.ox, s.oy);
+    s.cur.at(s.ox, s.oy) = h.out_data;
     if (++s.ox < s.width) return;
     s.ox = 0;
     if (on_row) on_row(s.oframe, s.oy);
@@ -415,14 +410,12 @@ class SimEngine {
       t.m_axis_obj_tready = 1;
       t.eval();
       agent_.sample();
-      const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
-      const uint32_t objd = t.m_axis_obj_tdata;
-      const bool objl = t.m_axis_obj_tlast;
+      const Handshakes h = Handshakes::sample(t);
       tb_.tick();
       if (agent_.busy())
         host_done(
             s.host, s.hi, [&s](uint32_t st) { return s.started(st); }, s.res);
-      take_obj(s, obj_hs, objd, objl);
+      take_obj(s, h);
     }
   }
 

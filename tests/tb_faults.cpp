@@ -36,6 +36,7 @@
 #include "post.hpp"
 #include "seq.hpp"
 #include "sm_axil.hpp"
+#include "sm_handshakes.hpp"
 #include "sm_regmap.hpp"
 #include "sm_regs_io.hpp"
 #include SM_VTOP_H
@@ -206,13 +207,7 @@ class FaultTb {
     t.m_axis_tready = ready;
     t.m_axis_obj_tready = force_ready_ || rng_() % 100 >= 20;
     t.eval();
-    const bool in_hs = t.s_axis_tvalid && t.s_axis_tready;
-    const bool out_hs = t.m_axis_tvalid && t.m_axis_tready;
-    const uint32_t od = t.m_axis_tdata;
-    const bool ou = t.m_axis_tuser, ol = t.m_axis_tlast;
-    const bool obj_hs = t.m_axis_obj_tvalid && t.m_axis_obj_tready;
-    const uint32_t objd = t.m_axis_obj_tdata;
-    const bool objl = t.m_axis_obj_tlast;
+    const sm::Handshakes h = sm::Handshakes::sample(t);
     check_protocol(t, ready);
     // A pixel accepted while the core is in reset (aresetn low now or in the previous
     // clock: the core's reset is registered) is lost.
@@ -221,13 +216,13 @@ class FaultTb {
     reset_prev_ = in_reset_;
     tb_.tick();
 
-    if (in_hs) {
+    if (h.in) {
       Pixel p = cam_.front();
       cam_.pop_front();
       if (!lost) model_.push(p);
     }
     // The sinks are reset by the same aresetn: nothing is taken while it is low.
-    if (out_hs && !lost_now) out_beat(od, ou, ol);
+    if (h.out && !lost_now) out_beat(h.out_data, h.out_user, h.out_last);
     if (t.m_axis_obj_tvalid && pkt_.empty() && !hdr_seen_ && !lost_now) {
       hdr_seen_ = true;
       hdr_cycle_ = tb_.cycles();
@@ -238,25 +233,25 @@ class FaultTb {
         note(
             fmt::format("m_axis_tvalid {} m_axis_obj_tvalid {} s_axis_tready {}", sig & 1u, (sig >> 1) & 1u, sig >> 2));
       trace_sig_ = sig;
-      if (out_hs) note(fmt::format("m_axis 0x{:08x} tuser {} tlast {}", od, ou, ol));
-      if (obj_hs) note(fmt::format("m_axis_obj 0x{:08x} tlast {}", objd, objl));
+      if (h.out) note(fmt::format("m_axis 0x{:08x} tuser {} tlast {}", h.out_data, h.out_user, h.out_last));
+      if (h.obj) note(fmt::format("m_axis_obj 0x{:08x} tlast {}", h.obj_data, h.obj_last));
     }
-    if (obj_hs && !lost_now) {
-      pkt_.push_back(objd);
-      if (objl) {
+    if (h.obj && !lost_now) {
+      pkt_.push_back(h.obj_data);
+      if (h.obj_last) {
         check_packet();
         pkt_.clear();
         hdr_seen_ = false;
       }
     }
     // Progress: with input offered and the output ready, some stream must move.
-    if ((present && ready && !in_hs && !out_hs) && !in_reset_) {
+    if ((present && ready && !h.in && !h.out) && !in_reset_) {
       if (static_cast<uint64_t>(++stuck_) > kStuckBound * fold_) {
         t_.check(false, fmt::format("no progress for {} cycles at cycle {} (input offered, output ready)", kStuckBound,
                                     tb_.cycles()));
         throw std::runtime_error("deadlock");
       }
-    } else if (in_hs || out_hs) {
+    } else if (h.in || h.out) {
       stuck_ = 0;
     }
   }
