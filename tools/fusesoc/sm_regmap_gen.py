@@ -10,7 +10,11 @@ generator runs that same C++ generator, so nothing generated is committed:
 - the executable named by the environment variable SM_REGMAP_GEN (the CMake build's
   build/tools/sm_regmap_gen; the ctest lint_fusesoc passes it), or else
 - tools/sm_regmap_gen.cpp compiled here with c++ (the Debian packages of
-  scripts/deps.sh: libfmt-dev, libcli11-dev, nlohmann-json3-dev; a few seconds).
+  scripts/deps.sh: libfmt-dev, libcli11-dev, nlohmann-json3-dev; about 15 s), with the
+  repository as its include root, as the CMake build has it (the generator includes
+  header-only parts of model/ and toolio/).
+
+A failure is one line on stderr and exit status 1 (FuseSoC then stops the setup).
 
 It writes sm_regmap.vh and a core (sm_regmap.core) that lists it as an include file
 into its working directory. FuseSoC caches the result by the contents of regmap.json
@@ -44,17 +48,28 @@ def read_input(path):
     return data["files_root"], data["vlnv"], params
 
 
-def generator_exe(src):
+def run(cmd, what):
+    """Runs cmd; a failure ends the generator with one line naming what failed."""
+    try:
+        subprocess.run(cmd, check=True)
+    except (OSError, subprocess.CalledProcessError) as e:
+        code = getattr(e, "returncode", None)
+        sys.exit(f"sm_regmap_gen.py: error: {what} failed"
+                 + (f" (exit status {code})" if code is not None else f": {e}"))
+
+
+def generator_exe(files_root, src):
     exe = os.environ.get("SM_REGMAP_GEN")
     if exe:
         if not os.access(exe, os.X_OK):
-            sys.exit(f"sm_regmap_gen.py: SM_REGMAP_GEN={exe} is not an executable")
+            sys.exit(f"sm_regmap_gen.py: error: SM_REGMAP_GEN={exe} is not an executable")
         return exe
     cxx = os.environ.get("CXX") or shutil.which("c++") or shutil.which("g++")
     if not cxx:
-        sys.exit("sm_regmap_gen.py: no C++ compiler (set SM_REGMAP_GEN to a built sm_regmap_gen)")
+        sys.exit("sm_regmap_gen.py: error: no C++ compiler (set SM_REGMAP_GEN to a built sm_regmap_gen)")
     exe = os.path.abspath("sm_regmap_gen")
-    subprocess.run([cxx, "-std=c++17", "-O1", src, "-o", exe, "-lfmt"], check=True)
+    run([cxx, "-std=c++17", "-O1", "-I", files_root, src, "-o", exe, "-lfmt"],
+        f"compiling {src} (scripts/deps.sh installs its libraries; or set SM_REGMAP_GEN)")
     return exe
 
 
@@ -62,9 +77,9 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: sm_regmap_gen.py <generator input yml>")
     files_root, vlnv, params = read_input(sys.argv[1])
-    exe = generator_exe(os.path.join(files_root, params["regmap_gen_src"]))
-    subprocess.run([exe, os.path.join(files_root, params["regmap_json"]), ".", "--defs",
-                    os.path.join(files_root, params["defs_json"])], check=True)
+    exe = generator_exe(files_root, os.path.join(files_root, params["regmap_gen_src"]))
+    run([exe, os.path.join(files_root, params["regmap_json"]), ".", "--defs",
+         os.path.join(files_root, params["defs_json"])], f"{exe} on {params['regmap_json']}")
     # only the Verilog includes are part of the core; the C++ headers and the doc stay here
     with open("sm_regmap.core", "w") as f:
         f.write(
