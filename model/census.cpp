@@ -117,7 +117,10 @@ SM_HOT void census_row(const CensusPad& in, int y, CensusVec* out) {
       for (int b = 0; b < nb; ++b) {
         VB nv;
         std::memcpy(&nv, nrow[b] + x, sizeof nv);
-        p |= reinterpret_cast<VB>(nv < cv) & static_cast<uint8_t>(1u << b);
+        // a named uint8_t: a cast in the expression is an int to GCC's vector check
+        // when -fsanitize=undefined instruments the shift ("involves truncation")
+        const uint8_t bit = static_cast<uint8_t>(1u << b);
+        p |= reinterpret_cast<VB>(nv < cv) & bit;
       }
       std::memcpy(pl + x, &p, sizeof p);
     }

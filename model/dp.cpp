@@ -384,15 +384,24 @@ SM_AVX512 inline void transpose_lanes8x8(__m512i* r) {
   }
 }
 
+// The four 128-bit lanes of v to p, p + step, p + 2 step, p + 3 step. The lane index of
+// the extract must be an immediate, so the lanes are written out (a loop index is one only
+// once the optimiser unrolls the loop: at -O0, -O2 or with sanitizers it is not). maskz: the
+// unmasked extract of GCC 12's header reads an undefined vector (-Wuninitialized).
+SM_AVX512 inline void store_lanes(__m512i v, uint16_t* p, size_t step) {
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm512_maskz_extracti32x4_epi32(0xf, v, 0));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p + step), _mm512_maskz_extracti32x4_epi32(0xf, v, 1));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 2 * step), _mm512_maskz_extracti32x4_epi32(0xf, v, 2));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 3 * step), _mm512_maskz_extracti32x4_epi32(0xf, v, 3));
+}
+
 // pt[p][x] = P[x][p] for pixels x0 .. x0+7 and pairs p0 .. p0+31 (row stride ptw).
 SM_AVX512 inline void pairs_to_rows(const uint16_t* pairs, int ne, int x0, int p0, uint16_t* pt, size_t ptw) {
   __m512i r[8];
   for (int i = 0; i < 8; ++i) r[i] = _mm512_loadu_si512(pairs + static_cast<size_t>(x0 + i) * ne + p0);
   transpose_lanes8x8(r);
   for (int k = 0; k < 8; ++k)  // lane j of r[k]: pair p0 + 8j + k of the 8 pixels
-    for (int j = 0; j < 4; ++j)
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(pt + static_cast<size_t>(p0 + 8 * j + k) * ptw + x0),
-                       _mm512_maskz_extracti32x4_epi32(0xf, r[k], j));
+    store_lanes(r[k], pt + static_cast<size_t>(p0 + k) * ptw + x0, 8 * ptw);
 }
 
 // cm[t][p] = pt[p][t + p] for t0 .. t0+7 and pairs p0 .. p0+31.
