@@ -35,6 +35,7 @@ struct Enumerate {
     }
     for (int nd : {d, d - 1, d + 1}) {
       if (nd < 0 || nd >= disp) continue;
+      if (i + 1 + nd > 2 * n) continue;  // level nd cannot come back to 0 by site 2n
       const bool occ = (i + 1 + nd) % 2 == 0;
       if (nd != d && !occ) continue;
       if (occ) {

@@ -10,6 +10,8 @@ namespace {
 // Node (i, d) of sites 0..2n (algorithm.md 6): matched when i + d is odd, pairing left pixel
 // (i - 1 + d) / 2 with its cost (0 beyond the line, as the model's trellis_line); an
 // occlusion node otherwise, reached diagonally at the penalty of its left pixel (i + d) / 2.
+// pen has n + 1 entries; a node whose left pixel is beyond n never reaches the end node and
+// takes pen[n], as the model's trellis_line_pen pads it.
 struct Trellis {
   const uint8_t* agg;
   int n, disp;
@@ -18,7 +20,7 @@ struct Trellis {
     const int xl = (i - 1 + d) / 2;
     return xl < n ? agg[static_cast<size_t>(xl) * disp + d] : 0;
   }
-  int64_t diag(int i, int d) const { return pen[(i + d) / 2]; }
+  int64_t diag(int i, int d) const { return pen[std::min((i + d) / 2, n)]; }
 };
 
 int64_t add(int64_t a, int64_t b) { return a >= kNoPath ? kNoPath : std::min(kNoPath, a + b); }
