@@ -386,7 +386,7 @@ SM_AVX512 inline void transpose_lanes8x8(__m512i* r) {
 
 // The four 128-bit lanes of v to p, p + step, p + 2 step, p + 3 step. The lane index of
 // the extract must be an immediate, so the lanes are written out (a loop index is one only
-// once the optimiser unrolls the loop: at -O0, -O2 or with sanitizers it is not). maskz: the
+// once -O3 unrolls the loop: at -O2 (RelWithDebInfo) it is not and the build fails). maskz: the
 // unmasked extract of GCC 12's header reads an undefined vector (-Wuninitialized).
 SM_AVX512 inline void store_lanes(__m512i v, uint16_t* p, size_t step) {
   _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm512_maskz_extracti32x4_epi32(0xf, v, 0));

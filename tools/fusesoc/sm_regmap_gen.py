@@ -10,7 +10,7 @@ generator runs that same C++ generator, so nothing generated is committed:
 - the executable named by the environment variable SM_REGMAP_GEN (the CMake build's
   build/tools/sm_regmap_gen; the ctest lint_fusesoc passes it), or else
 - tools/sm_regmap_gen.cpp compiled here with c++ (the Debian packages of
-  scripts/deps.sh: libfmt-dev, libcli11-dev, nlohmann-json3-dev; about 15 s), with the
+  scripts/deps.sh: libfmt-dev, libcli11-dev, nlohmann-json3-dev; about 12 s), with the
   repository as its include root, as the CMake build has it (the generator includes
   header-only parts of model/ and toolio/).
 
