@@ -24,6 +24,7 @@
 #include "evidence.hpp"
 #include "sm_block_test.hpp"
 #include "held_beats.hpp"
+#include "sm_defs.hpp"
 #include "sm_port.hpp"
 
 namespace {
@@ -122,7 +123,7 @@ Want model(const uint8_t* a) {
 int main(int argc, char** argv) {
   sm::test::BlockTest<SM_VTOP> t{"sm_wta block test"};
   sm::test::StreamShape shape{37};
-  t.stream_options(shape, 1, 4095);
+  t.stream_options(shape, 1, sm::defs::limit("MAX_WIDTH").max);  // sm_wta keeps no line
   if (auto rc = t.parse(argc, argv)) return *rc;
   const int width = shape.width, rows = shape.rows, frames = shape.frames, idle = shape.idle;
   const uint32_t seed = shape.seed;
