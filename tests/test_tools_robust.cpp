@@ -65,6 +65,17 @@ struct Fx {
   std::string o(const char* name) const { return (out / name).string(); }
 };
 
+// A real xc7 report from a minimal Yosys `stat -json` (3 LUT6, 2 FDRE), at fx.dir/name.
+std::string xc7_report(const Fx& fx, const char* name) {
+  const std::string stat =
+      fx.file("stat.json", R"({"modules": {"\\top": {"num_cells_by_type": {"LUT6": 3, "FDRE": 2}}}})");
+  const std::string out = (fx.dir / name).string();
+  REQUIRE(
+      run(SM_SYNTH_REPORT_EXE, "report --quiet --stat " + stat + " --top top --family xc7 --config c -o " + out).rc ==
+      0);
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("JSON inputs: a key twice in one object", "[robust][tools]") {
@@ -242,13 +253,7 @@ TEST_CASE("stereo_model: the register file's active size and --objects-json alon
 
 TEST_CASE("sm_synth_report: reports whose keys have the wrong type", "[robust][tools]") {
   Fx fx;
-  // a real report from a minimal Yosys `stat -json`
-  const std::string stat =
-      fx.file("stat.json", R"({"modules": {"\\top": {"num_cells_by_type": {"LUT6": 3, "FDRE": 2}}}})");
-  const std::string good = (fx.dir / "good.json").string();
-  REQUIRE(
-      run(SM_SYNTH_REPORT_EXE, "report --quiet --stat " + stat + " --top top --family xc7 --config c -o " + good).rc ==
-      0);
+  const std::string good = xc7_report(fx, "good.json");
   const nlohmann::json r = nlohmann::json::parse(sm::test::slurp(good));
   for (const auto& [key, value, shown] : std::vector<std::tuple<std::string, nlohmann::json, std::string>>{
            {"seconds", "fast", "'seconds' must be a number"},
@@ -336,12 +341,7 @@ TEST_CASE("sm_synth_report pnr: nextpnr's report read, blocks summed, bad files 
   fs::create_directories(fx.out);
   expect_error(pnr(fx.file("np.json", R"({"fmax": {}})"), "sm_a", fx.o("x.json")), 1, "sm_synth_report",
                "np.json: not a nextpnr report");
-  const std::string stat =
-      fx.file("stat.json", R"({"modules": {"\\top": {"num_cells_by_type": {"LUT6": 3, "FDRE": 2}}}})");
-  const std::string xc7 = (fx.dir / "xc7.json").string();
-  REQUIRE(
-      run(SM_SYNTH_REPORT_EXE, "report --quiet --stat " + stat + " --top top --family xc7 --config c -o " + xc7).rc ==
-      0);
+  const std::string xc7 = xc7_report(fx, "xc7.json");
   expect_error(run(SM_SYNTH_REPORT_EXE, "combine --top t --family ecp5 --config c -o " + sum + " " + xc7), 1,
                "sm_synth_report", "xc7.json: not a report of family ecp5");
   expect_empty(fx.out);

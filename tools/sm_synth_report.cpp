@@ -653,12 +653,16 @@ int run(int argc, char** argv) {
   rep->add_option("--family", family, "synth_xilinx family")->required();
   rep->add_option("--config", config, "configuration name")->required();
   rep->add_option("--param", params, "NAME=VALUE applied to the module");
-  rep->add_option("--seconds", seconds, "Yosys run time")->check(sm::tools::finite_in(0, 1e9));
-  rep->add_option("--command", command, "how the run was made");
-  rep->add_option("--instances", instances, "instances of this module in its parent")
-      ->check(sm::tools::int_in(1, 1000000));
-  rep->add_option("-o", out, "output JSON")->required();
-  rep->add_flag("--quiet", quiet, "no table on stdout");
+  // the options of a report made from one run (report, pnr)
+  const auto run_options = [&](CLI::App* c, const char* seconds_of) {
+    c->add_option("--seconds", seconds, seconds_of)->check(sm::tools::finite_in(0, 1e9));
+    c->add_option("--command", command, "how the run was made");
+    c->add_option("--instances", instances, "instances of this module in its parent")
+        ->check(sm::tools::int_in(1, 1000000));
+    c->add_option("-o", out, "output JSON")->required();
+    c->add_flag("--quiet", quiet, "no table on stdout");
+  };
+  run_options(rep, "Yosys run time");
 
   auto* comb = app.add_subcommand("combine", "sum reports of separately mapped blocks");
   comb->add_option("--top", top, "top module")->required();
@@ -683,12 +687,7 @@ int run(int argc, char** argv) {
   pnr->add_option("--param", params, "NAME=VALUE applied to the module");
   pnr->add_option("--device", device, "device, speed grade and package")->required();
   pnr->add_option("--tool-version", pnr_version, "nextpnr's --version line");
-  pnr->add_option("--seconds", seconds, "Yosys and nextpnr run time")->check(sm::tools::finite_in(0, 1e9));
-  pnr->add_option("--command", command, "how the run was made");
-  pnr->add_option("--instances", instances, "instances of this module in its parent")
-      ->check(sm::tools::int_in(1, 1000000));
-  pnr->add_option("-o", out, "output JSON")->required();
-  pnr->add_flag("--quiet", quiet, "no table on stdout");
+  run_options(pnr, "Yosys and nextpnr run time");
 
   auto* show = app.add_subcommand("show", "print reports as a table");
   show->add_option("reports", inputs, "report JSON files")->required()->check(CLI::ExistingFile);
