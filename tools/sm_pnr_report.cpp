@@ -41,7 +41,7 @@ void add_path(const json& paths, json& out) {
   double worst = -1;
   for (const auto& p : paths) {
     double logic = 0, routing = 0;
-    json cells = json::array();
+    int cells = 0;
     for (const auto& e : p.at("path")) {
       const std::string type = e.at("type").get<std::string>();
       const double d = e.at("delay").get<double>();
@@ -49,14 +49,14 @@ void add_path(const json& paths, json& out) {
         routing += d;
       } else {
         logic += d;
-        if (type == "logic") cells.push_back(e.at("from").at("cell").get<std::string>());
+        cells += type == "logic";
       }
     }
     if (logic + routing <= worst || p.at("path").empty()) continue;
     worst = logic + routing;
     out["path_logic_ns"] = logic;
     out["path_routing_ns"] = routing;
-    out["path_cells"] = cells.size();
+    out["path_cells"] = cells;
     out["path_from"] = p.at("path").front().at("from").at("cell");
     out["path_to"] = p.at("path").back().at("to").at("cell");
   }
@@ -73,8 +73,10 @@ json pnr_figures(const json& nextpnr, const std::string& where) {
     json out = json::object();
     const json& util = nextpnr.at("utilization");
     for (const auto& [cell, key] : cell_keys()) {
-      out[key] = util.contains(cell) ? util[cell].at("used").get<long long>() : 0;
-      out[std::string(key) + "_available"] = util.contains(cell) ? util[cell].at("available").get<long long>() : 0;
+      const json none = {{"used", 0}, {"available", 0}};
+      const json& u = util.contains(cell) ? util[cell] : none;
+      out[key] = u.at("used").get<long long>();
+      out[std::string(key) + "_available"] = u.at("available").get<long long>();
     }
     add_fmax(nextpnr.at("fmax"), out);
     add_path(nextpnr.value("critical_paths", json::array()), out);
@@ -99,9 +101,9 @@ json pnr_total(const std::vector<PnrPart>& parts) {
       slowest = &p;
   }
   if (slowest) {
-    for (const char* k :
-         {"fmax_mhz", "target_mhz", "clock", "path_logic_ns", "path_routing_ns", "path_cells", "path_from", "path_to"})
-      if (slowest->figures.contains(k)) total[k] = slowest->figures[k];
+    // its clock and critical path: every figure that is not a cell count
+    for (const auto& [k, v] : slowest->figures.items())
+      if (!total.contains(k)) total[k] = v;
     total["slowest_block"] = slowest->block;
   }
   return total;

@@ -697,16 +697,13 @@ int run(int argc, char** argv) {
   if (const auto rc = sm::tools::parse_cli(app, argc, argv)) return *rc;
 
   if (*pnr) {
-    json figures = sm::synth::pnr_figures(load(pnr_path), pnr_path);
-    figures["instances"] = instances;
     json r = report_head("", top, "ecp5", config, params, "single run", seconds);
     r["device"] = device;
     r["nextpnr"] = pnr_version;
     r["command"] = command;
-    r["blocks"] = json::object();
-    r["blocks"][top] = figures;
-    figures.erase("instances");
-    r["total"] = figures;
+    r["total"] = sm::synth::pnr_figures(load(pnr_path), pnr_path);
+    r["blocks"] = {{top, r["total"]}};
+    r["blocks"][top]["instances"] = instances;
     save(out, r);
     if (!quiet) sm::synth::print_pnr_report(r, false);
   } else if (*rep) {

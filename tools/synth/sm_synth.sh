@@ -68,6 +68,8 @@ if [ "$family" = ecp5 ]; then
   [[ "$found" == /* ]] && nextpnr=$found || nextpnr=$PWD/$found  # the runs start in the work folder
   [[ "$target_mhz" =~ ^[0-9]+(\.[0-9]+)?$ ]] || die "bad target clock '$target_mhz' MHz (-F)"
   [ "$nolutram" -eq 0 ] && [ "$need_bram" -eq 0 ] || die "-n and -b are checks of the Xilinx families"
+  pnr_version=$("$nextpnr" --version 2>&1 | sed -nE '1s/.*\(Version (.*)\).*/\1/p') ||
+    die "'$nextpnr --version' failed: not a working nextpnr-ecp5 (-N)"
 fi
 
 mkdir -p "$outdir"
@@ -115,22 +117,29 @@ fill() {
   printf '%s\n' "$text" >"$outf"
 }
 
-# run_yosys <script> <log>: one niced, time-limited Yosys run; prints its seconds.
-run_yosys() {
-  local script=$1 log=$2 t0 t1 rc=0
+# run_timed <tool> <log> <folder> <command...>: one niced, time-limited run in <folder>
+# (its standard error in <log>.err); prints its seconds.
+run_timed() {
+  local tool=$1 log=$2 dir=$3 t0 t1 rc=0 errors
+  shift 3
   t0=$(date +%s.%N)
-  nice -n 10 timeout "$timeout" yosys -q -l "$log" -s "$script" >/dev/null 2>"$log.err" || rc=$?
+  (cd "$dir" && nice -n 10 timeout "$timeout" "$@" >/dev/null 2>"$log.err") || rc=$?
   t1=$(date +%s.%N)
   if [ "$rc" -eq 124 ]; then
-    echo "sm_synth: $top ($config, $family): Yosys exceeded ${timeout} s on $script" >&2
+    echo "sm_synth: $top ($config, $family): $tool exceeded ${timeout} s, log $log" >&2
     exit 124
   elif [ "$rc" -ne 0 ]; then
-    echo "sm_synth: $top ($config, $family): Yosys failed (exit $rc), log $log:" >&2
-    grep -m3 -E 'ERROR' "$log" "$log.err" >&2 || tail -5 "$log.err" >&2
+    echo "sm_synth: $top ($config, $family): $tool failed (exit $rc), log $log:" >&2
+    # the first errors of the log and standard error (a tool that fails early writes no log)
+    errors=$(grep -s -m3 -E 'ERROR' "$log" "$log.err" || true)
+    if [ -n "$errors" ]; then echo "$errors" >&2; else tail -5 "$log.err" >&2; fi
     exit 1
   fi
   awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }'
 }
+
+# run_yosys <script> <log>: one Yosys run; prints its seconds.
+run_yosys() { run_timed Yosys "$2" . yosys -q -l "$2" -s "$1"; }
 
 # elab <module> <rtl file> <chparam line> <tag> <lib read lines>: one elaboration run into
 # $work/elab<tag>.il (and its stat); prints its seconds.
@@ -157,25 +166,16 @@ pnr_args=(--85k --speed 6 --package CABGA756 --out-of-context --seed 1 --timing-
 # place <design module> <tag> <instances> <elaborated design>: synth_ecp5, then one
 # nextpnr-ecp5 run (out of context: no I/O buffers, the ports unplaced) and its report part.
 place() {
-  local mod=$1 tag=$2 inst=$3 il=$4 secs t0 t1 rc=0 version
+  local mod=$1 tag=$2 inst=$3 il=$4 secs pnr_secs
   fill "$here/pnr.ys.in" "$work/synth_$tag.ys" "ELAB_IL=$il" "TOP=$mod" "OPTS=$extra_opts" \
     "STAT_TXT=$work/stat_$tag.txt" "NETLIST=$work/net_$tag.json"
   secs=$(run_yosys "$work/synth_$tag.ys" "$work/synth_$tag.log") || return $?
-  t0=$(date +%s.%N)
   # relative names: YoWASP's sandbox sees the working folder, not the whole file system
-  (cd "$work" && nice -n 10 timeout "$timeout" "$nextpnr" "${pnr_args[@]}" --freq "$target_mhz" \
-     --json "net_$tag.json" --report "pnr_$tag.json" -l "pnr_$tag.log" -q >/dev/null 2>"pnr_$tag.err") || rc=$?
-  t1=$(date +%s.%N)
-  if [ "$rc" -ne 0 ]; then
-    echo "sm_synth: $mod ($config, ecp5): nextpnr-ecp5 $([ "$rc" -eq 124 ] && echo "exceeded ${timeout} s" ||
-          echo "failed (exit $rc)"), log $work/pnr_$tag.log:" >&2
-    grep -m3 -E 'ERROR' "$work/pnr_$tag.log" "$work/pnr_$tag.err" >&2 || tail -3 "$work/pnr_$tag.err" >&2
-    return 1
-  fi
-  secs=$(awk -v a="$t0" -v b="$t1" -v s="$secs" 'BEGIN { printf "%.1f", s + b - a }')
-  version=$("$nextpnr" --version 2>&1 | sed -nE '1s/.*\(Version (.*)\).*/\1/p')
+  pnr_secs=$(run_timed nextpnr-ecp5 "$work/pnr_$tag.log" "$work" "$nextpnr" "${pnr_args[@]}" \
+    --freq "$target_mhz" --json "net_$tag.json" --report "pnr_$tag.json" -l "pnr_$tag.log" -q) || return $?
+  secs=$(awk -v a="$secs" -v b="$pnr_secs" 'BEGIN { printf "%.1f", a + b }')
   "$report" pnr --nextpnr "$work/pnr_$tag.json" --top "$mod" --config "$config" \
-    "${param_args[@]+"${param_args[@]}"}" --device "$pnr_device" --tool-version "$version" \
+    "${param_args[@]+"${param_args[@]}"}" --device "$pnr_device" --tool-version "$pnr_version" \
     --seconds "$secs" --instances "$inst" \
     --command "yosys -s $work/synth_$tag.ys; $nextpnr ${pnr_args[*]} --freq $target_mhz --json $work/net_$tag.json" \
     -o "$work/part_$tag.json" --quiet || return 1
