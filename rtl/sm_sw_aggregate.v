@@ -40,18 +40,19 @@
 // the masks, the sideband) is as above, and the F steps of the beat entering on ce 0
 // run on the F clocks after it, with those registers, whatever comes next. The pixel
 // part (codes, weight sum, RECIP) stays once per beat; the codes are registered on the
-// clock after ce 0 and RECIP on the one after that, and both hold for the F steps.
+// second clock after ce 0 and RECIP on the one after that, and both hold for the F steps.
 // Step g of the beat of ce 0 (clock c0 + 1 + g):
 //   clock c0+1+g  line-buffer read of word {column, g} (sm_sw_foldlb: one word per
 //                 column and group, SW-1 rows of PU levels); group g of the live costs
 //   clock c0+2+g  the group's column (live row + SW-1 rows) written back to the line
-//                 buffer and into the window (sm_sw_foldwin: LUT-RAM at {slot, g});
-//                 the window's SW-1 previous columns of group g read from it; bit
-//                 heap of PU lanes; per level A_raw
-//   c0+3+g .. c0+5+g  sm_sw_level (multiply, round and saturate into its register)
-//   end of c0+5+g the group's results into the output ring (sm_sw_foldout), read on
-//                 ce 4 into m_agg (the last group is written by clock c0 + F + 4, before
-//                 ce 4, which comes 4 * F clocks after ce 0 at the earliest)
+//                 buffer and registered (col_q: the block RAM's data ends its path here)
+//   clock c0+3+g  col_q into the window (sm_sw_foldwin: LUT-RAM at {slot, g}); the
+//                 window's SW-1 previous columns of group g read from it; bit heap of
+//                 PU lanes; per level A_raw
+//   c0+4+g .. c0+6+g  sm_sw_level (multiply, round and saturate into its register)
+//   end of c0+6+g the group's results into the output ring (sm_sw_foldout), read on
+//                 ce 4 into m_agg (the last group is written by clock c0 + F + 5, before
+//                 ce 4, which comes 4 * F clocks after ce 0 at the earliest, F >= 2)
 // So the latency is the same as above: pixel (x, y) on m_side/m_agg after ce 4.
 module sm_sw_aggregate #(
     parameter MAX_WIDTH  = 320,  // widest active line
@@ -287,16 +288,18 @@ module sm_sw_aggregate #(
       /* verilator lint_on WIDTH */
       reg           act0_q;   // a step: group grp0_q of the beat of the last ce
       reg [FGW-1:0] grp0_q;
-      reg           ce1_q, ce2_q;  // the first / second clock after a ce
+      reg           ce1_q, ce2_q, ce3_q;  // the first / second / third clock after a ce
       always @(posedge clk) begin
         if (!rst_n) begin
           act0_q <= 1'b0;
           grp0_q <= {FGW{1'b0}};
           ce1_q  <= 1'b0;
           ce2_q  <= 1'b0;
+          ce3_q  <= 1'b0;
         end else begin
           ce1_q <= ce;
           ce2_q <= ce1_q;
+          ce3_q <= ce2_q;
           if (ce) begin
             act0_q <= 1'b1;
             grp0_q <= {FGW{1'b0}};
@@ -306,8 +309,8 @@ module sm_sw_aggregate #(
           end
         end
       end
-      assign code_en  = ce1_q;
-      assign recip_en = ce2_q;
+      assign code_en  = ce2_q;
+      assign recip_en = ce3_q;
 
 `ifndef SYNTHESIS
       // sm_top's pacing: after a ce, the next F - 1 clocks have ce low.
@@ -363,27 +366,37 @@ module sm_sw_aggregate #(
           .col(col_g)
       );
 
-      // Steps through the datapath: 1 window and heap, 2..4 sm_sw_level, 4 result.
-      reg [4:1]     act_q;
-      reg [FGW-1:0] grp_q [1:4];
+      // Steps through the datapath: 1 the line buffer's word into col_q, 2 window and
+      // heap, 3..5 sm_sw_level, 5 result.
+      reg [5:1]     act_q;
+      reg [FGW-1:0] grp_q [1:5];
       always @(posedge clk) begin
-        if (!rst_n) act_q <= 4'd0;
-        else act_q <= {act_q[3:1], act0_q};
+        if (!rst_n) act_q <= 5'd0;
+        else act_q <= {act_q[4:1], act0_q};
       end
       always @(posedge clk) begin
         grp_q[1] <= grp0_q;
         grp_q[2] <= grp_q[1];
         grp_q[3] <= grp_q[2];
         grp_q[4] <= grp_q[3];
+        grp_q[5] <= grp_q[4];
+      end
+
+      // The block RAM's data (clock to output 5.8 ns on ECP5, then the choice of bank)
+      // would otherwise start the heap's path: placed and routed, that path set the
+      // block's clock (docs/synthesis.md). The steps have the clocks to spare.
+      reg [COLG-1:0] col_q;
+      always @(posedge clk) begin
+        if (act_q[1]) col_q <= col_g;
       end
 
       // Window: the entering column's group from the line buffer, the SW-1 previous
       // columns' from LUT-RAM at {slot, group}.
       wire [(SW-1)*COLG-1:0] owin;
       sm_sw_foldwin #(.W(COLG), .N(SW - 1), .F(F)) u_fwin (
-          .clk(clk), .rst_n(rst_n), .en(act_q[1]), .col(col_g), .win(owin)
+          .clk(clk), .rst_n(rst_n), .en(act_q[2]), .col(col_q), .win(owin)
       );
-      wire [SW*COLG-1:0] cwin = {owin, col_g};  // column c at [c*COLG +: COLG]
+      wire [SW*COLG-1:0] cwin = {owin, col_q};  // column c at [c*COLG +: COLG]
 
       // The weighted cost bits of the PU levels of the step's group (sm_sw_terms, as g_par).
       wire [TP*NQ*PU-1:0] terms;
@@ -409,10 +422,10 @@ module sm_sw_aggregate #(
             .recip(recip_q), .agg(agg_g[d*CW +: CW]));
       end
 
-      // Results: group g of the beat of ce 0 leaves sm_sw_level on clock c0 + 5 + g;
+      // Results: group g of the beat of ce 0 leaves sm_sw_level on clock c0 + 6 + g;
       // ring slots until ce 4 presents the beat.
       sm_sw_foldout #(.W(GW), .F(F), .DELAY(4)) u_out (
-          .clk(clk), .rst_n(rst_n), .ce(ce), .en(act_q[4]), .grp(grp_q[4]), .din(agg_g),
+          .clk(clk), .rst_n(rst_n), .ce(ce), .en(act_q[5]), .grp(grp_q[5]), .din(agg_g),
           .dout(m_agg)
       );
     end
