@@ -6,7 +6,10 @@
 //
 // Stream side (advances on ce): stage 1 registers the entering beat, reads the row
 // buffer (labels of the row above) and compares the pixel with its left neighbour and
-// the threshold; stage 2 labels the pixel and merges in the equivalence table; stage 3
+// the threshold; stage 1b registers all of that once more, so the row buffer's block
+// RAM (5.8 ns from the clock to its data on ECP5) does not start the labelling path
+// (placed and routed, it set the block's clock: docs/synthesis.md); stage 2 labels the
+// pixel and merges in the equivalence table; stage 3
 // updates the statistics on the clk right after stage 2's ce (not on the next ce), so
 // the read-modify-write of a run of one label needs no forwarding and the frame's last
 // update is done before the scan reads the bank. The statistics are double-banked by
@@ -132,10 +135,40 @@ module sm_objects #(
   reg  [8:0]    u_hi_q;                       // d + tol
   reg  [DW-1:0] u_lo_q;                       // max(d - tol, 0)
 
+  // ---- stage 1b: stage 1's results, one ce later ------------------------------------
+  // The left-neighbour test of stage 1 compares consecutive beats, so it holds here too.
+  // min_pixels moves with the beats: stage 2 and the recycling read the value latched
+  // by the beat after theirs, as they did when stage 2 followed stage 1 directly.
+  reg [RBW-1:0] rb_s2;
+  reg [XW-1:0]  x_s2;
+  reg [YW-1:0]  y_s2;
+  reg [DW-1:0]  pix_s2;
+  reg           up_in_s2, left_in_s2, near_s2, l_close_s2;
+  reg [8:0]     u_hi_s2;
+  reg [DW-1:0]  u_lo_s2;
+  reg [15:0]    minpix_s2;
+  reg           eof_s2;
+  reg [`SM_SIDE_W-1:0] side_s2;
+  always @(posedge clk) begin
+    if (ce) begin
+      rb_s2      <= rb_q;
+      x_s2       <= x_q;
+      y_s2       <= y_q;
+      pix_s2     <= pix_q;
+      up_in_s2   <= up_in_q;
+      left_in_s2 <= left_in_q;
+      near_s2    <= near_q;
+      l_close_s2 <= l_close_q;
+      u_hi_s2    <= u_hi_q;
+      u_lo_s2    <= u_lo_q;
+      minpix_s2  <= minpix_q;
+    end
+  end
+
   // ---- stage 2: label -------------------------------------------------------------
-  wire          real_q = side_q[`SM_SIDE_REAL];
-  wire          fresh = side_q[`SM_SIDE_REAL] & side_q[`SM_SIDE_SOF];  // first pixel: tables start empty
-  wire          sol_q = side_q[`SM_SIDE_SOL];
+  wire          real_q = side_s2[`SM_SIDE_REAL];
+  wire          fresh = side_s2[`SM_SIDE_REAL] & side_s2[`SM_SIDE_SOF];  // first pixel: tables start empty
+  wire          sol_q = side_s2[`SM_SIDE_SOL];
   reg           bank_q;
   reg  [NW-1:0] next_q;                         // labels 0..next_q-1 were allocated in this frame
   reg           tf_q;                           // table full seen in this frame
@@ -158,14 +191,14 @@ module sm_objects #(
 
   wire          bank = fresh ? ~bank_q : bank_q;
   wire [NW-1:0] next_eff = fresh ? {NW{1'b0}} : next_q;
-  wire [DW-1:0] d = pix_q;
-  wire          near = near_q;
-  wire          u_near = rb_q[RBW-1];
-  wire [DW-1:0] u_d = rb_q[LW +: DW];
-  wire [LW-1:0] u_lab = rb_q[LW-1:0];
-  wire          up_ok = near && up_in_q && u_near && (u_d >= u_lo_q) &&
-                        ({{(9-DW){1'b0}}, u_d} <= u_hi_q);
-  wire          left_ok = near && left_in_q && l_near_q && l_close_q;
+  wire [DW-1:0] d = pix_s2;
+  wire          near = near_s2;
+  wire          u_near = rb_s2[RBW-1];
+  wire [DW-1:0] u_d = rb_s2[LW +: DW];
+  wire [LW-1:0] u_lab = rb_s2[LW-1:0];
+  wire          up_ok = near && up_in_s2 && u_near && (u_d >= u_lo_s2) &&
+                        ({{(9-DW){1'b0}}, u_d} <= u_hi_s2);
+  wire          left_ok = near && left_in_s2 && l_near_q && l_close_s2;
   /* verilator lint_off WIDTH */  // labels index a table of LABEL_SLOTS (not 2^LW) entries
   wire [LW-1:0] ur = parent[u_lab];
   /* verilator lint_on WIDTH */
@@ -284,7 +317,7 @@ module sm_objects #(
   wire [SUMW-1:0] n_sum = (s3_alloc ? {SUMW{1'b0}} : b_sum) + {{(SUMW-DW){1'b0}}, s3_d};
   // only {valid, d} of the stream word and the real/sof/sol bits of the sideband matter
   /* verilator coverage_off */  // lint sinks: no logic
-  wire            unused_in = &{s_disp[14:DW], side_q[`SM_SIDE_TAG], s_lo[8:DW], p_lo[8:DW]};
+  wire            unused_in = &{s_disp[14:DW], side_s2[`SM_SIDE_TAG], side_q[`SM_SIDE_TAG], s_lo[8:DW], p_lo[8:DW]};
   /* verilator coverage_on */
 
   integer i;
@@ -305,7 +338,7 @@ module sm_objects #(
       u_lo_q    <= s_lo[8] ? {DW{1'b0}} : s_lo[DW-1:0];
       // stage 2: the row above's entry for this column is read; write this row's
       /* verilator lint_off WIDTH */  // as above
-      rb[x_q]  <= {real_q & near_eff, d, lab};
+      rb[x_s2] <= {real_q & near_eff, d, lab};
       /* verilator lint_on WIDTH */
       l_near_q <= real_q & near_eff;
       l_lab_q  <= lab;
@@ -323,8 +356,8 @@ module sm_objects #(
       s3_merge <= merge;
       s3_alloc <= alloc;
       s3_d     <= d;
-      s3_x     <= x_q;
-      s3_y     <= y_q;
+      s3_x     <= x_s2;
+      s3_y     <= y_s2;
     end
     // stage 3
     s4_l   <= s3_l;
@@ -342,7 +375,7 @@ module sm_objects #(
 
   // stage 4: big_q, the size against the frame's min_pixels
   always @(posedge clk) begin
-    if (s4_v) big_q[s4_l] <= ({{(32-CNTW){1'b0}}, s4_cnt} >= {16'd0, minpix_q});
+    if (s4_v) big_q[s4_l] <= ({{(32-CNTW){1'b0}}, s4_cnt} >= {16'd0, minpix_s2});
   end
 
   // alive: set when a label is allocated, cleared when it is absorbed (two writes)
@@ -363,6 +396,8 @@ module sm_objects #(
     if (!rst_n) begin
       side_q  <= {`SM_SIDE_W{1'b0}};
       eof_q   <= 1'b0;
+      side_s2 <= {`SM_SIDE_W{1'b0}};
+      eof_s2  <= 1'b0;
       s3_v    <= 1'b0;
       s4_v    <= 1'b0;
       busy_q  <= {LABEL_SLOTS{1'b0}};
@@ -387,8 +422,10 @@ module sm_objects #(
       s3_v    <= upd;
       s4_v    <= s3_v;
       if (ce) begin
-        side_q <= c_side;
-        eof_q  <= c_eof;
+        side_q  <= c_side;
+        eof_q   <= c_eof;
+        side_s2 <= side_q;
+        eof_s2  <= eof_q;
         if (c_side[`SM_SIDE_SOF]) begin
           thr_q    <= near_thr;
           tol_q    <= tol;
@@ -405,12 +442,12 @@ module sm_objects #(
           cand_q  <= cand_n;
           cok_q   <= cok_n;
         end
-        if (real_q && eof_q) begin
+        if (real_q && eof_s2) begin
           scan_go <= 1'b1;
           sc_bank <= bank;
           sc_n    <= next_new;
           sc_tf   <= tf_new;
-          sc_min  <= minpix_q;
+          sc_min  <= minpix_s2;
         end
       end
     end
