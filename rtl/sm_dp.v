@@ -359,22 +359,20 @@ module sm_dp #(
       // The held beat's costs of group g_q (one F:1 selection of PU*CW bits).
       wire [PU*CW-1:0] cost_g = s_cost[g_q*(PU*CW) +: PU*CW];
 
-      // Ring read slots, one per ceil(j/2) = k: wp - (S - g*PU/2 - k), counted so the
-      // ring addresses come straight from flip-flops (reset: wp = 0, sub-step 0).
-      wire [(PU/2+1)*KW-1:0] slots;
+      // Ring read slots, one per ceil(j/2) = k: wp - (S - g*PU/2 - k), counted (reset:
+      // wp = 0, sub-step 0). The lanes read the ring a clock ahead, like their state
+      // words (a_q below), so they take the slot the counter takes next (slots_nx).
+      wire [(PU/2+1)*KW-1:0] slots_nx;
       genvar k;
       for (k = 0; k <= PU / 2; k = k + 1) begin : g_slot
         /* verilator lint_off WIDTH */  // -S + k (+ 1) modulo 2^KW
         localparam [KW-1:0] SL_RST = (1 << KW) + k - S;
         localparam [KW-1:0] SL_CE = (1 << KW) + 1 + k - S;  // wp is wp_q + 1 after a ce
         /* verilator lint_on WIDTH */
-        reg [KW-1:0] sl_q;
-        always @(posedge clk) begin
-          if (!rst_n) sl_q <= SL_RST;
-          else if (ce) sl_q <= wp_q + SL_CE;
-          else if (run_q) sl_q <= sl_q + SL_STEP;
-        end
-        assign slots[k*KW +: KW] = sl_q;
+        reg  [KW-1:0] sl_q;
+        wire [KW-1:0] sl_nx = !rst_n ? SL_RST : ce ? wp_q + SL_CE : run_q ? sl_q + SL_STEP : sl_q;
+        always @(posedge clk) sl_q <= sl_nx;
+        assign slots_nx[k*KW +: KW] = sl_nx;
       end
 
       // ---- lanes -----------------------------------------------------------------
@@ -463,13 +461,23 @@ module sm_dp #(
         always @(posedge clk) begin
           if (run_q) ring[{wp_q, g_q}] <= cost_g[j*CW +: CW];
         end
-        wire [CW-1:0] a_ring = ring[{slots[((j+1)/2)*KW +: KW], g_q}];
+        // The skewed cost of the sub-step executing next, read a clock ahead (as u_q):
+        // the ring's LUT-RAM read (and at the top lane the held input's F:1 choice) then
+        // sits before a register, not in front of the lane's adders (placed and routed,
+        // g_q through the read into the adders was the block's slowest path). The word
+        // read is never the one written on that edge (another group), and the held
+        // input is stable from the clock after the ce (the rule above).
+        wire [CW-1:0] a_ring = ring[{slots_nx[((j+1)/2)*KW +: KW], g_nx}];
+        reg  [CW-1:0] a_q;
         if (j == PU - 1) begin : g_top
           // level DISP-1 (g = F-1) has skew 0: the held input itself
-          assign a = (g_q == G_LAST) ? cost_g[j*CW +: CW] : a_ring;
+          always @(posedge clk) begin
+            a_q <= (g_nx == G_LAST) ? s_cost[G_LAST*(PU*CW) + j*CW +: CW] : a_ring;
+          end
         end else begin : g_mid
-          assign a = a_ring;
+          always @(posedge clk) a_q <= a_ring;
         end
+        assign a = a_q;
         sm_dp_fpe #(
             .CW   (CW),
             .ACC_W(ACC_W),
