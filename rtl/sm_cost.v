@@ -23,12 +23,15 @@
 // rules (docs/algorithm.md, "Folded datapath"): ce at most once every F clocks, and the
 // inputs a ce samples stable from the clock after the previous ce. The F sub-steps of
 // beat n run on the F clocks after the ce that presented it (a counter restarted by
-// ce), before beat n's own ce; the popcount adds 2 clocks, its results are collected
+// ce), before beat n's own ce; the popcount adds PL clocks (2, and at F >= 4 one more:
+// its right-vector input registered, so the delay line's tap choice does not start the
+// heap's path, placed and routed the block's slowest), its results are collected
 // group by group (one register of PU lanes per sub-step), copied to a full-width hold
-// register 3 clocks after beat n's ce (when sub-step 0 of beat n + 1 overwrites the
-// collect), shifted to a second hold register 3 clocks after the next ce and presented
-// from there on the ce after that. At F < 4 that ce can come before the second copy;
-// the output then takes the first hold register (the one multiplexer, F < 4 only).
+// register PL + 1 clocks after beat n's ce (when sub-step 0 of beat n + 1 overwrites the
+// collect), shifted to a second hold register PL + 1 clocks after the next ce and
+// presented from there on the ce after that. At F < PL + 2 that ce can come before the
+// second copy; the output then takes the first hold register (the one multiplexer, small
+// F only). The first copy always comes before the ce that presents it (2F > PL + 1).
 module sm_cost #(
     parameter MAX_WIDTH = 320,  // widest active line
     parameter DISP      = 128,  // disparity levels 0..DISP-1
@@ -182,6 +185,12 @@ module sm_cost #(
         else if (sub_q == G_LAST - 1'b1) last <= 1'b1;
       end
 
+      // Popcount pipeline: PB_REG registers the right vectors in front of it (PL clocks
+      // from the sub-step to the count). At F = 2 the extra clock would bring the hold
+      // copy onto the ce that presents it.
+      localparam PB_REG = (F >= 4) ? 1 : 0;
+      localparam PL = 2 + PB_REG;
+
       // The delay line in bit-plane order: seg_q[i*PU + j] = bit i of segment j's tap
       // sub_q, beat n - 1 - F*j - sub_q.
       wire [CB*PU-1:0] seg_q;
@@ -202,7 +211,7 @@ module sm_cost #(
       // The right pixels in the same chained segments, one per pixel bit, gathered to
       // level order per lane and registered with the left pixel (which changes after the
       // beat's ce, possibly before its last sub-step's term); the terms are registered
-      // once more, so they meet the popcount result 2 clocks after its inputs.
+      // PL - 1 times more, so they meet the popcount result PL clocks after its inputs.
       wire [8*PU-1:0]  pseg_q;  // bit-plane order
       reg  [8*PU-1:0]  px_p1;   // level order: lane j at [8*j +: 8]
       reg  [7:0]       left_p1;
@@ -224,6 +233,14 @@ module sm_cost #(
         wire unused_px = ^{px_p1, left_p1};
       end
       always @(posedge clk) t_p2 <= t_c;
+      wire [TW*PU-1:0] t_pl;  // the terms PL clocks after the sub-step
+      if (PB_REG != 0) begin : g_t_reg
+        reg [TW*PU-1:0] t_p3;
+        always @(posedge clk) t_p3 <= t_p2;
+        assign t_pl = t_p3;
+      end else begin : g_t_direct
+        assign t_pl = t_p2;
+      end
 
       // x - d >= 0 of each lane's level at this sub-step (ok[0] = 1 covers level 0).
       wire [PU-1:0] ok_l;
@@ -235,20 +252,43 @@ module sm_cost #(
         assign ok_l[j] = oks[sub_q];
       end
 
-      // PU popcounts every clock, latency 2; the sub-step and ok bits follow them.
+      // PU popcounts every clock, latency 2 (PL with the input register); the sub-step
+      // and ok bits follow them. The left vector is registered beside the right ones:
+      // the input changes on the clock after a ce, while the last sub-step's vectors are
+      // still in the register (one CB-bit register, copied to the lanes after it).
+      wire [CB*PU-1:0] pa_pc, pb_pc;
+      if (PB_REG != 0) begin : g_pb_reg
+        reg [CB*PU-1:0] pb_q;
+        reg [CB-1:0]    cl_q;
+        always @(posedge clk) begin
+          pb_q <= pb;
+          cl_q <= s_cl;
+        end
+        assign pb_pc = pb_q;
+        for (i = 0; i < CB; i = i + 1) begin : g_pa
+          assign pa_pc[i*PU +: PU] = {PU{cl_q[i]}};
+        end
+        wire unused_pa = ^pa;  // the lanes' copies are taken after the register
+      end else begin : g_pb_direct
+        assign pa_pc = pa;
+        assign pb_pc = pb;
+      end
       wire [HW*PU-1:0] pc;  // bit-plane order: bit f of lane j at [f*PU + j]
-      sm_popcount #(.N(CB), .L(PU)) u_pc (.clk(clk), .ce(1'b1), .a(pa), .b(pb), .cnt(pc));
-      reg [PU-1:0] ok_p1, ok_p2;
-      reg [GW-1:0] sub_p1, sub_p2;
-      always @(posedge clk) begin
-        ok_p1  <= ok_l;
-        ok_p2  <= ok_p1;
-        sub_p1 <= sub_q;
-        sub_p2 <= sub_p1;
+      sm_popcount #(.N(CB), .L(PU)) u_pc (.clk(clk), .ce(1'b1), .a(pa_pc), .b(pb_pc), .cnt(pc));
+      reg [PU-1:0] ok_p [1:PL];
+      reg [GW-1:0] sub_p [1:PL];
+      always @(posedge clk) begin : a_pipe
+        integer s;
+        ok_p[1]  <= ok_l;
+        sub_p[1] <= sub_q;
+        for (s = 2; s <= PL; s = s + 1) begin
+          ok_p[s]  <= ok_p[s-1];
+          sub_p[s] <= sub_p[s-1];
+        end
       end
       wire [CW*PU-1:0] cost_l;  // bit-plane order
       sm_cost_addsat #(.L(PU), .HW(HW), .TW(TW), .COST_SHIFT(COST_SHIFT), .CB(CB)) u_sum (
-          .h(pc), .t(t_p2), .ok(ok_p2), .cost(cost_l));
+          .h(pc), .t(t_pl), .ok(ok_p[PL]), .cost(cost_l));
 
       // Collect: sub-step g's lanes at [g*CW*PU +: CW*PU]. Sub-steps repeated while the
       // counter waits at F - 1 rewrite the same values.
@@ -257,22 +297,22 @@ module sm_cost #(
       always @(posedge clk) begin : a_col
         integer s;
         for (s = 0; s < F; s = s + 1)
-          if (sub_p2 == s[GW-1:0]) col_q[s*GB +: GB] <= cost_l;
+          if (sub_p[PL] == s[GW-1:0]) col_q[s*GB +: GB] <= cost_l;
       end
 
-      // ce 3 clocks ago: sub-step 0 of the next beat reaches the collect now, so the
-      // collect holds the whole previous beat for the last time.
-      reg [2:0] ce_p;
+      // ce PL + 1 clocks ago: sub-step 0 of the next beat reaches the collect now, so
+      // the collect holds the whole previous beat for the last time.
+      reg [PL:0] ce_p;
       always @(posedge clk) begin
-        if (!rst_n) ce_p <= 3'd0;
-        else ce_p <= {ce_p[1:0], ce};
+        if (!rst_n) ce_p <= {(PL + 1){1'b0}};
+        else ce_p <= {ce_p[PL-1:0], ce};
       end
       // The hold registers in the output's bit-plane order (fixed wiring from the collect:
       // level d = F*j + g + 1 of sub-step g, lane j; level 0 of sub-step F-1, lane PU-1).
       reg [CW*DISP-1:0] hold_q, hold2_q;
       always @(posedge clk) begin : a_hold
         integer d, b, s, l;
-        if (ce_p[2]) begin
+        if (ce_p[PL]) begin
           for (d = 0; d < DISP; d = d + 1) begin
             s = (d == 0) ? F - 1 : (d - 1) % F;
             l = (d == 0) ? PU - 1 : (d - 1) / F;
@@ -281,8 +321,8 @@ module sm_cost #(
           hold2_q <= hold_q;
         end
       end
-      if (F < 4) begin : g_early
-        // A ce within 3 clocks of the previous one comes before that one's hold copy.
+      if (F < PL + 2) begin : g_early
+        // A ce within PL + 1 clocks of the previous one comes before that one's hold copy.
         always @(posedge clk) if (ce) m_cost <= (|ce_p) ? hold_q : hold2_q;
       end else begin : g_late
         always @(posedge clk) if (ce) m_cost <= hold2_q;
