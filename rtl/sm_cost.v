@@ -24,8 +24,8 @@
 // inputs a ce samples stable from the clock after the previous ce. The F sub-steps of
 // beat n run on the F clocks after the ce that presented it (a counter restarted by
 // ce), before beat n's own ce; the popcount adds PL clocks (2, and at F >= 4 one more:
-// its right-vector input registered, so the delay line's tap choice does not start the
-// heap's path, placed and routed the block's slowest), its results are collected
+// its inputs registered, so the delay line's tap choice does not start the heap's path,
+// placed and routed the block's slowest), its results are collected
 // group by group (one register of PU lanes per sub-step), copied to a full-width hold
 // register PL + 1 clocks after beat n's ce (when sub-step 0 of beat n + 1 overwrites the
 // collect), shifted to a second hold register PL + 1 clocks after the next ce and
@@ -185,7 +185,7 @@ module sm_cost #(
         else if (sub_q == G_LAST - 1'b1) last <= 1'b1;
       end
 
-      // Popcount pipeline: PB_REG registers the right vectors in front of it (PL clocks
+      // Popcount pipeline: PB_REG registers the lanes' vectors in front of it (PL clocks
       // from the sub-step to the count). At F = 2 the extra clock would bring the hold
       // copy onto the ce that presents it.
       localparam PB_REG = (F >= 4) ? 1 : 0;
