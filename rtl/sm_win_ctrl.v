@@ -81,8 +81,27 @@ module sm_win_ctrl #(
   endgenerate
   wire [3:0]    ctag = borrow ? row_tag[D_ROWS+1] : row_tag[D_ROWS];
 
+  // Rows entered since reset, saturating once the centre's row (and the one before it,
+  // for a borrow) is always one of them. The beats before a stream's first SOL (a
+  // stage's pipeline fill) are no row: a centre there or in the rows the window still
+  // lags by gets no SOL. Otherwise every fill would leave a stub row behind, as long as
+  // the fill happened to be, and stages further down would drop a stub shorter than
+  // their own D_COLS but keep a longer one: row counts kept from reset on two streams
+  // (sm_line_store) then disagree as soon as a stage's latency changes. So every
+  // stream's rows are the sequencer's rows, exactly W beats each.
+  localparam NR = D_ROWS + 2;  // the count a borrowing centre needs
+  localparam RW = `SM_COUNT_W(NR);
+  /* verilator lint_off WIDTH */  // small constants in the count's width
+  localparam [RW-1:0] NRV = NR;
+  localparam [RW-1:0] DR1 = D_ROWS + 1;
+  /* verilator lint_on WIDTH */
+  reg  [RW-1:0] rows_q;
+  wire [RW-1:0] rows = (in_sol && rows_q != NRV) ? rows_q + 1'b1 : rows_q;
+  wire          c_row = borrow ? (rows == NRV) : (rows >= DR1);  // the centre's row was entered
+  wire          c_sol = c_row && (c_x == {XW{1'b0}});
+
   // Sideband order as in the spec: {ftag, sol, sof, real}.
-  assign c_side = {ctag[3:2], (c_x == {XW{1'b0}}), ctag[1] && (c_x == {XW{1'b0}}), ctag[0]};
+  assign c_side = {ctag[3:2], c_sol, ctag[1] && c_sol, ctag[0]};
 
   genvar j;
   generate
@@ -115,10 +134,12 @@ module sm_win_ctrl #(
   integer n;
   always @(posedge clk) begin
     if (!rst_n) begin
-      col_q <= {XW{1'b0}};
+      col_q  <= {XW{1'b0}};
+      rows_q <= {RW{1'b0}};
       for (n = 0; n < NT; n = n + 1) tag_q[n] <= 4'd0;
     end else if (ce) begin
-      col_q <= col;
+      col_q  <= col;
+      rows_q <= rows;
       if (in_sol) begin
         tag_q[0] <= in_tag;
         for (n = 1; n < NT; n = n + 1) tag_q[n] <= tag_q[n-1];
