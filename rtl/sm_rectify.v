@@ -9,13 +9,16 @@
 // taps (ix|ix+1, iy|iy+1) always fall into four different banks, so one read per bank
 // per beat fetches them all.
 //
-// Pipeline (ce's after the entering beat): 0 grid read, 1 V0/V1 (only the first pixel
-// of a 16-pixel segment loads them), 2 S accumulated across the segment, 3 source
-// position, tap validity and buffer rows/columns, 4 buffer addresses (from registers,
-// straight into the read port) and read, 5 bilinear blend into m_pix. The buffer write
-// of an entering pixel is delayed to ce 4 as well, so the read of a beat sees every
-// earlier row and none of the rows entering after it: the slot of row y-R is only
-// overwritten by the row after the live one.
+// Pipeline (ce's after the entering beat): 0 grid read, 1 the grid words registered, 2
+// V0/V1 (only the first pixel of a 16-pixel segment loads them), 3 S accumulated across
+// the segment, 4 source position, tap validity and buffer rows/columns, 5 buffer
+// addresses (from registers, straight into the read port) and read, 6 the four taps
+// registered, 7 bilinear blend into m_pix. Stages 1 and 6 keep the block RAMs' data
+// (5.8 ns after the clock on ECP5) off the multipliers' paths: placed and routed, each
+// was the block's slowest in turn (docs/synthesis.md). The buffer write of an entering
+// pixel is delayed to ce 5 as well, so the read of a beat sees every earlier row and
+// none of the rows entering after it: the slot of row y-R is only overwritten by the
+// row after the live one.
 //
 // Grid memory: point (gx, gy) of bank b is at grid_waddr = {b, gy[GYB-1:0], gx[GXB-1:0]},
 // i.e. point index gy * GWMAX + gx with GWMAX = 2**GXB (docs/algorithm.md, section 2).
@@ -162,7 +165,36 @@ module sm_rectify #(
     end
   endgenerate
 
-  // ---------------------------------------------------------------- stage 1: V0/V1
+  // ---------------------------------------------------------------- stage 1: grid words
+  // Everything stage 0 hands on waits here one ce beside the grid words.
+  reg [31:0]   gr_q [0:3];
+  reg [3:0]    fx_q0, fy_q0;
+  reg          gxp_q0, gyp_q0, en_q0;
+  reg [XW-1:0] cx_q0, wx_q0;
+  reg [YW-1:0] cy_q0;
+  reg [SB-1:0] cs_q0, wls_q0;
+  reg [RW-1:0] rok_q0;
+  reg [7:0]    wp_q0;
+  integer gi;
+  always @(posedge clk) begin
+    if (ce) begin
+      for (gi = 0; gi < 4; gi = gi + 1) gr_q[gi] <= g_rd[gi];
+      fx_q0  <= c_x[3:0];
+      fy_q0  <= cy[3:0];
+      gxp_q0 <= gx[0];
+      gyp_q0 <= gy[0];
+      en_q0  <= en_f;
+      cx_q0  <= c_x;
+      cy_q0  <= cy;
+      cs_q0  <= cs;
+      rok_q0 <= row_ok;
+      wp_q0  <= s_pix;
+      wx_q0  <= s_x;
+      wls_q0 <= ls;
+    end
+  end
+
+  // ---------------------------------------------------------------- stage 2: V0/V1
   reg [3:0]    fx_q, fy_q;
   reg          gxp_q, gyp_q, en_q1;
   reg [XW-1:0] cx_q;
@@ -170,10 +202,10 @@ module sm_rectify #(
   reg [SB-1:0] cs_q;
   reg [RW-1:0] rok_q;
 
-  wire [31:0] k00 = g_rd[{gyp_q, gxp_q}];
-  wire [31:0] k10 = g_rd[{gyp_q, ~gxp_q}];
-  wire [31:0] k01 = g_rd[{~gyp_q, gxp_q}];
-  wire [31:0] k11 = g_rd[{~gyp_q, ~gxp_q}];
+  wire [31:0] k00 = gr_q[{gyp_q, gxp_q}];
+  wire [31:0] k10 = gr_q[{gyp_q, ~gxp_q}];
+  wire [31:0] k01 = gr_q[{~gyp_q, gxp_q}];
+  wire [31:0] k11 = gr_q[{~gyp_q, ~gxp_q}];
 
   // Products are taken modulo 2^VW: the true values fit, so the bits are the signed result.
   function [VW-1:0] sext16(input [15:0] v);
@@ -186,7 +218,7 @@ module sm_rectify #(
   wire [VW-1:0] v0y = sext16(k00[31:16]) * wy1 + sext16(k01[31:16]) * wy;
   wire [VW-1:0] v1y = sext16(k10[31:16]) * wy1 + sext16(k11[31:16]) * wy;
 
-  // ---------------------------------------------------------------- stage 2: S
+  // ---------------------------------------------------------------- stage 3: S
   reg [3:0]    fx_q2;
   reg          en_q2;
   reg [XW-1:0] cx_q2;
@@ -213,7 +245,7 @@ module sm_rectify #(
   wire [SW-1:0] sx_s = en_q2 ? sx_n : {{(SW - 13 - XW){1'b0}}, cx_q2, 13'd0};
   wire [SW-1:0] sy_s = en_q2 ? sy_n : {SW{1'b0}};
 
-  // ---------------------------------------------------------------- stage 3: taps
+  // ---------------------------------------------------------------- stage 4: taps
   reg [SB-1:0] cs_q3;
   reg [SB+1:0] csm_q3, csp_q3;  // cs - NR, cs + NR (signed)
   reg [RW-1:0] rok_q3;
@@ -306,7 +338,7 @@ module sm_rectify #(
   wire [4:0] ax1 = 5'd16 - {1'b0, ax};
   wire [4:0] ay1 = 5'd16 - {1'b0, ay};
 
-  // ---------------------------------------------------------------- stage 4: read
+  // ---------------------------------------------------------------- stage 5: read
   reg [SB-2:0]  hs_e_q, hs_o_q;  // slot pairs of the even / odd tap row
   reg [CHW-1:0] hc_e_q, hc_o_q;  // column pairs of the even / odd tap column
   reg [3:0]     ok_q;            // bank reads that hit a valid tap
@@ -346,23 +378,27 @@ module sm_rectify #(
     end
   endgenerate
 
-  // ---------------------------------------------------------------- stage 5: blend
+  // ---------------------------------------------------------------- stage 6: taps
   reg [8:0] w00_q2, w10_q2, w01_q2, w11_q2;
   reg [3:0] tv_q2;
   reg       rp_q2, cp_q2;
 
-  wire [7:0]  p00 = tv_q2[0] ? lb_rd[{rp_q2, cp_q2}] : 8'd0;
-  wire [7:0]  p10 = tv_q2[1] ? lb_rd[{rp_q2, ~cp_q2}] : 8'd0;
-  wire [7:0]  p01 = tv_q2[2] ? lb_rd[{~rp_q2, cp_q2}] : 8'd0;
-  wire [7:0]  p11 = tv_q2[3] ? lb_rd[{~rp_q2, ~cp_q2}] : 8'd0;
+  wire [7:0]  t00 = tv_q2[0] ? lb_rd[{rp_q2, cp_q2}] : 8'd0;
+  wire [7:0]  t10 = tv_q2[1] ? lb_rd[{rp_q2, ~cp_q2}] : 8'd0;
+  wire [7:0]  t01 = tv_q2[2] ? lb_rd[{~rp_q2, cp_q2}] : 8'd0;
+  wire [7:0]  t11 = tv_q2[3] ? lb_rd[{~rp_q2, ~cp_q2}] : 8'd0;
+
+  // ---------------------------------------------------------------- stage 7: blend
+  reg [8:0] w00_q3, w10_q3, w01_q3, w11_q3;
+  reg [7:0] p00, p10, p01, p11;
   // weights sum to 256, so the blend is at most 255*256 + 128 (16 bits)
   /* verilator lint_off UNUSEDSIGNAL */  // bits 7:0 are below the result
-  wire [16:0] blend = {9'd0, p00} * {8'd0, w00_q2} + {9'd0, p10} * {8'd0, w10_q2} +
-                      {9'd0, p01} * {8'd0, w01_q2} + {9'd0, p11} * {8'd0, w11_q2} + 17'd128;
+  wire [16:0] blend = {9'd0, p00} * {8'd0, w00_q3} + {9'd0, p10} * {8'd0, w10_q3} +
+                      {9'd0, p01} * {8'd0, w01_q3} + {9'd0, p11} * {8'd0, w11_q3} + 17'd128;
   /* verilator lint_on UNUSEDSIGNAL */
 
   // ---------------------------------------------------------------- registers
-  sm_side_delay #(.DEPTH(6)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(m_side));
+  sm_side_delay #(.DEPTH(8)) u_side (.clk(clk), .rst_n(rst_n), .ce(ce), .d(c_side), .q(m_side));
   always @(posedge clk) begin
     if (!rst_n) begin
       ls_q    <= {SB{1'b0}};
@@ -379,20 +415,20 @@ module sm_rectify #(
 
   always @(posedge clk) begin
     if (ce) begin
-      // stage 0 -> 1
-      fx_q  <= c_x[3:0];
-      fy_q  <= cy[3:0];
-      gxp_q <= gx[0];
-      gyp_q <= gy[0];
-      en_q1 <= en_f;
-      cx_q  <= c_x;
-      cy_q1 <= cy;
-      cs_q  <= cs;
-      rok_q <= row_ok;
-      wp_q  <= s_pix;
-      wx_q  <= s_x;
-      wls_q <= ls;
       // stage 1 -> 2
+      fx_q  <= fx_q0;
+      fy_q  <= fy_q0;
+      gxp_q <= gxp_q0;
+      gyp_q <= gyp_q0;
+      en_q1 <= en_q0;
+      cx_q  <= cx_q0;
+      cy_q1 <= cy_q0;
+      cs_q  <= cs_q0;
+      rok_q <= rok_q0;
+      wp_q  <= wp_q0;
+      wx_q  <= wx_q0;
+      wls_q <= wls_q0;
+      // stage 2 -> 3
       if (fx_q == 4'd0) begin
         v0x_q <= v0x;
         v1x_q <= v1x;
@@ -408,7 +444,7 @@ module sm_rectify #(
       wp_q2  <= wp_q;
       wa_q2  <= wa1;
       wb_q2  <= {wls_q[0], wx_q[0]};
-      // stage 2 -> 3
+      // stage 3 -> 4
       sx_acc_q <= sx_s;
       sy_acc_q <= sy_s;
       cs_q3    <= cs_q2;
@@ -418,7 +454,7 @@ module sm_rectify #(
       wp_q3    <= wp_q2;
       wa_q3    <= wa_q2;
       wb_q3    <= wb_q2;
-      // stage 3 -> 4
+      // stage 4 -> 5
       hs_e_q  <= hs_e;
       hs_o_q  <= hs_o;
       hc_e_q  <= hc_e;
@@ -434,7 +470,7 @@ module sm_rectify #(
       wp_q4   <= wp_q3;
       wa_q4   <= wa_q3;
       wb_q4   <= wb_q3;
-      // stage 4 -> 5
+      // stage 5 -> 6
       w00_q2 <= w00_q;
       w10_q2 <= w10_q;
       w01_q2 <= w01_q;
@@ -442,7 +478,16 @@ module sm_rectify #(
       tv_q2  <= tv_q;
       rp_q2  <= rp_q;
       cp_q2  <= cp_q;
-      // stage 5 -> out
+      // stage 6 -> 7
+      p00    <= t00;
+      p10    <= t10;
+      p01    <= t01;
+      p11    <= t11;
+      w00_q3 <= w00_q2;
+      w10_q3 <= w10_q2;
+      w01_q3 <= w01_q2;
+      w11_q3 <= w11_q2;
+      // stage 7 -> out
       m_pix  <= blend[15:8];
     end
   end
