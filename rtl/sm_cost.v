@@ -194,7 +194,7 @@ module sm_cost #(
       // The delay line in bit-plane order: seg_q[i*PU + j] = bit i of segment j's tap
       // sub_q, beat n - 1 - F*j - sub_q.
       wire [CB*PU-1:0] seg_q;
-      reg  [CB*PU-1:0] pa, pb;  // popcount inputs, bit-plane order (bit i of lane j at [i*PU + j])
+      reg  [CB*PU-1:0] pb;  // right vectors, bit-plane order (bit i of lane j at [i*PU + j])
       genvar j, g;
       for (i = 0; i < CB; i = i + 1) begin : g_plane
         sm_cost_srl #(.L(PU), .DEPTH(F)) u_srl (
@@ -204,7 +204,6 @@ module sm_cost #(
         always @* begin
           pb[i*PU +: PU] = seg_q[i*PU +: PU];
           if (last) pb[i*PU + PU - 1] = s_cr[i];
-          pa[i*PU +: PU] = {PU{s_cl[i]}};
         end
       end
 
@@ -257,6 +256,7 @@ module sm_cost #(
       // the input changes on the clock after a ce, while the last sub-step's vectors are
       // still in the register (one CB-bit register, copied to the lanes after it).
       wire [CB*PU-1:0] pa_pc, pb_pc;
+      wire [CB-1:0]    cl_pc;  // the left vector the popcount compares
       if (PB_REG != 0) begin : g_pb_reg
         reg [CB*PU-1:0] pb_q;
         reg [CB-1:0]    cl_q;
@@ -265,13 +265,13 @@ module sm_cost #(
           cl_q <= s_cl;
         end
         assign pb_pc = pb_q;
-        for (i = 0; i < CB; i = i + 1) begin : g_pa
-          assign pa_pc[i*PU +: PU] = {PU{cl_q[i]}};
-        end
-        wire unused_pa = ^pa;  // the lanes' copies are taken after the register
+        assign cl_pc = cl_q;
       end else begin : g_pb_direct
-        assign pa_pc = pa;
         assign pb_pc = pb;
+        assign cl_pc = s_cl;
+      end
+      for (i = 0; i < CB; i = i + 1) begin : g_pa  // the lanes' copies of the left vector
+        assign pa_pc[i*PU +: PU] = {PU{cl_pc[i]}};
       end
       wire [HW*PU-1:0] pc;  // bit-plane order: bit f of lane j at [f*PU + j]
       sm_popcount #(.N(CB), .L(PU)) u_pc (.clk(clk), .ce(1'b1), .a(pa_pc), .b(pb_pc), .cnt(pc));
