@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
           }
         } else {
           const BeatInfo& c = sched[cn];
-          if (n >= fill && tb->s_x != sched[n - fill].x) {
+          if (tb->s_x != sched[n - fill].x) {  // cn >= 0: the entering beat is past the fill
             fail(n, fmt::format("fill {}: s_x expected {} got {}", fill, sched[n - fill].x, tb->s_x));
             ok = false;
           }
