@@ -375,6 +375,35 @@ module sm_dp #(
         assign slots_nx[k*KW +: KW] = sl_nx;
       end
 
+      // Skew ring write port, shared by the lanes. For F > 2 it is registered (the rings
+      // are written a clock late): the held input's F:1 select then ends at a register
+      // instead of at every lane's ring (placed and routed at zynq, g_q through that select
+      // into the rings' write was the block's slowest path). A word so written is read
+      // no sooner than the next beat's sub-step of its group, prefetched a clock ahead:
+      // F - 1 clocks after the late write at the least. At F = 2 that is the clock of the
+      // late write itself, so there the rings are written directly.
+      wire             ring_we;
+      wire [RD-1:0]    ring_wa;
+      wire [PU*CW-1:0] ring_wd;
+      if (F == 2) begin : g_ring_now
+        assign ring_we = run_q;
+        assign ring_wa = {wp_q, g_q};
+        assign ring_wd = cost_g;
+      end else begin : g_ring_late
+        reg              rw_we_q;
+        reg [RD-1:0]     rw_wa_q;
+        reg [PU*CW-1:0]  rw_wd_q;
+        always @(posedge clk) begin
+          if (!rst_n) rw_we_q <= 1'b0;
+          else rw_we_q <= run_q;
+          rw_wa_q <= {wp_q, g_q};
+          rw_wd_q <= cost_g;
+        end
+        assign ring_we = rw_we_q;
+        assign ring_wa = rw_wa_q;
+        assign ring_wd = rw_wd_q;
+      end
+
       // ---- lanes -----------------------------------------------------------------
       // fresh_q: this beat is DP clock 0 of a line; the beat before (the line-end ce,
       // clock W-1 of the previous line) wrote U(2W, .), never needed, so its reads
@@ -459,7 +488,7 @@ module sm_dp #(
         (* ram_style = "distributed" *)
         reg  [CW-1:0] ring [0:(1<<RD)-1];
         always @(posedge clk) begin
-          if (run_q) ring[{wp_q, g_q}] <= cost_g[j*CW +: CW];
+          if (ring_we) ring[ring_wa] <= ring_wd[j*CW +: CW];
         end
         // The skewed cost of the sub-step executing next, read a clock ahead (as u_q):
         // the ring's LUT-RAM read (and at the top lane the held input's F:1 choice) then
