@@ -7,6 +7,7 @@
 #include <string>
 
 #include "evidence.hpp"
+#include "outword.hpp"
 #include "sm_types.hpp"
 
 namespace sm::tools {
@@ -16,9 +17,10 @@ struct OutputFrame {
   int levels = 0;
   Evidence ev;
   DispImage post;
-  cv::Mat left;      // CV_8UC1, the pair's left view as the pipeline read it
-  cv::Mat gt, mask;  // CV_32F ground truth (0 unknown) and the optional non-occlusion mask
-  cv::Mat margin;    // CV_32S trellis margin of the dense output's level (sm_dp_margin.hpp), when asked
+  cv::Mat left;                      // CV_8UC1, the pair's left view as the pipeline read it
+  cv::Mat gt, mask;                  // CV_32F ground truth (0 unknown) and the optional non-occlusion mask
+  cv::Mat margin;                    // CV_32S trellis margin of the dense output's level (sm_dp_margin.hpp), when asked
+  OutImage dense_raw, dense_stream;  // with the margin: the dense words before and after the smoothing
 };
 
 }  // namespace sm::tools

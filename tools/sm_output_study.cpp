@@ -76,8 +76,9 @@ Frame run_scene(const std::string& dir, int levels, bool margins) {
   auto r = run_pipeline(to_image8(s.left), to_image8(s.right), hw, regs, margins);
   if (margins) {
     const OutputRegs dense = dense_mode(OutputRegs{});
-    const OutImage words = make_output(r.evidence, r.post, f.levels, dense, 0);
-    f.margin = trellis_margins(r, regs, f.levels, smooth_output(words, dense.smooth_en, dense.smooth_t));
+    f.dense_raw = make_output(r.evidence, r.post, f.levels, dense, 0);
+    f.dense_stream = smooth_output(f.dense_raw, dense.smooth_en, dense.smooth_t);
+    f.margin = trellis_margins(r, regs, f.levels, f.dense_stream);
   }
   f.ev = std::move(r.evidence);
   f.post = std::move(r.post);
@@ -403,6 +404,7 @@ void study_speckle_conf(const std::vector<Frame>& fr) {
 // The streamed dense confidence c with the trellis margin m added: a c + clamp(m, lo, hi),
 // saturated to 8 bits (a 0: the margin alone; hi 0: c alone); also with c halved where
 // zynq's speckle stage, enabled at its registers' resets, would clear the pixel.
+// The frames are run_scene's with the margins (and so with their dense words).
 void study_dp_margin(const std::vector<Frame>& fr) {
   struct Case {
     double a;
@@ -410,16 +412,13 @@ void study_dp_margin(const std::vector<Frame>& fr) {
   };
   const Case cases[] = {{1, 0, 0},      {0, -255, 255},  {0.5, 0, 20}, {0.5, 0, 40}, {0.5, 0, 60},
                         {0.5, -20, 40}, {0.5, -255, 40}, {1, 0, 40},   {1, -20, 60}};
-  const OutputRegs dense = dense_mode(OutputRegs{});
   SpeckleRegs sr;
   sr.en = 1;
-  std::vector<cv::Mat> est, conf, conf_sp;  // each frame's streamed dense words, once
+  std::vector<cv::Mat> est, conf, conf_sp;  // each frame's streamed dense words (run_scene's)
   for (const Frame& f : fr) {
-    const OutImage raw = make_output(f.ev, f.post, f.levels, dense, 0);
-    const OutImage o = smooth_output(raw, dense.smooth_en, dense.smooth_t);
-    est.push_back(out_to_float(o));
-    conf.push_back(out_to_conf(o));
-    conf_sp.push_back(out_to_conf(halve_speckles(o, raw, sr, named_config("zynq").speckle_rows)));
+    est.push_back(out_to_float(f.dense_stream));
+    conf.push_back(out_to_conf(f.dense_stream));
+    conf_sp.push_back(out_to_conf(halve_speckles(f.dense_stream, f.dense_raw, sr, named_config("zynq").speckle_rows)));
   }
   // The AUC over the oracle's, 14-scene means, of one case over the confidences c.
   auto ratio = [&](const Case& c, const std::vector<cv::Mat>& cs) {
