@@ -380,8 +380,9 @@ module sm_dp #(
       // instead of at every lane's ring (placed and routed at zynq, g_q through that select
       // into the rings' write was the block's slowest path). A word so written is read
       // no sooner than the next beat's sub-step of its group, prefetched a clock ahead:
-      // F - 1 clocks after the late write at the least. At F = 2 that is the clock of the
-      // late write itself, so there the rings are written directly.
+      // F - 2 clocks after the late write at the least (the next ce comes F clocks after
+      // the last one or later). At F = 2 that is the clock of the late write itself, so
+      // there the rings are written directly.
       wire             ring_we;
       wire [RD-1:0]    ring_wa;
       wire [PU*CW-1:0] ring_wd;
