@@ -39,6 +39,14 @@ sm_rtl_test(NAME tb_dp_odd_pu2 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp
             PARAMS MAX_WIDTH=50 DISP=10 CW=3 PU=2 ARGS --width 23 --rows 8 --frames 3 --seed 6)
 sm_rtl_test(NAME tb_dp_pu6 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=50 DISP=12 CW=3 PU=6 ARGS --width 31 --rows 8 --frames 3 --seed 8)
+# F = 3 (DISP 12, PU 4): the least F at which the skew rings are written a clock late,
+# one clock ahead of the word's first read when the lines are full width and the ce gaps
+# exactly F clocks (--idle 0: a ring written two clocks late fails there); and at an odd
+# width with random gaps. F = 4 at full width with gaps of exactly F clocks.
+sm_rtl_test(NAME tb_dp_f3 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
+            PARAMS MAX_WIDTH=50 DISP=12 CW=3 PU=4 ARGS --width 50 --rows 6 --frames 3 --seed 14 --idle 0)
+sm_rtl_test(NAME tb_dp_f3_idle RUN tb_dp_f3 ARGS --width 29 --rows 8 --frames 3 --seed 10)
+sm_rtl_test(NAME tb_dp_pu4_full RUN tb_dp_pu4 ARGS --width 64 --rows 6 --frames 3 --seed 15 --idle 0)
 sm_rtl_test(NAME tb_dp_zynq16 TOP sm_dp SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_dp.cpp
             PARAMS MAX_WIDTH=320 DISP=128 CW=6 PU=16 ARGS --width 320 --rows 5 --frames 3
             LABELS "rtl;slow")
