@@ -20,8 +20,8 @@
 //   Latency: 2*W + S + P beats (sm_win_ctrl with D_ROWS = 2, D_COLS = S + P).
 //   Minimum active width: S + P + 1 (width must exceed D_COLS).
 //
-// Folded (PU < DISP, F = DISP/PU clocks per beat, branch g_fold): PU lanes (sm_dp_fpe)
-// serve the level groups g = levels [g*PU, g*PU+PU) one after the other. Relies on the
+// Folded (PU < DISP, F = DISP/PU clocks per beat, branch g_fold): PU lanes (sm_dp_fpe;
+// the odd lanes' occlusion node a clock ahead) serve the level groups g = levels [g*PU, g*PU+PU) one after the other. Relies on the
 // input-stability rule: from the clock after ce k up to the ce k+1 the inputs hold the
 // beat ce k+1 samples, so DP clock t of that beat runs as sub-steps g = 0..F-1 on the
 // F clocks after ce k (a counter the ce restarts; sub-step F-1 may fall on ce k+1
@@ -30,7 +30,7 @@
 // from group g-1 the site-2t+1 value of its top (odd) level, computed one clock
 // earlier (kept in a register), and from group g+1 U(2t) of its bottom (even) level,
 // not yet updated (second read port of lane 0's state memory). State: per lane a
-// LUT-RAM of F words U(2t, g*PU+j). Cost skew: per lane a LUT-RAM ring of
+// LUT-RAM of F words U(2t, g*PU+j), read a clock ahead. Cost skew: per lane a LUT-RAM ring of
 // (beat mod 2^KW, group) words, written at {wp, g} and read at
 // {wp - (S - g*PU/2 - ceil(j/2)), g}; skew 0 (level DISP-1) takes the input directly.
 // Penalty per occlusion node (docs/algorithm.md section 6, "Edge-dependent penalty"): the
@@ -188,11 +188,9 @@ module sm_dp #(
       end
     end
   end
-  // The penalties from the next clock on: the per-pair penalty registers below are
-  // loaded one clock before they are used, so the frame's first line needs the values
-  // occ_q / occ_edge_q take on this edge.
-  wire [7:0] occ_nx = occ_ld ? occ : occ_q;
-  wire [7:0] occ_edge_nx = occ_ld ? occ_edge : occ_edge_q;
+  // The per-pair penalty registers below are loaded one clock before they are used, so
+  // the frame's first line needs the values occ_q / occ_edge_q take on this edge
+  // (occ_nx in g_par; the folded array's prefetch, occ_pf, assumes the ce).
 
   // Edge flags, one per beat: after the ce that samples column x (s_edge = e(x+1)),
   // fl_q[k] = e(x+1-k). DP clock t (column S+t entering) needs e(t+m+1) for pair m,
@@ -289,6 +287,8 @@ module sm_dp #(
       // the next DP clock is that of column x+1, whose pair m needs tap S-1-m of
       // fl_nx (tap 0 = s_edge, the flag of x+1 itself). Levels 2m and 2m+1 share it.
       wire [8*S-1:0] pens;  // penalty of pair m at [8*m +: 8]
+      wire [7:0] occ_nx = occ_ld ? occ : occ_q;
+      wire [7:0] occ_edge_nx = occ_ld ? occ_edge : occ_edge_q;
       genvar m;
       for (m = 0; m < S; m = m + 1) begin : g_pen
         reg [7:0] pen_q;
@@ -354,7 +354,7 @@ module sm_dp #(
       sm_fold_step #(.F(F)) u_step (
           .clk(clk), .rst_n(rst_n), .ce(ce), .m_start(fs_start), .m_step(fs_step), .m_run(run_q), .m_g(g_q)
       );
-      wire unused_fs = ^{fs_start, fs_step};
+      wire unused_fs = fs_step;
 
       // The held beat's costs of group g_q (one F:1 selection of PU*CW bits).
       wire [PU*CW-1:0] cost_g = s_cost[g_q*(PU*CW) +: PU*CW];
@@ -414,76 +414,103 @@ module sm_dp #(
         if (!rst_n) fresh_q <= 1'b0;
         else if (ce) fresh_q <= line_end;
       end
-      // The state words are prefetched one clock ahead into registers (u_q), so the
-      // longest path starts at a flip-flop instead of a LUT-RAM read and the line-start
-      // select sits in front of the register. Next sub-step: g_q + 1 while the beat's
-      // sub-steps run, else 0 (a ce restarts them; words 0 .. g_q were written by
-      // sub-steps already done, and the word read is never the one written on that edge).
-      wire          nx_run = run_q && !ce && (g_q != G_LAST);
-      wire [GW-1:0] g_nx = nx_run ? g_q + 1'b1 : {GW{1'b0}};
-      wire          fresh_nx = ce ? line_end : fresh_q;
+      // The lanes read their state words and skewed costs one clock ahead (below), for
+      // the next sub-step g_nx: g_q + 1 while the beat's sub-steps run, else 0 (words
+      // 0 .. g_q were written by sub-steps already done, and the word read is never the
+      // one written on that edge). g_nx is a register of its own, without ce: by the
+      // pacing rule a ce comes only when no sub-step but the last runs (sm_fold_step
+      // reports any other in simulation), and a prefetch for sub-step 0 is used only if a
+      // ce comes on its clock (sub-step 0 runs on the clock after one), so it assumes
+      // one: the new line's start, the penalties it loads, the flags it shifts. ce is then
+      // on no path into the lanes' registers (placed and routed at zynq, g_q and ce
+      // through the select into the odd lanes' node was the block's slowest path).
+      localparam [GW-1:0] G_ONE = 1;
+      reg  [GW-1:0] g_nx_q;
+      always @(posedge clk) begin
+        if (fs_start) g_nx_q <= G_ONE;  // sub-step 0 runs next: prefetch 1 on its clock
+        else if (g_nx_q == {GW{1'b0}} || g_nx_q == G_LAST) g_nx_q <= {GW{1'b0}};
+        else g_nx_q <= g_nx_q + 1'b1;
+      end
+      wire [GW-1:0] g_nx = g_nx_q;
+      wire          nx0 = (g_nx == {GW{1'b0}});  // the prefetch is for a ce's sub-step 0
+      // line_end registered: the input (and so x_in) holds from the clock after a ce, and
+      // the next ce comes at least F >= 2 clocks after that ce, so on a ce's clock le_q
+      // equals line_end (x_in's increment and compare then end at a register)
+      reg           le_q;
+      always @(posedge clk) le_q <= line_end;
+      wire          fresh_nx = nx0 ? le_q : fresh_q;
+      wire          occ_ld_nx = nx0 && le_q && rowfirst_q;  // occ_ld, if the ce comes
+      wire [7:0]    occ_pf = occ_ld_nx ? occ : occ_q;
+      wire [7:0]    occ_edge_pf = occ_ld_nx ? occ_edge : occ_edge_q;
 
       // ---- per-lane-pair penalties --------------------------------------------------
       // Sub-step g of the beat on the input (column x, fl_q[k] = e(x-k) since the ce
       // before it) needs, for lanes 2k and 2k+1 (pair m = g*PU/2 + k), tap
       // S-1-g*PU/2-k of fl_q: an F:1 select, prefetched into a register one clock ahead
-      // like the state words (g_nx above). On a ce the prefetch is for sub-step 0 of the
-      // next beat, whose flags are fl_q shifted by this ce (tap - 1 of fl_q); on idle
-      // clocks after the last sub-step it is for nothing (the ce reloads it).
-      wire [8*(PU/2)-1:0] pens;  // penalty of lanes 2k, 2k+1 at [8*k +: 8]
+      // like the state words (g_nx above). The prefetch for sub-step 0 is for the next
+      // beat, whose flags are fl_q shifted by the ce it assumes (tap - 1 of fl_q); on
+      // idle clocks it is for nothing (the ce's clock reloads it). The odd
+      // lanes take the select itself (pens_nx): their node is computed a clock ahead.
+      wire [8*(PU/2)-1:0] pens_nx;  // penalty of lanes 2k, 2k+1 next sub-step, [8*k +: 8]
+      wire [8*(PU/2)-1:0] pens;     // the same, registered: this sub-step's
       genvar g;
       for (k = 0; k < PU / 2; k = k + 1) begin : g_pen
         wire [GD-1:0] fsel;  // flag of the sub-step g at [g]
         for (g = 0; g < GD; g = g + 1) begin : g_tap
           if (g == 0) begin : g_first
-            assign fsel[g] = ce ? fl_q[S-2-k] : fl_q[S-1-k];
+            assign fsel[g] = fl_q[S-2-k];  // fl_q shifted by the ce it assumes
           end else if (g < F) begin : g_mid
             assign fsel[g] = fl_q[S-1-g*(PU/2)-k];
           end else begin : g_none
             assign fsel[g] = 1'b0;  // no such group (F not a power of two)
           end
         end
-        reg [7:0] pen_q;
-        always @(posedge clk) begin
-          pen_q <= fsel[g_nx] ? occ_edge_nx : occ_nx;
-        end
-        assign pens[8*k +: 8] = pen_q;
+        wire [7:0] pen_nx = fsel[g_nx] ? occ_edge_pf : occ_pf;
+        reg  [7:0] pen_q;
+        always @(posedge clk) pen_q <= pen_nx;
+        assign pens_nx[8*k +: 8] = pen_nx;
+        assign pens[8*k +: 8]    = pen_q;
       end
 
-      // nb of lane j at [(j+1)*ACC_W +: ACC_W]; below lane 0 the top of group g-1, above
-      // lane PU-1 the bottom of group g+1
-      wire [(PU+2)*ACC_W-1:0] f_nb;
+      // The odd lanes' occlusion node (site 2t+1) reads only U(2t) of its own level and
+      // of the two around it, all in the state memories before the sub-step starts, so it
+      // is computed a clock ahead from the prefetch (sm_dp_fpe, NODE = 1, on u_nx) and
+      // registered: a sub-step then runs one add-compare-select (the even lanes' node,
+      // on the odd lanes' registered values) instead of two in series (placed and routed
+      // at zynq, odd node then even node into the state memory was the block's slowest
+      // path at every placer seed). At F = 2 lane PU-1's node still follows lane 0's on
+      // the clock that bypasses it (up_byp).
+      // u_nx: U(2t, g*PU+j) of the next sub-step at [j*ACC_W +: ACC_W], and above lane
+      // PU-1 the bottom level of group g+1, not yet updated.
+      wire [(PU+1)*ACC_W-1:0] u_nx;
+      // ob: below even lane 2k (slot k) and above it (slot k+1), the site-2t+1 values of
+      // the odd levels around it; slot 0 is the top of group g-1.
+      wire [(PU/2+1)*ACC_W-1:0] ob;
       wire [2*PU-1:0]     f_dec;  // choice of lane j at [2j +: 2]
       reg  [ACC_W-1:0]    top_q;  // site-2t+1 value of level g*PU-1 (lane PU-1, g-1)
       reg  [1:0]          top_dec_q;
       genvar j;
       for (j = 0; j < PU; j = j + 1) begin : g_lane
         wire [ACC_W-1:0] u_next;
-        wire [ACC_W-1:0] u;
-        wire [CW-1:0]    a;
         // State: U(2t, g*PU+j) of every group; sub-step g reads and rewrites word g.
         (* ram_style = "distributed" *)
         reg  [ACC_W-1:0] um [0:GD-1];
-        // The line start substitutes U(0, .) on the read side (fresh_q): a select in
-        // front of the first adders/compares, not behind the last select before the
-        // LUT-RAM's data input (the longest path).
+        // The state words are prefetched one clock ahead (the even lanes into u_q, the odd
+        // lanes through their node into o_q), so the longest path starts at a flip-flop
+        // instead of a LUT-RAM read. The line start substitutes U(0, .) on the read side
+        // (fresh_nx): a select in front of the register, not behind the last select
+        // before the LUT-RAM's data input.
         wire [ACC_W-1:0] u0 = (j == 0 && g_nx == {GW{1'b0}}) ? {ACC_W{1'b0}} : BIG;
-        reg  [ACC_W-1:0] u_q;  // U(2t, g*PU+j) of the sub-step executing next
         always @(posedge clk) begin
           if (run_q) um[g_q] <= u_next;
-          u_q <= fresh_nx ? u0 : um[g_nx];
         end
-        assign u = u_q;
+        assign u_nx[j*ACC_W +: ACC_W] = fresh_nx ? u0 : um[g_nx];
         if (j == 0) begin : g_up
           // (g = F-1: any word, unused: level DISP does not exist)
           // F = 2: the ce that ends sub-step 1 prefetches word 0 + 1, written on
           // that same edge: take the value being written.
-          wire            up_byp = (F == 2) && run_q && (g_q == g_nx + 1'b1);
-          reg [ACC_W-1:0] up_q;
-          always @(posedge clk) begin
-            up_q <= fresh_nx ? BIG : up_byp ? u_next : um[g_nx+1'b1];
-          end
-          assign f_nb[(PU+1)*ACC_W +: ACC_W] = up_q;
+          wire up_byp = (F == 2) && run_q && (g_q == g_nx + 1'b1);
+          assign u_nx[PU*ACC_W +: ACC_W] = fresh_nx ? BIG : up_byp ? u_next : um[g_nx+1'b1];
         end
         // Cost skew: ring of CW-bit words {beat slot, group}.
         (* ram_style = "distributed" *)
@@ -507,28 +534,66 @@ module sm_dp #(
         end else begin : g_mid
           always @(posedge clk) a_q <= a_ring;
         end
-        assign a = a_q;
-        sm_dp_fpe #(
-            .CW   (CW),
-            .ACC_W(ACC_W),
-            .ODD  (j % 2)
-        ) u_fpe (
-            .u     (u),
-            .a     (a),
-            .occ   (pens[8*(j/2) +: 8]),
-            .has_lo(j > 0 ? 1'b1 : (g_q != {GW{1'b0}})),
-            .has_hi(j < PU - 1 ? 1'b1 : (g_q != G_LAST)),
-            .nb_lo (f_nb[j*ACC_W +: ACC_W]),
-            .nb_hi (f_nb[(j+2)*ACC_W +: ACC_W]),
-            .nb    (f_nb[(j+1)*ACC_W +: ACC_W]),
-            .u_next(u_next),
-            .dec   (f_dec[2*j +: 2])
-        );
+        if (j % 2 == 1) begin : g_odd
+          // site 2t+1: the occlusion node, a clock ahead; 2t+2: matched
+          wire [ACC_W-1:0] o_nx;
+          wire [1:0]       od_nx;
+          wire [ACC_W-1:0] nb_unused;  // the node's value again (o_nx)
+          sm_dp_fpe #(
+              .CW   (CW),
+              .ACC_W(ACC_W),
+              .ODD  (1),
+              .NODE (1)
+          ) u_fpe (
+              .u     (u_nx[j*ACC_W +: ACC_W]),
+              .a     ({CW{1'b0}}),
+              .occ   (pens_nx[8*(j/2) +: 8]),
+              .has_lo(1'b1),
+              .has_hi(j < PU - 1 ? 1'b1 : (g_nx != G_LAST)),
+              .nb_lo (u_nx[(j-1)*ACC_W +: ACC_W]),
+              .nb_hi (u_nx[(j+1)*ACC_W +: ACC_W]),
+              .nb    (nb_unused),
+              .u_next(o_nx),
+              .dec   (od_nx)
+          );
+          wire unused_nb = ^nb_unused;
+          reg [ACC_W-1:0] o_q;  // U(2t+1) of the sub-step executing
+          reg [1:0]       od_q;
+          always @(posedge clk) begin
+            o_q  <= o_nx;
+            od_q <= od_nx;
+          end
+          assign u_next = o_q + {{(ACC_W - CW) {1'b0}}, a_q};
+          assign ob[((j+1)/2)*ACC_W +: ACC_W] = o_q;
+          assign f_dec[2*j +: 2] = od_q;
+        end else begin : g_even
+          // site 2t+1 matched, 2t+2 the occlusion node on the odd lanes' o_q
+          reg  [ACC_W-1:0] u_q;  // U(2t, g*PU+j) of the sub-step executing
+          wire [ACC_W-1:0] nb_unused;  // U(2t): the odd lanes took it from u_nx
+          always @(posedge clk) u_q <= u_nx[j*ACC_W +: ACC_W];
+          sm_dp_fpe #(
+              .CW   (CW),
+              .ACC_W(ACC_W),
+              .ODD  (0)
+          ) u_fpe (
+              .u     (u_q),
+              .a     (a_q),
+              .occ   (pens[8*(j/2) +: 8]),
+              .has_lo(j > 0 ? 1'b1 : (g_q != {GW{1'b0}})),
+              .has_hi(1'b1),
+              .nb_lo (ob[(j/2)*ACC_W +: ACC_W]),
+              .nb_hi (ob[(j/2+1)*ACC_W +: ACC_W]),
+              .nb    (nb_unused),
+              .u_next(u_next),
+              .dec   (f_dec[2*j +: 2])
+          );
+          wire unused_nb = ^nb_unused;
+        end
       end
-      assign f_nb[ACC_W-1:0] = top_q;
+      assign ob[ACC_W-1:0] = top_q;
       always @(posedge clk) begin
         if (run_q) begin
-          top_q     <= f_nb[PU*ACC_W +: ACC_W];
+          top_q     <= ob[(PU/2)*ACC_W +: ACC_W];
           top_dec_q <= f_dec[2*PU-1 -: 2];
         end
       end

@@ -4,7 +4,7 @@
 // cost skew: sm_dp_pe wraps it with its register and skew (one PE per level), and the
 // folded array (sm_dp with F = DISP/PU > 1) uses it as a lane whose state and skew live
 // in sm_dp's per-lane memories, because the lane serves a different level on each of
-// the F sub-steps of a DP clock. Per sub-step it advances U(., d) of its level d by the sites
+// the F sub-steps of a DP clock (its odd lanes as the occlusion node alone, NODE = 1). Per sub-step it advances U(., d) of its level d by the sites
 // 2t+1 and 2t+2, in the order the parity of d dictates (PU is even, so the parity is
 // the lane's):
 //   odd d : site 2t+1 is an occlusion node (min3 over U(2t, d-1..d+1)), 2t+2 matched;
@@ -14,7 +14,11 @@
 module sm_dp_fpe #(
     parameter CW    = 6,   // aggregated cost width
     parameter ACC_W = 19,  // accumulator width (algorithm.md: BIG = 2^(ACC_W-1))
-    parameter ODD   = 0    // 1: the lane's levels are odd
+    parameter ODD   = 0,   // 1: the lane's levels are odd
+    // 1 (odd levels only): the occlusion node alone, for the folded array's odd lanes,
+    // which compute it a clock ahead of their sub-step and add the cost behind a
+    // register: u_next is then the node's value U(2t+1, d), and a is not used
+    parameter NODE  = 0
 ) (
     input  wire [ACC_W-1:0] u,       // U(2t, d), read from the lane's state memory
     input  wire [CW-1:0]    a,       // skewed cost A(t + ceil(d/2), d)
@@ -30,6 +34,8 @@ module sm_dp_fpe #(
   generate
     `SM_BAD_PARAM(g_bad_w, ACC_W <= 8 || CW < 1 || CW >= ACC_W,
                   ("sm_dp_fpe: need 8 < ACC_W (%0d) and 1 <= CW (%0d) < ACC_W", ACC_W, CW))
+    `SM_BAD_PARAM(g_bad_node, NODE != 0 && (NODE != 1 || ODD == 0),
+                  ("sm_dp_fpe: NODE (%0d) must be 0, or 1 with ODD", NODE))
   endgenerate
 
   wire [ACC_W-1:0] self_in;  // choice 0 of the occlusion node
@@ -50,7 +56,12 @@ module sm_dp_fpe #(
   assign dec = take2 ? 2'd2 : take1 ? 2'd1 : 2'd0;
 
   generate
-    if (ODD != 0) begin : g_odd
+    if (ODD != 0 && NODE != 0) begin : g_node
+      assign self_in = u;      // site 2t+1: occlusion
+      assign u_next  = occ_u;  // U(2t+1, d): the lane adds a behind its register
+      assign nb      = occ_u;
+      wire unused_a = ^a;
+    end else if (ODD != 0) begin : g_odd
       assign self_in = u;                                   // site 2t+1: occlusion
       assign u_next  = occ_u + {{(ACC_W - CW) {1'b0}}, a};  // site 2t+2: matched
       assign nb      = occ_u;                               // U(2t+1, d)
