@@ -137,10 +137,16 @@ module sm_speckle #(
     if (take) m_word <= q_out[out_rp_q][31:0];
   end
 
-  // Whether two words are valid and their Q.4 values within d.
-  function automatic near(input va, input [15:0] a, input vb, input [15:0] b, input [7:0] d);
+  // Whether a neighbour's word is valid with its Q.4 value b within diff of the entering
+  // pixel's: |a - b| <= diff as lo_q <= b <= hi_q, bounds registered from a and diff on
+  // the clock before, so a block RAM read meets two compares, not a subtract, an absolute
+  // value and a compare (placed and routed at zynq, the upper word's read into up_j_q
+  // was the block's slowest path at every placer seed).
+  reg  [15:0] lo_q;  // max(a - diff, 0)
+  reg  [16:0] hi_q;  // a + diff
+  function automatic in_band(input vb, input [15:0] b, input [15:0] lo, input [16:0] hi);
     begin
-      near = va && vb && (a >= b ? a - b : b - a) <= {8'd0, d};
+      in_band = vb && b >= lo && {1'b0, b} <= hi;
     end
   endfunction
 
@@ -406,10 +412,14 @@ module sm_speckle #(
   // data registers of the beat's work
   always @(posedge clk) begin
     case (state_q)
+      S_UP: begin
+        lo_q <= in_word_q[15:0] > {8'd0, diff_q} ? in_word_q[15:0] - {8'd0, diff_q} : 16'd0;
+        hi_q <= {1'b0, in_word_q[15:0]} + {9'd0, diff_q};
+      end
       S_DEC: begin
-        up_j_q      <= !cur_sof_q && near(in_word_q[31], in_word_q[15:0], w_rdata[31], w_rdata[15:0], diff_q);
+        up_j_q      <= !cur_sof_q && in_word_q[31] && in_band(w_rdata[31], w_rdata[15:0], lo_q, hi_q);
         up_code_q   <= w_rdata[31+LW:32];
-        left_j_q    <= x_q != {XW{1'b0}} && near(in_word_q[31], in_word_q[15:0], left_word_q[16], left_word_q[15:0], diff_q);
+        left_j_q    <= x_q != {XW{1'b0}} && in_word_q[31] && in_band(left_word_q[16], left_word_q[15:0], lo_q, hi_q);
       end
       S_LAB: begin
         dec_word_q <= w_rdata[31:0];
