@@ -21,18 +21,19 @@
 //   Minimum active width: S + P + 1 (width must exceed D_COLS).
 //
 // Folded (PU < DISP, F = DISP/PU clocks per beat, branch g_fold): PU lanes (sm_dp_fpe;
-// the odd lanes' occlusion node a clock ahead) serve the level groups g = levels [g*PU, g*PU+PU) one after the other. Relies on the
-// input-stability rule: from the clock after ce k up to the ce k+1 the inputs hold the
-// beat ce k+1 samples, so DP clock t of that beat runs as sub-steps g = 0..F-1 on the
-// F clocks after ce k (a counter the ce restarts; sub-step F-1 may fall on ce k+1
-// itself), and everything visible (m_side, m_disp) still changes only on ce, with the
-// same beat-level timing and latency as above (2*W + S + P beats). Sub-step g needs
-// from group g-1 the site-2t+1 value of its top (odd) level, computed one clock
-// earlier (kept in a register), and from group g+1 U(2t) of its bottom (even) level,
-// not yet updated (second read port of lane 0's state memory). State: per lane a
-// LUT-RAM of F words U(2t, g*PU+j), read a clock ahead. Cost skew: per lane a LUT-RAM ring of
-// (beat mod 2^KW, group) words, written at {wp, g} and read at
-// {wp - (S - g*PU/2 - ceil(j/2)), g}; skew 0 (level DISP-1) takes the input directly.
+// the odd lanes' occlusion node a clock ahead) serve the level groups g = levels [g*PU,
+// g*PU+PU) one after the other. Relies on the input-stability rule: from the clock
+// after ce k up to the ce k+1 the inputs hold the beat ce k+1 samples, so DP clock t of
+// that beat runs as sub-steps g = 0..F-1 on the F clocks after ce k (a counter the ce
+// restarts; sub-step F-1 may fall on ce k+1 itself), and everything visible (m_side,
+// m_disp) still changes only on ce, with the same beat-level timing and latency as
+// above (2*W + S + P beats). Sub-step g needs from group g-1 the site-2t+1 value of its
+// top (odd) level, computed one clock earlier (kept in a register), and from group g+1
+// U(2t) of its bottom (even) level, not yet updated (second read port of lane 0's state
+// memory). State: per lane a LUT-RAM of F words U(2t, g*PU+j), read a clock ahead. Cost
+// skew: per lane a LUT-RAM ring of (beat mod 2^KW, group) words, written at {wp, g} and
+// read at {wp - (S - g*PU/2 - ceil(j/2)), g}; skew 0 (level DISP-1) takes the input
+// directly.
 // Penalty per occlusion node (docs/algorithm.md section 6, "Edge-dependent penalty"): the
 // occlusion nodes of level pair m at DP clock t have xl = t + m + 1, the column that
 // entered S-1-m beats before column S + t; node (i, d) costs occ_edge where that
@@ -449,8 +450,8 @@ module sm_dp #(
       // S-1-g*PU/2-k of fl_q: an F:1 select, prefetched into a register one clock ahead
       // like the state words (g_nx above). The prefetch for sub-step 0 is for the next
       // beat, whose flags are fl_q shifted by the ce it assumes (tap - 1 of fl_q); on
-      // idle clocks it is for nothing (the ce's clock reloads it). The odd
-      // lanes take the select itself (pens_nx): their node is computed a clock ahead.
+      // idle clocks it is for nothing (the ce's clock reloads it). The odd lanes take the
+      // select itself (pens_nx): their node is computed a clock ahead.
       wire [8*(PU/2)-1:0] pens_nx;  // penalty of lanes 2k, 2k+1 next sub-step, [8*k +: 8]
       wire [8*(PU/2)-1:0] pens;     // the same, registered: this sub-step's
       genvar g;

@@ -4,9 +4,9 @@
 // cost skew: sm_dp_pe wraps it with its register and skew (one PE per level), and the
 // folded array (sm_dp with F = DISP/PU > 1) uses it as a lane whose state and skew live
 // in sm_dp's per-lane memories, because the lane serves a different level on each of
-// the F sub-steps of a DP clock (its odd lanes as the occlusion node alone, NODE = 1). Per sub-step it advances U(., d) of its level d by the sites
-// 2t+1 and 2t+2, in the order the parity of d dictates (PU is even, so the parity is
-// the lane's):
+// the F sub-steps of a DP clock (its odd lanes as the occlusion node alone, NODE = 1).
+// Per sub-step it advances U(., d) of its level d by the sites 2t+1 and 2t+2, in the
+// order the parity of d dictates (PU is even, so the parity is the lane's):
 //   odd d : site 2t+1 is an occlusion node (min3 over U(2t, d-1..d+1)), 2t+2 matched;
 //   even d: site 2t+1 is matched, 2t+2 an occlusion node (min3 over U(2t+1, d-1..d+1)).
 // Whether level d-1 / d+1 exists depends on the group at the array's two ends, so it is

@@ -419,7 +419,8 @@ module sm_speckle #(
       S_DEC: begin
         up_j_q      <= !cur_sof_q && in_word_q[31] && in_band(w_rdata[31], w_rdata[15:0], lo_q, hi_q);
         up_code_q   <= w_rdata[31+LW:32];
-        left_j_q    <= x_q != {XW{1'b0}} && in_word_q[31] && in_band(left_word_q[16], left_word_q[15:0], lo_q, hi_q);
+        left_j_q    <= x_q != {XW{1'b0}} && in_word_q[31]
+                       && in_band(left_word_q[16], left_word_q[15:0], lo_q, hi_q);
       end
       S_LAB: begin
         dec_word_q <= w_rdata[31:0];
