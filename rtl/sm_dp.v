@@ -501,7 +501,7 @@ module sm_dp #(
         // instead of a LUT-RAM read. The line start substitutes U(0, .) on the read side
         // (fresh_nx): a select in front of the register, not behind the last select
         // before the LUT-RAM's data input.
-        wire [ACC_W-1:0] u0 = (j == 0 && g_nx == {GW{1'b0}}) ? {ACC_W{1'b0}} : BIG;
+        wire [ACC_W-1:0] u0 = (j == 0 && nx0) ? {ACC_W{1'b0}} : BIG;
         always @(posedge clk) begin
           if (run_q) um[g_q] <= u_next;
         end
