@@ -90,8 +90,15 @@ module sm_census #(
   // position, compared with the same centre, so the clamp selects comparison bits
   // instead of 8-bit pixels (sm_edge_clamp): rows first (a row outside the image takes
   // the bits of the first, or last, row inside), then columns of those row-clamped bits.
-  wire [7:0]     ctr_l = win[R*CWW + R*16 +: 8];
-  wire [7:0]     ctr_r = win[R*CWW + R*16 + 8 +: 8];
+  // The centre comes from flip-flops: read from the LUT-RAM, its 16 bits fanned out to
+  // all comparators behind the read, the block's slowest path placed (docs/synthesis.md).
+  // On a ce the column of age R-1 becomes the one of age R, the centre column.
+  reg  [15:0]    ctr_q;  // the window's centre pixel, {right, left}
+  always @(posedge clk) begin
+    if (ce) ctr_q <= awin[(R-1)*CWW + R*16 +: 16];
+  end
+  wire [7:0]     ctr_l = ctr_q[7:0];
+  wire [7:0]     ctr_r = ctr_q[15:8];
   wire [C*C-1:0] lt_l, lt_r;  // window position (r, j) at bit r*C + j
   wire [C*C-1:0] rc_l, rc_r;  // row-clamped bits
   wire [C*C-1:0] cc_l, cc_r;  // row- and column-clamped bits
@@ -100,8 +107,15 @@ module sm_census #(
   generate
     for (r = 0; r < C; r = r + 1) begin : g_cmp_row
       for (j = 0; j < C; j = j + 1) begin : g_cmp_col
-        assign lt_l[r*C + j] = win[j*CWW + r*16 +: 8] < ctr_l;
-        assign lt_r[r*C + j] = win[j*CWW + r*16 + 8 +: 8] < ctr_r;
+        if (r == R && j == R) begin : g_ctr
+          // The centre against itself: a constant, which the clamps copy into the
+          // positions outside the image (synthesis no longer sees it equal to ctr_q).
+          assign lt_l[r*C + j] = 1'b0;
+          assign lt_r[r*C + j] = 1'b0;
+        end else begin : g_nb
+          assign lt_l[r*C + j] = win[j*CWW + r*16 +: 8] < ctr_l;
+          assign lt_r[r*C + j] = win[j*CWW + r*16 + 8 +: 8] < ctr_r;
+        end
       end
     end
     for (j = 0; j < C; j = j + 1) begin : g_rclamp
@@ -123,7 +137,7 @@ module sm_census #(
     assign cl_bits = {cc_l[C*C-1:R*C+R+1], cc_l[R*C+R-1:0]};
     assign cr_bits = {cc_r[C*C-1:R*C+R+1], cc_r[R*C+R-1:0]};
   endgenerate
-  wire unused_ctr = cc_l[R*C+R] | cc_r[R*C+R];
+  wire unused_ctr = cc_l[R*C+R] | cc_r[R*C+R] | (|win[R*CWW + R*16 +: 16]);  // in ctr_q
 
   always @(posedge clk) begin
     if (ce) begin
