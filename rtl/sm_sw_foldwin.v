@@ -12,10 +12,16 @@
 // the old word during the step. Reads are combinational (distributed RAM). Each port
 // has its own address counter {slot, group}, so every RAM address comes straight from
 // flip-flops (as in sm_colwin).
+//
+// The RAM is split into banks of at most BANK_W bits, each with its own copy of the
+// counters: one copy of an address drove the LUT-RAM of all W bits, and placed and routed
+// its route across the RAM set the block's clock (docs/synthesis.md). A copy has its own
+// feedback, so synthesis does not merge the copies.
 module sm_sw_foldwin #(
-    parameter W = 480,  // bits of one group of one column
-    parameter N = 4,    // previous columns held (1..)
-    parameter F = 8     // groups, i.e. steps per beat (2..)
+    parameter W      = 480,  // bits of one group of one column
+    parameter N      = 4,    // previous columns held (1..)
+    parameter F      = 8,    // groups, i.e. steps per beat (2..)
+    parameter BANK_W = 64    // bits of a group read at one copy of the addresses (1..)
 ) (
     input  wire           clk,
     input  wire           rst_n,  // resets the address counters only
@@ -27,11 +33,13 @@ module sm_sw_foldwin #(
   localparam FGW = $clog2(F);                // group index
   localparam ADW = SLW + FGW;
   localparam DEPTH = N << FGW;
+  localparam NB    = (W + BANK_W - 1) / BANK_W;  // banks
 
   generate
     `SM_BAD_PARAM(g_bad_n, N < 1, ("sm_sw_foldwin: N (%0d) must be at least 1", N))
     `SM_BAD_PARAM(g_bad_f, F < 2, ("sm_sw_foldwin: F (%0d) must be at least 2", F))
     `SM_BAD_PARAM(g_bad_w, W < 1, ("sm_sw_foldwin: W (%0d) must be at least 1", W))
+    `SM_BAD_PARAM(g_bad_bank, BANK_W < 1, ("sm_sw_foldwin: BANK_W (%0d) must be at least 1", BANK_W))
   endgenerate
 
   /* verilator lint_off WIDTH */  // small constants truncated to the index widths
@@ -51,34 +59,38 @@ module sm_sw_foldwin #(
     end
   endfunction
 
-  // Yosys maps a memory this shallow to flip-flops by its own cost model; the attribute
-  // asks for the LUT-RAM this buffer was written for.
-  (* ram_style = "distributed" *)
-  reg [W-1:0]   mem [0:DEPTH-1];
-  reg [ADW-1:0] waddr_q;  // {slot of the entering column, group}
-  always @(posedge clk) begin
-    if (en) mem[waddr_q] <= col;
-  end
-  always @(posedge clk) begin
-    if (!rst_n) waddr_q <= {ADW{1'b0}};
-    else if (en) waddr_q <= next_addr(waddr_q);
-  end
-
-  genvar k;
+  genvar b, k;
   generate
-    for (k = 0; k < N; k = k + 1) begin : g_col
-      if (k == N - 1) begin : g_wr
-        assign win[k*W +: W] = mem[waddr_q];
-      end else begin : g_rd
-        /* verilator lint_off WIDTH */  // small constants truncated to the index width
-        localparam [SLW-1:0] BACK = N - 1 - k;  // = -(1 + k) mod N
-        /* verilator lint_on WIDTH */
-        reg [ADW-1:0] raddr_q;  // {(write slot + BACK) mod N, group}
-        always @(posedge clk) begin
-          if (!rst_n) raddr_q <= {BACK, {FGW{1'b0}}};
-          else if (en) raddr_q <= next_addr(raddr_q);
+    for (b = 0; b < NB; b = b + 1) begin : g_bank
+      localparam LO = b * BANK_W;                             // first bit of the bank
+      localparam BW = (W - LO < BANK_W) ? W - LO : BANK_W;  // its bits
+      // Yosys maps a memory this shallow to flip-flops by its own cost model; the
+      // attribute asks for the LUT-RAM this buffer was written for.
+      (* ram_style = "distributed" *)
+      reg [BW-1:0]  mem [0:DEPTH-1];
+      reg [ADW-1:0] waddr_q;  // {slot of the entering column, group}
+      always @(posedge clk) begin
+        if (en) mem[waddr_q] <= col[LO +: BW];
+      end
+      always @(posedge clk) begin
+        if (!rst_n) waddr_q <= {ADW{1'b0}};
+        else if (en) waddr_q <= next_addr(waddr_q);
+      end
+
+      for (k = 0; k < N; k = k + 1) begin : g_col
+        if (k == N - 1) begin : g_wr
+          assign win[k*W + LO +: BW] = mem[waddr_q];
+        end else begin : g_rd
+          /* verilator lint_off WIDTH */  // small constants truncated to the index width
+          localparam [SLW-1:0] BACK = N - 1 - k;  // = -(1 + k) mod N
+          /* verilator lint_on WIDTH */
+          reg [ADW-1:0] raddr_q;  // {(write slot + BACK) mod N, group}
+          always @(posedge clk) begin
+            if (!rst_n) raddr_q <= {BACK, {FGW{1'b0}}};
+            else if (en) raddr_q <= next_addr(raddr_q);
+          end
+          assign win[k*W + LO +: BW] = mem[raddr_q];
         end
-        assign win[k*W +: W] = mem[raddr_q];
       end
     end
   endgenerate
