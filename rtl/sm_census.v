@@ -91,8 +91,8 @@ module sm_census #(
   // instead of 8-bit pixels (sm_edge_clamp): rows first (a row outside the image takes
   // the bits of the first, or last, row inside), then columns of those row-clamped bits.
   // The centre comes from flip-flops: read from the LUT-RAM, its 16 bits fanned out to
-  // all comparators behind the read, the block's slowest path placed (docs/synthesis.md).
-  // On a ce the column of age R-1 becomes the one of age R, the centre column.
+  // all comparators behind the read, and placed and routed that was the block's slowest
+  // path (docs/synthesis.md). A ce makes the column of age R-1 the centre column.
   reg  [15:0]    ctr_q;  // the window's centre pixel, {right, left}
   always @(posedge clk) begin
     if (ce) ctr_q <= awin[(R-1)*CWW + R*16 +: 16];

@@ -21,7 +21,7 @@ module sm_sw_foldwin #(
     parameter W      = 480,  // bits of one group of one column
     parameter N      = 4,    // previous columns held (1..)
     parameter F      = 8,    // groups, i.e. steps per beat (2..)
-    parameter BANK_W = 64    // bits of a group read at one copy of the addresses (1..)
+    parameter BANK_W = 64    // most bits of a group behind one copy of the counters (1..)
 ) (
     input  wire           clk,
     input  wire           rst_n,  // resets the address counters only
