@@ -32,7 +32,7 @@ module sm_sw_foldwin #(
   localparam SLW = (N > 1) ? $clog2(N) : 1;  // slot index
   localparam FGW = $clog2(F);                // group index
   localparam ADW = SLW + FGW;
-  localparam DEPTH = N << FGW;
+  localparam DEPTH = ((N > 1) ? N : 2) << FGW;  // N = 1: a slot bit that stays 0
   localparam NB    = (W + BANK_W - 1) / BANK_W;  // banks
 
   generate

@@ -43,6 +43,21 @@ foreach(_p "sw5_pu16;5;16;16;1;37;2;64" "sw5_pu8;5;16;8;1;37;5;64" "sw3_pu4;3;16
               PARAMS MAX_WIDTH=${_mw} DISP=${_d} CENSUS=7 SW=${_sw} COST_SHIFT=${_cs} PU=${_pu}
               ARGS --width ${_w} --heights 9 4 11 --seed ${_seed} --max-cost-frame)
 endforeach()
+# The folded window alone (sm_sw_foldwin) against its definition: banks of the group's
+# width and narrower (the last one short), F a power of two and not, N 1 .. 4 (N = 1 is
+# legal but unused: the aggregation's N is SW - 1 >= 2), and the zynq point's group of 240
+# bits in 64-bit banks.
+# Fields: name; W; N; F; BANK_W.
+foreach(_p "n1_f2;37;1;2;64" "n2_f3_b16;37;2;3;16" "n3_f5_b30;100;3;5;30" "n4_f8;60;4;8;64"
+           "zynq;240;4;16;64")
+  list(GET _p 0 _n)
+  list(GET _p 1 _w)
+  list(GET _p 2 _nn)
+  list(GET _p 3 _f)
+  list(GET _p 4 _b)
+  sm_rtl_test(NAME tb_sw_foldwin_${_n} TOP sm_sw_foldwin SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_sw_foldwin.cpp
+              PARAMS W=${_w} N=${_nn} F=${_f} BANK_W=${_b})
+endforeach()
 # The zynq point (320 wide, DISP 128, CENSUS 15, SW 5) at PU 16 and 8, the full line
 # with 50 % idle on the PU 16 binary.
 sm_rtl_test(NAME tb_sw_aggregate_zynq_pu16 TOP sm_sw_aggregate SOURCES ${_agg_tb}
