@@ -85,6 +85,7 @@ module sm_top #(
   localparam PUE  = (PU == 0) ? DISP : PU;  // levels per clock
   localparam F    = DISP / PUE;             // clocks per pixel
   localparam DWD  = $clog2(DISP);           // disparity level bits
+  localparam DQW  = DWD + 4;                // the output word's Q.4 value bits
   localparam FCW  = (F > 1) ? $clog2(F) : 1;
   localparam IN_DEPTH = 1 << $clog2(MAX_WIDTH + 32);  // input FIFO (sm_seq's depth rule)
   localparam IN_LW    = $clog2(IN_DEPTH) + 1;         // its level, 0..IN_DEPTH + 1
@@ -388,7 +389,8 @@ module sm_top #(
   );
   wire [`SM_SIDE_W-1:0] out_side, obj_side;
   wire [31:0] out_word;
-  wire [15:0] obj_disp;
+  wire        obj_valid;
+  wire [DWD-1:0] obj_level;
   sm_outstage #(.MAX_WIDTH(MAX_WIDTH), .DISP(DISP), .CW(CW), .PU(PUE), .BAND_K(BAND_K)) u_outstage (
       .clk(aclk), .rst_n(rst_n), .ce(ce), .width(width), .s_side(ag_side), .s_cost(ag_cost),
       .dp_side(dp_side), .dp_disp(dp_disp), .dp_matched(dp_matched), .dp_gap(dp_gap), .dp_fill_bg(dp_fill_bg),
@@ -419,7 +421,8 @@ module sm_top #(
     end
   endgenerate
   sm_obj_level #(.DISP(DISP)) u_obj_level (
-      .clk(aclk), .rst_n(rst_n), .ce(ce), .s_side(sk_side), .s_word(sk_word), .m_side(obj_side), .m_disp(obj_disp)
+      .clk(aclk), .rst_n(rst_n), .ce(ce), .s_side(sk_side), .s_valid(sk_word[31]), .s_q4(sk_word[DQW-1:0]),
+      .m_side(obj_side), .m_valid(obj_valid), .m_level(obj_level)
   );
 
   // Object list: the register file reads word (idx) of the list window -- header at 0,
@@ -447,7 +450,7 @@ module sm_top #(
   ) u_objects (
       .clk(aclk), .rst_n(rst_n), .out_rst_n(host_rst_n), .ce(ce), .width(width), .height(frame_height),
       .near_thr(par_obj[7:0]), .tol(par_obj[15:8]), .min_pixels(par_obj[31:16]),
-      .s_side(obj_side), .s_disp(obj_disp),
+      .s_side(obj_side), .s_disp({obj_valid, {(15 - DWD) {1'b0}}, obj_level}),
       .list_ready(list_ready), .obj_count(obj_count), .too_many(too_many), .table_full(table_full),
       .pkt_lost(pkt_lost), .rd_index(obj_word_idx[IW+1:2]),
       .rd_x0(rd_x0), .rd_y0(rd_y0), .rd_x1(rd_x1), .rd_y1(rd_y1), .rd_count(rd_count), .rd_sum(rd_sum),
