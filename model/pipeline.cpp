@@ -247,8 +247,8 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
     r.stage_ms.emplace_back("objects", std::chrono::duration<double, std::milli>(clock::now() - words).count());
     t = clock::now();
   }
-  // The labeller reads the words as formed (sm_outstage's m_obj_disp, or the speckle
-  // stage's words where it is built); the stream carries them smoothed.
+  // The labeller reads the words as formed (sm_outstage's m_word, or the speckle stage's
+  // words where it is built, through sm_obj_level); the stream carries them smoothed.
   r.out = smooth_output(r.out, regs.smooth_en, regs.smooth_t, threads);
   lap("smooth");
   return r;
