@@ -7,12 +7,14 @@
 // or slot shows.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <random>
 #include <vector>
 
 #include SM_VTOP_H
+#include "beat_schedule.hpp"
 #include "sm_block_test.hpp"
 #include "sm_port.hpp"
 
@@ -34,9 +36,9 @@ Group random_group(std::mt19937& rng) {
 // Bits [k*W, (k+1)*W) of the win port as 32-bit words.
 template <class T>
 Group win_group(const T& win, int k) {
-  Group g(static_cast<size_t>((kW + 31) / 32), 0u);
-  for (int b = 0; b < kW; ++b)
-    if (sm::test::port_bits(win, k * kW + b, 1)) g[static_cast<size_t>(b / 32)] |= uint32_t{1} << (b % 32);
+  Group g(static_cast<size_t>((kW + 31) / 32));
+  for (int b = 0; b < kW; b += 32)
+    g[static_cast<size_t>(b / 32)] = sm::test::port_bits(win, k * kW + b, std::min(32, kW - b));
   return g;
 }
 }  // namespace
@@ -51,7 +53,7 @@ int main(int argc, char** argv) {
   t.option("--seed", seed, "random seed");
   if (auto rc = t.parse(argc, argv)) return *rc;
   std::mt19937 rng(seed);
-  std::bernoulli_distribution is_idle(idle / 100.0);
+  sm::test::CeGen steps_at(seed, idle);  // the clocks that make a step, as other benches' ce
 
   // Run 0 ends mid-beat; the reset before run 1 must restart the counters at slot 0,
   // group 0, whatever the RAM still holds.
@@ -61,7 +63,7 @@ int main(int argc, char** argv) {
     const int steps = beats * kF - (run == 0 ? kF / 2 : 0);
     std::deque<Column> hist;  // hist[0]: the column being written, then older ones
     for (int s = 0; s < steps; ++s) {
-      while (is_idle(rng)) {
+      while (!steps_at.next()) {
         t->en = 0;
         t.tick();
       }
