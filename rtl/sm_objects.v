@@ -69,7 +69,7 @@ module sm_objects #(
   localparam IW   = (MAX_OBJECTS > 1) ? $clog2(MAX_OBJECTS) : 1;  // object index
   localparam OW   = $clog2(MAX_OBJECTS + 1);                      // object counter
   localparam RBW  = 1 + DW + LW;                                  // row buffer word
-  localparam OBW  = 160;                                          // packed list entry
+  localparam ENW  = 2 * XW + 2 * YW + CNTW + SUMW + DW;           // list entry but its mean
   localparam SCAN_CLKS = LABEL_SLOTS + MAX_OBJECTS * (DW + 1) + 2;
 
   generate
@@ -467,9 +467,21 @@ module sm_objects #(
   localparam [BW-1:0] DV_TOP = DW - 1;
   /* verilator lint_on WIDTH */
   reg  [BW-1:0]   dv_bit;
-  reg  [OBW-1:0]  work [0:MAX_OBJECTS-1];
-  reg  [OBW-1:0]  pub  [0:MAX_OBJECTS-1];
-  reg  [OBW-1:0]  pkt  [0:MAX_OBJECTS-1];
+
+  // The list: three banks of one LUT RAM. The scan fills the work bank while the register
+  // file reads the published bank and the packet the bank it snapshotted, so publishing
+  // and snapshotting move a pointer instead of copying the list (two copies of
+  // MAX_OBJECTS entries were 2,100 flip-flops at the defaults). Entry {bank, object}:
+  // {max, sum, count, y1, x1, y0, x0}, the mean in a RAM of its own (written when the
+  // division ends). Invariants: wb_q != pb_q, and wb_q != kb_q while a packet is sent.
+  localparam LD = 4 << IW;
+  /* verilator coverage_off */  // memory words, as parent above
+  reg  [ENW-1:0]  lst_e [0:LD-1];
+  reg  [DW-1:0]   lst_m [0:LD-1];
+  /* verilator coverage_on */
+  reg  [1:0]      wb_q;  // bank the scan writes
+  reg  [1:0]      pb_q;  // bank the register file reads (the published list)
+  reg  [1:0]      kb_q;  // bank the packet reads (its snapshot)
 
   wire [LW:0] a_sc = sc_bank ? {1'b0, sc_i[LW-1:0]} + LABEL_SLOTS[LW:0] : {1'b0, sc_i[LW-1:0]};
   wire        sc_ok = st_alive[a_sc] && ({{(32-CNTW){1'b0}}, st_cnt[a_sc]} >= {16'd0, sc_min});
@@ -480,8 +492,22 @@ module sm_objects #(
   wire [OW-1:0]   pkt_n_w;
   wire            pkt_busy;
   wire            pkt_load = (sc_state == S_PUB) && !pkt_busy;
+  wire            ent_we = rst_n && (sc_state == S_SCAN) && (sc_i != sc_n) && sc_ok && sc_room;
+  wire            mean_we = rst_n && (sc_state == S_DIV) && (dv_bit == 0);
+  wire [IW+1:0]   wa = {wb_q, sc_nobj[IW-1:0]};
+  // The banks a reset leaves the scan and the register file differ from the packet's
+  // bank as it is after this clock (a soft reset lets a packet in progress finish, and
+  // one may start in the reset's first clock), so they do not depend on the reset's length.
+  wire [1:0]      kb_n = !out_rst_n ? 2'd2 : pkt_load ? wb_q : kb_q;
+  wire [1:0]      wb_rst = (kb_n == 2'd0) ? 2'd1 : 2'd0;
+  wire [1:0]      pb_rst = kb_n[1] ? 2'd1 : 2'd2;
 
-  integer k;
+  always @(posedge clk) begin
+    if (ent_we) lst_e[wa] <= {st_max[a_sc], st_sum[a_sc], st_cnt[a_sc], st_y1[a_sc], st_x1[a_sc],
+                              st_y0[a_sc], st_x0[a_sc]};
+    if (mean_we) lst_m[wa] <= dv_q | {{(DW-1){1'b0}}, dv_rem >= dv_try};
+  end
+
   always @(posedge clk) begin
     if (!rst_n) begin
       sc_state   <= S_IDLE;
@@ -493,6 +519,8 @@ module sm_objects #(
       too_many   <= 1'b0;
       table_full <= 1'b0;
       dv_bit     <= 0;
+      wb_q       <= wb_rst;
+      pb_q       <= pb_rst;
     end else begin
       list_ready <= 1'b0;
       case (sc_state)
@@ -507,12 +535,7 @@ module sm_objects #(
             sc_state <= S_PUB;
           end else begin
             sc_i <= sc_i + 1'b1;
-            if (sc_ok && sc_room) begin
-              // {max, mean (filled by the division), 16'd0, sum, count, y1, x1, y0, x0}
-              work[sc_nobj[IW-1:0]] <= {{(8-DW){1'b0}}, st_max[a_sc], 8'd0, 16'd0,
-                  {{(32-SUMW){1'b0}}, st_sum[a_sc]}, {{(32-CNTW){1'b0}}, st_cnt[a_sc]},
-                  {{(16-YW){1'b0}}, st_y1[a_sc]}, {{(16-XW){1'b0}}, st_x1[a_sc]},
-                  {{(16-YW){1'b0}}, st_y0[a_sc]}, {{(16-XW){1'b0}}, st_x0[a_sc]}};
+            if (sc_ok && sc_room) begin  // the entry is written (ent_we); its mean follows
               dv_rem   <= st_sum[a_sc];
               dv_cnt   <= st_cnt[a_sc];
               dv_q     <= {DW{1'b0}};
@@ -528,9 +551,7 @@ module sm_objects #(
           if (dv_rem >= dv_try) begin
             dv_rem <= dv_rem - dv_try;
           end
-          if (dv_bit == 0) begin
-            work[sc_nobj[IW-1:0]][151:144] <= {{(8-DW){1'b0}}, dv_q} |
-                                              {7'd0, dv_rem >= dv_try};
+          if (dv_bit == 0) begin  // the mean is written (mean_we)
             sc_nobj  <= sc_nobj + 1'b1;
             sc_state <= S_SCAN;
           end else begin
@@ -541,7 +562,11 @@ module sm_objects #(
           end
         end
         default: begin  // S_PUB
-          for (k = 0; k < MAX_OBJECTS; k = k + 1) pub[k] <= work[k];
+          // publish the work bank; the next list goes to a bank neither the register
+          // file nor a packet still being sent reads (a packet that starts now
+          // snapshots the published bank itself)
+          pb_q       <= wb_q;
+          wb_q       <= pkt_busy ? 2'd3 - wb_q - kb_q : (wb_q == 2'd2) ? 2'd0 : wb_q + 2'd1;
           obj_count  <= {{(8-OW){1'b0}}, sc_nobj};
           too_many   <= sc_many;
           table_full <= sc_tf;
@@ -552,16 +577,27 @@ module sm_objects #(
     end
   end
 
-  assign rd_x0    = pub[rd_index][15:0];
-  assign rd_y0    = pub[rd_index][31:16];
-  assign rd_x1    = pub[rd_index][47:32];
-  assign rd_y1    = pub[rd_index][63:48];
-  assign rd_count = pub[rd_index][95:64];
-  assign rd_sum   = pub[rd_index][127:96];
-  assign rd_mean  = pub[rd_index][151:144];
-  assign rd_max   = pub[rd_index][159:152];
+  // An entry as the register file and the packet show it:
+  // {max, mean, 16'd0, sum, count, y1, x1, y0, x0} in 8, 8, 16 and 32 or 16-bit fields.
+  function [159:0] entry_fields(input [ENW-1:0] e, input [DW-1:0] mean);
+    entry_fields = {{(8-DW){1'b0}}, e[ENW-1 -: DW], {(8-DW){1'b0}}, mean, 16'd0,
+                    {(32-SUMW){1'b0}}, e[2*XW+2*YW+CNTW +: SUMW],
+                    {(32-CNTW){1'b0}}, e[2*XW+2*YW +: CNTW],
+                    {(16-YW){1'b0}}, e[2*XW+YW +: YW], {(16-XW){1'b0}}, e[XW+YW +: XW],
+                    {(16-YW){1'b0}}, e[XW +: YW], {(16-XW){1'b0}}, e[0 +: XW]};
+  endfunction
+  wire [IW+1:0] ra = {pb_q, rd_index};
+  wire [159:0]  rd_e = entry_fields(lst_e[ra], lst_m[ra]);
+  assign rd_x0    = rd_e[15:0];
+  assign rd_y0    = rd_e[31:16];
+  assign rd_x1    = rd_e[47:32];
+  assign rd_y1    = rd_e[63:48];
+  assign rd_count = rd_e[95:64];
+  assign rd_sum   = rd_e[127:96];
+  assign rd_mean  = rd_e[151:144];
+  assign rd_max   = rd_e[159:152];
 
-  // ---- object packet: header, then 5 words per object, from its own snapshot ---------
+  // ---- object packet: header, then 5 words per object, from its own bank -------------
   reg          pk_busy_q;
   reg [OW-1:0] pk_n;
   reg [2:0]    pk_flags;  // {lost, table_full, too_many}
@@ -569,9 +605,11 @@ module sm_objects #(
   reg [2:0]    pk_w;      // 0..4 within the object, or header when pk_hdr
   reg          pk_hdr;
   assign pkt_busy = pk_busy_q;
+  always @(posedge clk) kb_q <= kb_n;  // its reset is out_rst_n's (kb_n)
   assign pkt_n_w  = pk_n;
 
-  wire [OBW-1:0] pk_e = pkt[pk_obj[IW-1:0]];
+  wire [IW+1:0] ka = {kb_q, pk_obj[IW-1:0]};
+  wire [159:0]  pk_e = entry_fields(lst_e[ka], lst_m[ka]);
   reg  [31:0]    pk_word;
   always @* begin
     case (pk_w)
@@ -587,12 +625,8 @@ module sm_objects #(
   assign m_axis_obj_tlast  = pk_busy_q && (pk_hdr ? (pk_n == {OW{1'b0}})
                                                  : (pk_w == 3'd4 && pk_obj == pk_n - 1'b1));
   /* verilator coverage_off */  // lint sink
-  wire unused_pk = &{pkt_n_w, pk_e[143:128]};
+  wire unused_pk = &{pkt_n_w, pk_e[143:128], rd_e[143:128]};
   /* verilator coverage_on */
-
-  always @(posedge clk) begin
-    if (pkt_load) for (k = 0; k < MAX_OBJECTS; k = k + 1) pkt[k] <= work[k];
-  end
 
   always @(posedge clk) begin
     if (!out_rst_n) begin
@@ -629,5 +663,15 @@ module sm_objects #(
       end
     end
   end
+
+`ifndef SYNTHESIS
+  // Simulation-only invariants (Verilator --assert builds): the scan never writes the bank
+  // the read port shows, nor the bank of a packet being sent.
+  always @(posedge clk) begin
+    if (rst_n && wb_q == pb_q) $error("sm_objects: the scan's bank %0d is the published list's", wb_q);
+    if (rst_n && out_rst_n && pk_busy_q && wb_q == kb_q)
+      $error("sm_objects: the scan's bank %0d is the packet's", wb_q);
+  end
+`endif
 endmodule
 `default_nettype wire

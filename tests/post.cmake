@@ -26,6 +26,11 @@ sm_rtl_test(NAME tb_objects_slots12 TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_
             PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=12
             ARGS --width 41 --height 19)
 
+# MAX_OBJECTS not a power of two: the list banks keep unused entries.
+sm_rtl_test(NAME tb_objects_obj3 TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
+            PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=3 LABEL_SLOTS=16
+            ARGS --width 33 --height 21)
+
 # The labeller's lowest-free search (sm_lowest_set): one, two and three tiers of 8.
 foreach(_n 8 64 12 1 200 512)
   if(_n LESS_EQUAL 1)

@@ -3,8 +3,13 @@
 // pixels, back to back with random
 // ce gaps and garbage on idle/virtual beats and on the register inputs outside the
 // frame's first beat. Every published list (read through the read port) and every
-// AXI4-Stream packet is compared with the model; a packet is held back once so that a
-// list is published while its predecessor's packet is pending (the lost case).
+// AXI4-Stream packet is compared with the model; a packet is held back over three
+// publications, so three lists are published while it is pending and two are scanned
+// beside it (the lost case, and the list banks' rotation around the packet's). The last
+// list's packet is held across a reset of rst_n alone (a soft reset): it must finish
+// unchanged, and the list read back is empty. The published list is read again on every
+// clock until the next one replaces it, one object a clock, so a scan that wrote into it
+// would be seen.
 #include <fmt/format.h>
 
 #include <deque>
@@ -230,6 +235,23 @@ int main(int argc, char** argv) {
 
   t.ce_schedule(99, 30);
   auto fail = [&](const std::string& msg) { t.fail(msg); };
+  auto read_object = [&](size_t i) {
+    tb->rd_index = static_cast<uint8_t>(i);
+    tb->eval();
+    Object g;
+    g.x0 = tb->rd_x0;
+    g.y0 = tb->rd_y0;
+    g.x1 = tb->rd_x1;
+    g.y1 = tb->rd_y1;
+    g.count = tb->rd_count;
+    g.sum_disp = tb->rd_sum;
+    g.mean_disp = tb->rd_mean;
+    g.max_disp = tb->rd_max;
+    return g;
+  };
+  const ObjectList* shown = nullptr;  // the published list
+  size_t reread = 0, reread_bad = 0;
+  bool soft_reset_done = false;
   size_t k = 0, lists = 0;
   bool lost_pending = false;
   std::deque<std::vector<uint32_t>> want_pkts;
@@ -259,8 +281,25 @@ int main(int argc, char** argv) {
       tb->s_side = rng() & 31;
       tb->s_disp = static_cast<uint16_t>(rng());
     }
-    // hold the packet of list 2 until list 3 is published: list 3's packet is lost
-    tb->m_axis_obj_tready = (lists == 3) ? 0 : (rng() % 3 != 0);
+    // hold the packet of list 2 until list 5 is published (the packets of lists 3..5 are
+    // lost), and the last list's packet until a soft reset has passed
+    const bool last_held = lists == in.size() && !soft_reset_done;
+    tb->m_axis_obj_tready = ((lists >= 3 && lists <= 5) || last_held) ? 0 : (rng() % 3 != 0);
+    if (last_held && tb->m_axis_obj_tvalid) {
+      // a soft reset while the last list's packet waits (rst_n alone; out_rst_n stays high)
+      t.reset(3, [&] { tb->ce = rng() & 1; });
+      tb->ce = 0;
+      tb->eval();
+      if (tb->obj_count != 0 || !tb->m_axis_obj_tvalid) fail("soft reset: the list is not empty or the packet stopped");
+      soft_reset_done = true;
+      shown = nullptr;
+      continue;
+    }
+    if (shown && !shown->objects.empty()) {
+      const size_t i = reread++ % shown->objects.size();
+      if (!(read_object(i) == shown->objects[i]) && reread_bad++ == 0)
+        fail(fmt::format("list {} object {} changed before the next list was published", lists - 1, i));
+    }
     tb->eval();
     const bool tvalid_pre = tb->m_axis_obj_tvalid;
     if (tb->m_axis_obj_tvalid && tb->m_axis_obj_tready) {
@@ -298,18 +337,8 @@ int main(int argc, char** argv) {
       else
         t.pass();
       for (size_t i = 0; i < e.objects.size() && i < tb->obj_count; ++i) {
-        tb->rd_index = static_cast<uint8_t>(i);
-        tb->eval();
         const Object& o = e.objects[i];
-        Object g;
-        g.x0 = tb->rd_x0;
-        g.y0 = tb->rd_y0;
-        g.x1 = tb->rd_x1;
-        g.y1 = tb->rd_y1;
-        g.count = tb->rd_count;
-        g.sum_disp = tb->rd_sum;
-        g.mean_disp = tb->rd_mean;
-        g.max_disp = tb->rd_max;
+        const Object g = read_object(i);
         if (!(g == o))
           fail(
               fmt::format("frame {} object {}: expected box ({},{})-({},{}) n {} sum {} mean {} "
@@ -330,6 +359,7 @@ int main(int argc, char** argv) {
         lost_pending = false;
       }
       if (tb->pkt_lost != lost_pending) fail(fmt::format("frame {}: pkt_lost flag", f));
+      shown = &e;
       ++lists;
     }
   }
@@ -338,9 +368,10 @@ int main(int argc, char** argv) {
     saw_flags[0] |= e.too_many_objects;
     saw_flags[1] |= e.table_full;
   }
-  saw_flags[2] = pkts + 1 == in.size();
+  saw_flags[2] = pkts + 3 == in.size() && soft_reset_done;
+  if (reread_bad == 0) t.pass();
   if (!saw_flags[0] || !saw_flags[1] || !saw_flags[2])
-    fail(fmt::format("coverage: too_many {} table_full {} one lost packet {}", saw_flags[0], saw_flags[1],
-                     saw_flags[2]));
-  return t.finish(fmt::format("tb_objects {} lists, {} packets", lists, pkts));
+    fail(fmt::format("coverage: too_many {} table_full {} three lost packets and a soft reset {}", saw_flags[0],
+                     saw_flags[1], saw_flags[2]));
+  return t.finish(fmt::format("tb_objects {} lists, {} packets, {} reads of a published list", lists, pkts, reread));
 }
