@@ -492,21 +492,19 @@ module sm_objects #(
   wire [OW-1:0]   pkt_n_w;
   wire            pkt_busy;
   wire            pkt_load = (sc_state == S_PUB) && !pkt_busy;
-  wire            ent_we = rst_n && (sc_state == S_SCAN) && (sc_i != sc_n) && sc_ok && sc_room;
-  wire            mean_we = rst_n && (sc_state == S_DIV) && (dv_bit == 0);
   wire [IW+1:0]   wa = {wb_q, sc_nobj[IW-1:0]};
+  // A bank that is neither a nor b (a == b: the one after a): where the scan may write
+  // next without touching a bank a reader holds.
+  function [1:0] free_bank(input [1:0] a, input [1:0] b);
+    free_bank = (a != b) ? 2'd3 - a - b : (a == 2'd2) ? 2'd0 : a + 2'd1;
+  endfunction
   // The banks a reset leaves the scan and the register file differ from the packet's
   // bank as it is after this clock (a soft reset lets a packet in progress finish, and
   // one may start in the reset's first clock), so they do not depend on the reset's length.
   wire [1:0]      kb_n = !out_rst_n ? 2'd2 : pkt_load ? wb_q : kb_q;
-  wire [1:0]      wb_rst = (kb_n == 2'd0) ? 2'd1 : 2'd0;
-  wire [1:0]      pb_rst = kb_n[1] ? 2'd1 : 2'd2;
-
-  always @(posedge clk) begin
-    if (ent_we) lst_e[wa] <= {st_max[a_sc], st_sum[a_sc], st_cnt[a_sc], st_y1[a_sc], st_x1[a_sc],
-                              st_y0[a_sc], st_x0[a_sc]};
-    if (mean_we) lst_m[wa] <= dv_q | {{(DW-1){1'b0}}, dv_rem >= dv_try};
-  end
+  wire [1:0]      wb_rst = free_bank(kb_n, kb_n);
+  wire [1:0]      pb_rst = free_bank(wb_rst, kb_n);
+  always @(posedge clk) kb_q <= kb_n;  // its reset is out_rst_n's (kb_n)
 
   always @(posedge clk) begin
     if (!rst_n) begin
@@ -535,7 +533,9 @@ module sm_objects #(
             sc_state <= S_PUB;
           end else begin
             sc_i <= sc_i + 1'b1;
-            if (sc_ok && sc_room) begin  // the entry is written (ent_we); its mean follows
+            if (sc_ok && sc_room) begin  // the entry now, its mean when the division ends
+              lst_e[wa] <= {st_max[a_sc], st_sum[a_sc], st_cnt[a_sc], st_y1[a_sc], st_x1[a_sc],
+                            st_y0[a_sc], st_x0[a_sc]};
               dv_rem   <= st_sum[a_sc];
               dv_cnt   <= st_cnt[a_sc];
               dv_q     <= {DW{1'b0}};
@@ -551,7 +551,8 @@ module sm_objects #(
           if (dv_rem >= dv_try) begin
             dv_rem <= dv_rem - dv_try;
           end
-          if (dv_bit == 0) begin  // the mean is written (mean_we)
+          if (dv_bit == 0) begin
+            lst_m[wa] <= dv_q | {{(DW-1){1'b0}}, dv_rem >= dv_try};
             sc_nobj  <= sc_nobj + 1'b1;
             sc_state <= S_SCAN;
           end else begin
@@ -566,7 +567,7 @@ module sm_objects #(
           // file nor a packet still being sent reads (a packet that starts now
           // snapshots the published bank itself)
           pb_q       <= wb_q;
-          wb_q       <= pkt_busy ? 2'd3 - wb_q - kb_q : (wb_q == 2'd2) ? 2'd0 : wb_q + 2'd1;
+          wb_q       <= free_bank(wb_q, pkt_busy ? kb_q : wb_q);
           obj_count  <= {{(8-OW){1'b0}}, sc_nobj};
           too_many   <= sc_many;
           table_full <= sc_tf;
@@ -605,7 +606,6 @@ module sm_objects #(
   reg [2:0]    pk_w;      // 0..4 within the object, or header when pk_hdr
   reg          pk_hdr;
   assign pkt_busy = pk_busy_q;
-  always @(posedge clk) kb_q <= kb_n;  // its reset is out_rst_n's (kb_n)
   assign pkt_n_w  = pk_n;
 
   wire [IW+1:0] ka = {kb_q, pk_obj[IW-1:0]};

@@ -263,6 +263,20 @@ int main(int argc, char** argv) {
       fail("timeout waiting for lists/packets");
       break;
     }
+    // hold the packet of list 2 until list 5 is published (the packets of lists 3..5 are
+    // lost), and the last list's packet until a soft reset has passed
+    const bool last_held = lists == in.size() && !soft_reset_done;
+    if (last_held && tb->m_axis_obj_tvalid) {
+      // a soft reset while the last list's packet waits (rst_n alone; out_rst_n stays high)
+      tb->m_axis_obj_tready = 0;
+      t.reset(3, [&] { tb->ce = rng() & 1; });
+      tb->ce = 0;
+      tb->eval();
+      if (tb->obj_count != 0 || !tb->m_axis_obj_tvalid) fail("soft reset: the list is not empty or the packet stopped");
+      soft_reset_done = true;
+      shown = nullptr;
+      continue;
+    }
     const bool c = k < sched.size() && t.next_ce();
     if (!c) tb->ce = 0;
     tb->near_thr = rng() & 0xff;
@@ -281,20 +295,7 @@ int main(int argc, char** argv) {
       tb->s_side = rng() & 31;
       tb->s_disp = static_cast<uint16_t>(rng());
     }
-    // hold the packet of list 2 until list 5 is published (the packets of lists 3..5 are
-    // lost), and the last list's packet until a soft reset has passed
-    const bool last_held = lists == in.size() && !soft_reset_done;
     tb->m_axis_obj_tready = ((lists >= 3 && lists <= 5) || last_held) ? 0 : (rng() % 3 != 0);
-    if (last_held && tb->m_axis_obj_tvalid) {
-      // a soft reset while the last list's packet waits (rst_n alone; out_rst_n stays high)
-      t.reset(3, [&] { tb->ce = rng() & 1; });
-      tb->ce = 0;
-      tb->eval();
-      if (tb->obj_count != 0 || !tb->m_axis_obj_tvalid) fail("soft reset: the list is not empty or the packet stopped");
-      soft_reset_done = true;
-      shown = nullptr;
-      continue;
-    }
     if (shown && !shown->objects.empty()) {
       const size_t i = reread++ % shown->objects.size();
       if (!(read_object(i) == shown->objects[i]) && reread_bad++ == 0)
