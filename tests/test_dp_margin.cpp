@@ -1,6 +1,7 @@
-// Unit tests of the trellis min-marginals (tools/sm_dp_margin.hpp) against independent
-// truth: every path of tiny lines enumerated, and the model's trellis (the optimal path's
-// matched pixels have a min-marginal of 0).
+// Unit tests of the trellis min-marginals and the forward pass's excess costs
+// (tools/sm_dp_margin.hpp) against independent truth: every path (and path prefix) of tiny
+// lines enumerated, and the model's trellis (the optimal path's matched pixels have a
+// min-marginal of 0).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -51,7 +52,57 @@ struct Enumerate {
   }
 };
 
+// Every path from (0, 0) up to site s, with no look at the end node (what a forward pass
+// knows): u[i * disp + d], the cheapest path to (i, d); matched nodes beyond the line cost 0.
+struct Prefixes {
+  const std::vector<uint8_t>& a;
+  const std::vector<uint8_t>& pen;
+  int n, disp;
+  std::vector<int64_t> u;
+
+  void walk(int i, int d, int64_t cost) {
+    int64_t& here = u[static_cast<size_t>(i) * disp + d];
+    here = std::min(here, cost);
+    if (i == 2 * n) return;
+    for (int nd : {d, d - 1, d + 1}) {
+      if (nd < 0 || nd >= disp) continue;
+      const bool occ = (i + 1 + nd) % 2 == 0;
+      if (nd != d && !occ) continue;
+      const int xl = (i + nd) / 2;  // a matched node's left pixel
+      const int64_t step = occ ? (nd != d ? pen[static_cast<size_t>(std::min((i + 1 + nd) / 2, n))] : 0)
+                               : (xl < n ? a[static_cast<size_t>(xl) * disp + nd] : 0);
+      walk(i + 1, nd, cost + step);
+    }
+  }
+};
+
 }  // namespace
+
+TEST_CASE("dp_forward_excess equals exhaustive enumeration of path prefixes", "[dp_margin]") {
+  std::mt19937 rng(2027);
+  for (int disp : {2, 3, 4})
+    for (int n = 1; n <= 4; ++n)
+      for (int rep = 0; rep < 10; ++rep) {
+        std::vector<uint8_t> a(static_cast<size_t>(n) * disp), pen(static_cast<size_t>(n) + 1);
+        for (auto& v : a) v = static_cast<uint8_t>(rng() % 16);
+        for (auto& p : pen) p = static_cast<uint8_t>(rng() % 12);
+        Prefixes p{a, pen, n, disp, std::vector<int64_t>(static_cast<size_t>(2 * n + 1) * disp, kNoPath)};
+        p.walk(0, 0, 0);
+        const std::vector<int64_t> e = sm::tools::dp_forward_excess(a.data(), n, pen.data(), disp);
+        INFO("disp " << disp << " n " << n << " rep " << rep);
+        for (int x = 0; x < n; ++x)
+          for (int d = 0; d < disp; ++d) {
+            const size_t k = static_cast<size_t>(x) * disp + d;
+            if (d > 2 * x) {
+              CHECK(e[k] == kNoPath);
+              continue;
+            }
+            const int64_t* site = &p.u[static_cast<size_t>(2 * x + 1 - d) * disp];
+            const int64_t best = *std::min_element(site, site + disp);
+            CHECK(e[k] == (site[d] < kNoPath ? site[d] - best : kNoPath));
+          }
+      }
+}
 
 TEST_CASE("dp_min_marginals equal exhaustive enumeration", "[dp_margin]") {
   std::mt19937 rng(2026);

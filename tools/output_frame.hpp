@@ -20,6 +20,7 @@ struct OutputFrame {
   cv::Mat left;                      // CV_8UC1, the pair's left view as the pipeline read it
   cv::Mat gt, mask;                  // CV_32F ground truth (0 unknown) and the optional non-occlusion mask
   cv::Mat margin;                    // CV_32S trellis margin of the dense output's level (sm_dp_margin.hpp), when asked
+  cv::Mat margin_fwd;                // CV_32S the same margin from the forward pass alone (dp_forward_excess)
   OutImage dense_raw, dense_stream;  // with the margin: the dense words before and after the smoothing
 };
 

@@ -83,6 +83,18 @@ std::vector<int64_t> dp_min_marginals(const uint8_t* agg, int n, const uint8_t* 
   return m;
 }
 
+std::vector<int64_t> dp_forward_excess(const uint8_t* agg, int n, const uint8_t* pen, int disp) {
+  const std::vector<int64_t> u = forward(Trellis{agg, n, disp, pen});
+  std::vector<int64_t> e(static_cast<size_t>(n) * disp, kNoPath);
+  for (int x = 0; x < n; ++x)
+    for (int d = 0; d < disp && d <= 2 * x; ++d) {
+      const int64_t* site = &u[static_cast<size_t>(2 * x + 1 - d) * disp];
+      const int64_t best = *std::min_element(site, site + disp);
+      if (site[d] < kNoPath) e[static_cast<size_t>(x) * disp + d] = site[d] - best;
+    }
+  return e;
+}
+
 int64_t dp_margin(const int64_t* m, int disp, int d) {
   int64_t near = kNoPath, far = kNoPath;
   for (int k = 0; k < disp; ++k) {

@@ -19,6 +19,12 @@ constexpr int64_t kNoPath = INT64_MAX / 4;
 // penalties, one per left pixel of the occlusion nodes).
 std::vector<int64_t> dp_min_marginals(const uint8_t* agg, int n, const uint8_t* pen, int disp);
 
+// What the forward pass alone knows, in dp_min_marginals' layout: E(x, d) at [x * disp + d],
+// the cost of the cheapest path from (0, 0) to the node matching left pixel x at level d
+// (site 2x + 1 - d) less the cheapest path to any node of that site, or kNoPath. sm_dp
+// holds these costs at each site; a cue built on them needs no second trellis.
+std::vector<int64_t> dp_forward_excess(const uint8_t* agg, int n, const uint8_t* pen, int disp);
+
 // The margin of level d at one pixel (m: its disp min-marginals): the cheapest match two
 // levels or more away from d, less the cheapest within one level of d; a large margin means
 // no other surface along the row comes close. -kNoPath when no path matches the pixel

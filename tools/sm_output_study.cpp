@@ -42,14 +42,17 @@ using Frame = OutputFrame;
 bool classic(const std::string& n) { return n == "tsukuba" || n == "venus" || n == "teddy" || n == "cones"; }
 
 // The trellis margin (sm_dp_margin.hpp) of every pixel's level in the streamed dense words,
-// from the frame's aggregated costs and its rows' occlusion penalties.
-cv::Mat trellis_margins(const PipelineResult& r, const Regs& regs, int levels, const OutImage& words) {
+// from the frame's aggregated costs and its rows' occlusion penalties: from both passes'
+// min-marginals, or (forward_only) from dp_forward_excess.
+cv::Mat trellis_margins(const PipelineResult& r, const Regs& regs, int levels, const OutImage& words,
+                        bool forward_only) {
   const int w = r.agg.w, h = r.agg.h;
   cv::Mat out(h, w, CV_32S);
   std::vector<uint8_t> pen;
   for (int y = 0; y < h; ++y) {
     edge_penalties(&r.rl.px[static_cast<size_t>(y) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
-    const std::vector<int64_t> m = dp_min_marginals(r.agg.pix(0, y), w, pen.data(), levels);
+    const std::vector<int64_t> m = forward_only ? dp_forward_excess(r.agg.pix(0, y), w, pen.data(), levels)
+                                                : dp_min_marginals(r.agg.pix(0, y), w, pen.data(), levels);
     for (int x = 0; x < w; ++x) {
       const int d =
           std::clamp((static_cast<int>(out_q4(words.px[static_cast<size_t>(y) * w + x])) + 8) >> 4, 0, levels - 1);
@@ -78,7 +81,8 @@ Frame run_scene(const std::string& dir, int levels, bool margins) {
     const OutputRegs dense = dense_mode(OutputRegs{});
     f.dense_raw = make_output(r.evidence, r.post, f.levels, dense, 0);
     f.dense_stream = smooth_output(f.dense_raw, dense.smooth_en, dense.smooth_t);
-    f.margin = trellis_margins(r, regs, f.levels, f.dense_stream);
+    f.margin = trellis_margins(r, regs, f.levels, f.dense_stream, false);
+    f.margin_fwd = trellis_margins(r, regs, f.levels, f.dense_stream, true);
   }
   f.ev = std::move(r.evidence);
   f.post = std::move(r.post);
@@ -403,8 +407,9 @@ void study_speckle_conf(const std::vector<Frame>& fr) {
 
 // The streamed dense confidence c with the trellis margin m added: a c + clamp(m, lo, hi),
 // saturated to 8 bits (a 0: the margin alone; hi 0: c alone); also with c halved where
-// zynq's speckle stage, enabled at its registers' resets, would clear the pixel.
-// The frames are run_scene's with the margins (and so with their dense words).
+// zynq's speckle stage, enabled at its registers' resets, would clear the pixel; m from both
+// passes, then from the forward pass alone. The frames are run_scene's with the margins (and
+// so with their dense words).
 void study_dp_margin(const std::vector<Frame>& fr) {
   struct Case {
     double a;
@@ -421,28 +426,32 @@ void study_dp_margin(const std::vector<Frame>& fr) {
     conf_sp.push_back(out_to_conf(halve_speckles(f.dense_stream, f.dense_raw, sr, named_config("zynq").speckle_rows)));
   }
   // The AUC over the oracle's, 14-scene means, of one case over the confidences c.
-  auto ratio = [&](const Case& c, const std::vector<cv::Mat>& cs) {
+  auto ratio = [&](const Case& c, const std::vector<cv::Mat>& cs, cv::Mat Frame::*m) {
     double auc = 0, oracle = 0;
     for (size_t k = 0; k < fr.size(); ++k) {
       cv::Mat score(cs[k].size(), CV_8U);
       for (int y = 0; y < score.rows; ++y)
         for (int x = 0; x < score.cols; ++x)
           score.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(c.a * cs[k].at<uint8_t>(y, x) +
-                                                               std::clamp(fr[k].margin.at<int32_t>(y, x), c.lo, c.hi));
+                                                               std::clamp((fr[k].*m).at<int32_t>(y, x), c.lo, c.hi));
       const Sparsification sp = sparsification(est[k], score, fr[k].gt, fr[k].mask);
       auc += sp.auc;
       oracle += sp.oracle_auc;
     }
     return auc / oracle;
   };
-  fmt::print("\nDense confidence c plus the trellis margin m (forward and backward pass), AUC / oracle:\n\n");
-  fmt::print("| score                      | c as streamed | c halved on speckles |\n");
-  fmt::print("|----------------------------|--------------:|---------------------:|\n");
+  fmt::print(
+      "\nDense confidence c plus the trellis margin m, AUC / oracle (m from both passes; from the forward "
+      "pass alone):\n\n");
+  fmt::print("| score                      | c as streamed | c halved on speckles | forward: as streamed | halved |\n");
+  fmt::print("|----------------------------|--------------:|---------------------:|---------------------:|-------:|\n");
   for (const Case& c : cases) {
     const std::string name = c.hi == 0  ? "c"
                              : c.a == 0 ? fmt::format("clamp(m, {}, {})", c.lo, c.hi)
                                         : fmt::format("{} c + clamp(m, {}, {})", c.a, c.lo, c.hi);
-    fmt::print("| {:<26} | {:13.2f} | {:20.2f} |\n", name, ratio(c, conf), ratio(c, conf_sp));
+    fmt::print("| {:<26} | {:13.2f} | {:20.2f} | {:20.2f} | {:6.2f} |\n", name, ratio(c, conf, &Frame::margin),
+               ratio(c, conf_sp, &Frame::margin), ratio(c, conf, &Frame::margin_fwd),
+               ratio(c, conf_sp, &Frame::margin_fwd));
   }
 }
 
