@@ -77,6 +77,9 @@ module sm_objects #(
                   ("sm_objects: DISP (%0d) must be even, %0d..%0d", DISP, `SM_DISP_MIN, `SM_DISP_MAX))
     `SM_BAD_PARAM(g_bad_k, MAX_OBJECTS < 1 || MAX_OBJECTS > 64 || LABEL_SLOTS < MAX_OBJECTS,
                   ("sm_objects: need 1 <= MAX_OBJECTS (%0d) <= 64 and <= LABEL_SLOTS (%0d)", MAX_OBJECTS, LABEL_SLOTS))
+    // sm_lowest_set searches up to 512 labels; one label leaves nothing to merge
+    `SM_BAD_PARAM(g_bad_slots, LABEL_SLOTS < 2 || LABEL_SLOTS > 512,
+                  ("sm_objects: LABEL_SLOTS (%0d) must be 2..512", LABEL_SLOTS))
     `SM_BAD_PARAM(g_bad_scan, SCAN_CLKS > 256 || SUMW > 32 || MAX_WIDTH > 65535 || MAX_HEIGHT > 65535,
                   ("sm_objects: the end-of-frame scan (%0d clocks) must fit a 16x16 frame", SCAN_CLKS))
   endgenerate
@@ -320,7 +323,24 @@ module sm_objects #(
   wire            unused_in = &{s_disp[14:DW], side_s2[`SM_SIDE_TAG], side_q[`SM_SIDE_TAG], s_lo[8:DW], p_lo[8:DW]};
   /* verilator coverage_on */
 
-  integer i;
+  // The equivalence table's update, one process per entry: Verilator 5.006 (Debian 12)
+  // rejects a delayed assignment to an array element inside a for loop it does not
+  // unroll (BLKLOOPINIT), which it does not beyond 64 entries.
+  genvar gp;
+  generate
+    for (gp = 0; gp < LABEL_SLOTS; gp = gp + 1) begin : g_parent
+      /* verilator lint_off WIDTH */  // the entry's own label, in the label's width
+      localparam [LW-1:0] SELF = gp;
+      /* verilator lint_on WIDTH */
+      always @(posedge clk) begin
+        if (ce && real_q) begin
+          if (alloc && cand == SELF) parent[gp] <= SELF;
+          else if (merge && parent[gp] == m_a) parent[gp] <= m_s;
+        end
+      end
+    end
+  endgenerate
+
   always @(posedge clk) begin
     if (ce) begin
       // stage 1
@@ -342,14 +362,6 @@ module sm_objects #(
       /* verilator lint_on WIDTH */
       l_near_q <= real_q & near_eff;
       l_lab_q  <= lab;
-      if (real_q) begin
-        for (i = 0; i < LABEL_SLOTS; i = i + 1) begin
-          /* verilator lint_off WIDTH */
-          if (alloc && cand == i) parent[i] <= i[LW-1:0];
-          /* verilator lint_on WIDTH */
-          else if (merge && parent[i] == m_a) parent[i] <= m_s;
-        end
-      end
       s3_lab   <= a_lab;
       s3_l     <= lab;
       s3_abs   <= a_abs;

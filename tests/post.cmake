@@ -26,6 +26,11 @@ sm_rtl_test(NAME tb_objects_slots12 TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_
             PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=4 LABEL_SLOTS=12
             ARGS --width 41 --height 19)
 
+# More labels than Verilator unrolls a loop over (64): the table's per-entry update.
+sm_rtl_test(NAME tb_objects_slots100 TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
+            PARAMS MAX_WIDTH=320 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=8 LABEL_SLOTS=100
+            ARGS --width 301 --height 29)
+
 # MAX_OBJECTS not a power of two: the list banks keep unused entries.
 sm_rtl_test(NAME tb_objects_obj3 TOP sm_objects SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_objects.cpp
             PARAMS MAX_WIDTH=64 MAX_HEIGHT=64 DISP=16 MAX_OBJECTS=3 LABEL_SLOTS=16

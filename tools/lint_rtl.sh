@@ -2,7 +2,8 @@
 # Lints every RTL module on its own with verilator --lint-only -Wall, at its default
 # parameters, and checks the house rules a linter does not: the first line is
 # `default_nettype none, the last is `default_nettype wire, and the module is named after
-# its file. Usage: lint_rtl.sh <rtl dir> [generated dir]
+# its file; then the modules again at the parameters listed in lint_params.txt beside this
+# script (limits where a construct behaves differently). Usage: lint_rtl.sh <rtl dir> [generated dir]
 # VERILATOR= the Verilator to run (default: verilator on PATH); its version is printed.
 set -u
 verilator=${VERILATOR:-verilator}
@@ -26,5 +27,13 @@ for f in "$rtl"/*.v; do
     echo "LINT FAIL $m"; echo "$out"; fail=$((fail + 1))
   fi
 done
+while read -r m params; do
+  case "$m" in '' | '#'*) continue ;; esac
+  n=$((n + 1))
+  # shellcheck disable=SC2086  # the -G overrides are separate words
+  if ! out=$("$verilator" --lint-only -Wall "${inc[@]}" --top-module "$m" $params "$rtl/$m.v" 2>&1); then
+    echo "LINT FAIL $m $params"; echo "$out"; fail=$((fail + 1))
+  fi
+done < "$(dirname "$0")/lint_params.txt"
 echo "lint: $((n - fail)) passed, $fail failed"
 [ "$fail" -eq 0 ]
