@@ -86,7 +86,7 @@ add_custom_target(synth_vga
 
 # Place and route on a Lattice ECP5 (LFE5U-85F, speed grade 6; SM_NEXTPNR_ECP5):
 # the achieved clock, not only the LUT levels. The small configurations fit the part whole;
-# zynq does not (132,853 LUT4s in the committed report against 83,640), so its blocks are
+# zynq does not (133,415 LUT4s in the committed report against 83,640), so its blocks are
 # placed one by one.
 set(c_pnr ${SM_SYNTH_DRIVER} -t sm_top -f ecp5 -N ${SM_NEXTPNR_ECP5} -o ${SM_SYNTH_DIR}
     -x $<TARGET_FILE:sm_synth_report> -L ${SM_GEN_DIR} -T ${SM_SYNTH_TIMEOUT})
