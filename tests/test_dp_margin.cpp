@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "dp.hpp"
@@ -76,6 +77,14 @@ struct Prefixes {
   }
 };
 
+// A tiny line's costs (0..15) and occlusion penalties (0..11, n + 1 of them).
+std::pair<std::vector<uint8_t>, std::vector<uint8_t>> random_line(std::mt19937& rng, int n, int disp) {
+  std::vector<uint8_t> a(static_cast<size_t>(n) * disp), pen(static_cast<size_t>(n) + 1);
+  for (auto& v : a) v = static_cast<uint8_t>(rng() % 16);
+  for (auto& p : pen) p = static_cast<uint8_t>(rng() % 12);
+  return {a, pen};
+}
+
 }  // namespace
 
 TEST_CASE("dp_forward_excess equals exhaustive enumeration of path prefixes", "[dp_margin]") {
@@ -83,9 +92,7 @@ TEST_CASE("dp_forward_excess equals exhaustive enumeration of path prefixes", "[
   for (int disp : {2, 3, 4})
     for (int n = 1; n <= 4; ++n)
       for (int rep = 0; rep < 10; ++rep) {
-        std::vector<uint8_t> a(static_cast<size_t>(n) * disp), pen(static_cast<size_t>(n) + 1);
-        for (auto& v : a) v = static_cast<uint8_t>(rng() % 16);
-        for (auto& p : pen) p = static_cast<uint8_t>(rng() % 12);
+        const auto [a, pen] = random_line(rng, n, disp);
         Prefixes p{a, pen, n, disp, std::vector<int64_t>(static_cast<size_t>(2 * n + 1) * disp, kNoPath)};
         p.walk(0, 0, 0);
         const std::vector<int64_t> e = sm::tools::dp_forward_excess(a.data(), n, pen.data(), disp);
@@ -109,9 +116,7 @@ TEST_CASE("dp_min_marginals equal exhaustive enumeration", "[dp_margin]") {
   for (int disp : {2, 3, 4})
     for (int n = 1; n <= 5; ++n)
       for (int rep = 0; rep < 20; ++rep) {
-        std::vector<uint8_t> a(static_cast<size_t>(n) * disp), pen(static_cast<size_t>(n) + 1);
-        for (auto& v : a) v = static_cast<uint8_t>(rng() % 16);
-        for (auto& p : pen) p = static_cast<uint8_t>(rng() % 12);
+        const auto [a, pen] = random_line(rng, n, disp);
         Enumerate e{a, pen, n, disp, std::vector<int64_t>(a.size(), kNoPath), kNoPath, {}};
         e.walk(0, 0, 0);
         const std::vector<int64_t> m = sm::tools::dp_min_marginals(a.data(), n, pen.data(), disp);
@@ -119,6 +124,17 @@ TEST_CASE("dp_min_marginals equal exhaustive enumeration", "[dp_margin]") {
         REQUIRE(e.all < kNoPath);
         for (size_t k = 0; k < a.size(); ++k) CHECK(m[k] == (e.best[k] < kNoPath ? e.best[k] - e.all : kNoPath));
       }
+}
+
+TEST_CASE("dp_line_margins gives both cues of one forward pass", "[dp_margin]") {
+  std::mt19937 rng(7);
+  for (int rep = 0; rep < 20; ++rep) {
+    const int n = 1 + static_cast<int>(rng() % 40), disp = 2 + static_cast<int>(rng() % 9);
+    const auto [a, pen] = random_line(rng, n, disp);
+    const sm::tools::LineMargins m = sm::tools::dp_line_margins(a.data(), n, pen.data(), disp);
+    CHECK(m.min_marginal == sm::tools::dp_min_marginals(a.data(), n, pen.data(), disp));
+    CHECK(m.forward_excess == sm::tools::dp_forward_excess(a.data(), n, pen.data(), disp));
+  }
 }
 
 TEST_CASE("dp_min_marginals are 0 on the model trellis's matched pixels", "[dp_margin]") {

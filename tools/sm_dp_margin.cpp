@@ -67,32 +67,48 @@ std::vector<int64_t> backward(const Trellis& t) {
   return v;
 }
 
-}  // namespace
-
-std::vector<int64_t> dp_min_marginals(const uint8_t* agg, int n, const uint8_t* pen, int disp) {
-  const Trellis t{agg, n, disp, pen};
-  const std::vector<int64_t> u = forward(t), v = backward(t);
-  const int64_t best = u[static_cast<size_t>(2 * n) * disp];
-  std::vector<int64_t> m(static_cast<size_t>(n) * disp, kNoPath);
-  for (int x = 0; x < n; ++x)
-    for (int d = 0; d < disp && d <= 2 * x; ++d) {
-      const size_t k = static_cast<size_t>(2 * x + 1 - d) * disp + d;
+// M(x, d) from the forward costs u and the backward costs of t.
+std::vector<int64_t> min_marginals(const Trellis& t, const std::vector<int64_t>& u) {
+  const std::vector<int64_t> v = backward(t);
+  const int64_t best = u[static_cast<size_t>(2 * t.n) * t.disp];
+  std::vector<int64_t> m(static_cast<size_t>(t.n) * t.disp, kNoPath);
+  for (int x = 0; x < t.n; ++x)
+    for (int d = 0; d < t.disp && d <= 2 * x; ++d) {
+      const size_t k = static_cast<size_t>(2 * x + 1 - d) * t.disp + d;
       const int64_t through = add(u[k], v[k]);
-      if (through < kNoPath) m[static_cast<size_t>(x) * disp + d] = through - best;
+      if (through < kNoPath) m[static_cast<size_t>(x) * t.disp + d] = through - best;
     }
   return m;
 }
 
-std::vector<int64_t> dp_forward_excess(const uint8_t* agg, int n, const uint8_t* pen, int disp) {
-  const std::vector<int64_t> u = forward(Trellis{agg, n, disp, pen});
-  std::vector<int64_t> e(static_cast<size_t>(n) * disp, kNoPath);
-  for (int x = 0; x < n; ++x)
-    for (int d = 0; d < disp && d <= 2 * x; ++d) {
-      const int64_t* site = &u[static_cast<size_t>(2 * x + 1 - d) * disp];
-      const int64_t best = *std::min_element(site, site + disp);
-      if (site[d] < kNoPath) e[static_cast<size_t>(x) * disp + d] = site[d] - best;
+// E(x, d) from the forward costs u.
+std::vector<int64_t> forward_excess(const Trellis& t, const std::vector<int64_t>& u) {
+  std::vector<int64_t> e(static_cast<size_t>(t.n) * t.disp, kNoPath);
+  for (int x = 0; x < t.n; ++x)
+    for (int d = 0; d < t.disp && d <= 2 * x; ++d) {
+      const int64_t* site = &u[static_cast<size_t>(2 * x + 1 - d) * t.disp];
+      const int64_t best = *std::min_element(site, site + t.disp);
+      if (site[d] < kNoPath) e[static_cast<size_t>(x) * t.disp + d] = site[d] - best;
     }
   return e;
+}
+
+}  // namespace
+
+std::vector<int64_t> dp_min_marginals(const uint8_t* agg, int n, const uint8_t* pen, int disp) {
+  const Trellis t{agg, n, disp, pen};
+  return min_marginals(t, forward(t));
+}
+
+std::vector<int64_t> dp_forward_excess(const uint8_t* agg, int n, const uint8_t* pen, int disp) {
+  const Trellis t{agg, n, disp, pen};
+  return forward_excess(t, forward(t));
+}
+
+LineMargins dp_line_margins(const uint8_t* agg, int n, const uint8_t* pen, int disp) {
+  const Trellis t{agg, n, disp, pen};
+  const std::vector<int64_t> u = forward(t);
+  return {min_marginals(t, u), forward_excess(t, u)};
 }
 
 int64_t dp_margin(const int64_t* m, int disp, int d) {

@@ -25,6 +25,12 @@ std::vector<int64_t> dp_min_marginals(const uint8_t* agg, int n, const uint8_t* 
 // holds these costs at each site; a cue built on them needs no second trellis.
 std::vector<int64_t> dp_forward_excess(const uint8_t* agg, int n, const uint8_t* pen, int disp);
 
+// Both of the above from one forward pass (the study scores both cues per frame).
+struct LineMargins {
+  std::vector<int64_t> min_marginal, forward_excess;
+};
+LineMargins dp_line_margins(const uint8_t* agg, int n, const uint8_t* pen, int disp);
+
 // The margin of level d at one pixel (m: its disp min-marginals): the cheapest match two
 // levels or more away from d, less the cheapest within one level of d; a large margin means
 // no other surface along the row comes close. -kNoPath when no path matches the pixel

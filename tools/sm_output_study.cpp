@@ -41,27 +41,32 @@ using Frame = OutputFrame;
 
 bool classic(const std::string& n) { return n == "tsukuba" || n == "venus" || n == "teddy" || n == "cones"; }
 
-// The trellis margin (sm_dp_margin.hpp) of every pixel's level in the streamed dense words,
-// from the frame's aggregated costs and its rows' occlusion penalties: from both passes'
-// min-marginals, or (forward_only) from dp_forward_excess.
-cv::Mat trellis_margins(const PipelineResult& r, const Regs& regs, int levels, const OutImage& words,
-                        bool forward_only) {
+// The margin (dp_margin) of a row's levels d from one cue's per-level costs m.
+void row_margins(const std::vector<int64_t>& m, const std::vector<int>& d, int levels, int32_t* out) {
+  for (size_t x = 0; x < d.size(); ++x)
+    out[x] = static_cast<int32_t>(std::clamp<int64_t>(dp_margin(&m[x * levels], levels, d[x]),
+                                                      std::numeric_limits<int32_t>::min(),
+                                                      std::numeric_limits<int32_t>::max()));
+}
+
+// The trellis margins (sm_dp_margin.hpp) of every pixel's level in the streamed dense words,
+// from the frame's aggregated costs and its rows' occlusion penalties, into f.margin (both
+// passes' min-marginals) and f.margin_fwd (the forward pass alone).
+void trellis_margins(const PipelineResult& r, const Regs& regs, const OutImage& words, Frame& f) {
   const int w = r.agg.w, h = r.agg.h;
-  cv::Mat out(h, w, CV_32S);
+  f.margin.create(h, w, CV_32S);
+  f.margin_fwd.create(h, w, CV_32S);
   std::vector<uint8_t> pen;
+  std::vector<int> d(static_cast<size_t>(w));
   for (int y = 0; y < h; ++y) {
     edge_penalties(&r.rl.px[static_cast<size_t>(y) * w], w, regs.occ, regs.occ_edge, regs.edge_t, pen);
-    const std::vector<int64_t> m = forward_only ? dp_forward_excess(r.agg.pix(0, y), w, pen.data(), levels)
-                                                : dp_min_marginals(r.agg.pix(0, y), w, pen.data(), levels);
-    for (int x = 0; x < w; ++x) {
-      const int d =
-          std::clamp((static_cast<int>(out_q4(words.px[static_cast<size_t>(y) * w + x])) + 8) >> 4, 0, levels - 1);
-      out.at<int32_t>(y, x) = static_cast<int32_t>(
-          std::clamp<int64_t>(dp_margin(&m[static_cast<size_t>(x) * levels], levels, d),
-                              std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max()));
-    }
+    const LineMargins m = dp_line_margins(r.agg.pix(0, y), w, pen.data(), f.levels);
+    for (int x = 0; x < w; ++x)
+      d[static_cast<size_t>(x)] =
+          std::clamp((static_cast<int>(out_q4(words.px[static_cast<size_t>(y) * w + x])) + 8) >> 4, 0, f.levels - 1);
+    row_margins(m.min_marginal, d, f.levels, f.margin.ptr<int32_t>(y));
+    row_margins(m.forward_excess, d, f.levels, f.margin_fwd.ptr<int32_t>(y));
   }
-  return out;
 }
 
 // margins: also the trellis margins (keeps the frame's cost volumes while it runs).
@@ -81,8 +86,7 @@ Frame run_scene(const std::string& dir, int levels, bool margins) {
     const OutputRegs dense = dense_mode(OutputRegs{});
     f.dense_raw = make_output(r.evidence, r.post, f.levels, dense, 0);
     f.dense_stream = smooth_output(f.dense_raw, dense.smooth_en, dense.smooth_t);
-    f.margin = trellis_margins(r, regs, f.levels, f.dense_stream, false);
-    f.margin_fwd = trellis_margins(r, regs, f.levels, f.dense_stream, true);
+    trellis_margins(r, regs, f.dense_stream, f);
   }
   f.ev = std::move(r.evidence);
   f.post = std::move(r.post);
