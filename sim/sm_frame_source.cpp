@@ -44,6 +44,14 @@ size_t limit(const SimOptions& opt, size_t available, const std::string& what, s
   return available;
 }
 
+// A left and a right image of the same size, as read.
+std::pair<cv::Mat, cv::Mat> load_pair(const std::string& left, const std::string& right) {
+  cv::Mat l = tools::load_grey_mat(left), r = tools::load_grey_mat(right);
+  if (l.size() != r.size())
+    fail(fmt::format("{}: {}x{} does not match {}: {}x{}", left, l.cols, l.rows, right, r.cols, r.rows));
+  return {std::move(l), std::move(r)};
+}
+
 // A stereo pair or a scene: one frame streamed `count` times (--frames, default 2).
 class RepeatSource : public FrameSource {
  public:
@@ -90,7 +98,8 @@ class SequenceSource : public FrameSource {
   }
   StereoFrame next() override {
     if (i_ >= ls_.size()) fail(fmt::format("{}: no frame {}", name_, i_));
-    StereoFrame fr{fit(tools::load_grey_mat(ls_[i_])), fit(tools::load_grey_mat(rs_[i_]))};
+    const auto [l, r] = load_pair(ls_[i_], rs_[i_]);
+    StereoFrame fr{fit(l), fit(r)};
     ++i_;
     return fr;
   }
@@ -170,9 +179,7 @@ tools::Scene load_sim_scene(const std::string& dir) {
 std::unique_ptr<FrameSource> open_frame_source(const SimOptions& opt) {
   if (!opt.left.empty() || !opt.right.empty()) {
     if (opt.left.empty() || opt.right.empty()) fail("--left and --right go together");
-    cv::Mat l = tools::load_grey_mat(opt.left), r = tools::load_grey_mat(opt.right);
-    if (l.size() != r.size())
-      fail(fmt::format("{}: {}x{} does not match {}: {}x{}", opt.left, l.cols, l.rows, opt.right, r.cols, r.rows));
+    auto [l, r] = load_pair(opt.left, opt.right);
     return std::make_unique<RepeatSource>(std::move(l), std::move(r), opt, opt.left);
   }
   if (!opt.seq_dir.empty()) return std::make_unique<SequenceSource>(opt);

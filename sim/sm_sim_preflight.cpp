@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "toolio/sm_outputs.hpp"
+
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
@@ -29,21 +31,31 @@ void check_folder(const std::string& option, const std::string& dir) {
   if (!fs::is_directory(dir, ec)) fail(fmt::format("{}: not a folder", what(option, dir)));
 }
 
-// The file names the run writes besides --disp-file, and what they hold.
-std::vector<std::pair<std::string, std::string>> fixed_outputs(const std::string& out) {
-  return {{out + "/disparity.png", "the disparity picture"},
-          {out + "/disparity_color.png", "the colour disparity picture"},
-          {out + "/panel.png", "the panel"},
-          {out + "/report.json", "the report"}};
+// Every file the run writes (--disp-each's per-frame files aside), as (option, path).
+tools::PathList run_outputs(const SimOptions& opt) {
+  tools::PathList o;
+  for (const char* f : {"disparity.png", "disparity_color.png", "panel.png", "report.json"})
+    o.emplace_back("--out", opt.out_dir + "/" + f);
+  o.insert(o.end(), {{"--disp-file", opt.disp_file},
+                     {"--wave", opt.wave_path},
+                     {"--depth-file", opt.depth.depth_file},
+                     {"--cloud", opt.depth.cloud},
+                     {"--cloud-view", opt.depth.cloud_view}});
+  return o;
 }
 
-void check_disp_file_clash(const SimOptions& opt) {
+// Every file the run may read, as (option, path): an output must not replace one.
+tools::PathList run_inputs(const SimOptions& opt) {
+  tools::PathList in = {{"--left", opt.left},      {"--right", opt.right}, {"--video", opt.video},
+                        {"--regs", opt.regs_file}, {"--calib", opt.calib}, {"--synth-json", opt.synth_json}};
+  for (const std::string& e : opt.regs_at) in.emplace_back("--regs-at", e.substr(e.find('=') + 1));
+  if (opt.left.empty() && opt.seq_dir.empty() && opt.video.empty())
+    for (const char* f : {"left.png", "right.png", "gt.png", "nonocc.png", "scale.txt", "calib.json"})
+      in.emplace_back("--scene", (fs::path(opt.scene_dir) / f).string());
   std::error_code ec;
-  const fs::path disp = fs::weakly_canonical(fs::absolute(opt.disp_file), ec);
-  for (const auto& [path, role] : fixed_outputs(opt.out_dir)) {
-    const fs::path p = fs::weakly_canonical(fs::absolute(path), ec);
-    if (p == disp) fail(fmt::format("--disp-file {}: the same file as {} ({})", opt.disp_file, role, path));
-  }
+  if (!opt.seq_dir.empty())
+    for (const auto& e : fs::directory_iterator(opt.seq_dir, ec)) in.emplace_back("--sequence", e.path().string());
+  return in;
 }
 
 // The input the options name (one of them: CLI11 excludes the others).
@@ -76,20 +88,6 @@ void check_readable_file(const std::string& option, const std::string& path) {
   ::close(fd);
 }
 
-void check_writable_path(const std::string& option, const std::string& path) {
-  fs::path dir = fs::absolute(path).parent_path();
-  std::error_code ec;
-  while (!dir.empty() && !fs::exists(dir, ec) && dir != dir.parent_path()) dir = dir.parent_path();
-  if (!fs::is_directory(dir, ec))
-    fail(fmt::format("{}: cannot create a file there: {} is not a folder", what(option, path), dir.string()));
-  std::string probe = (dir / ".stereo_sim_probe_XXXXXX").string();
-  const int fd = ::mkstemp(probe.data());
-  if (fd < 0)
-    fail(fmt::format("{}: cannot create a file in {}: {}", what(option, path), dir.string(), std::strerror(errno)));
-  ::close(fd);
-  ::unlink(probe.c_str());
-}
-
 void check_files(const SimOptions& opt) {
   check_input_files(opt);
   check_register_files(opt);
@@ -97,10 +95,7 @@ void check_files(const SimOptions& opt) {
     check_readable_file("--synth-json", opt.synth_json);
     read_synthesis_total(opt.synth_json);
   }
-  check_writable_path("--out", opt.out_dir + "/report.json");
-  check_writable_path("--disp-file", opt.disp_file);
-  check_disp_file_clash(opt);
-  if (!opt.wave_path.empty()) check_writable_path("--wave", opt.wave_path);
+  tools::check_outputs(run_outputs(opt), true, run_inputs(opt));
 }
 
 json read_synthesis_total(const std::string& path) {

@@ -17,15 +17,10 @@ namespace sm::simapp {
 // "... is a directory", "... cannot open for reading: <reason>".
 void check_readable_file(const std::string& option, const std::string& path);
 
-// A file can be created at `path`: the nearest folder above it that exists is a folder
-// in which a file can be created (tried with a temporary file, removed at once); missing
-// folders below it are created when the outputs are written. Else "<option> <path>:
-// <reason>".
-void check_writable_path(const std::string& option, const std::string& path);
-
 // The input files and folders the options name, the register files (--regs, --calib,
-// --regs-at), the synthesis report; the output folder, --disp-file and the wave file can
-// be written, --disp-file is not one of the run's other outputs.
+// --regs-at), the synthesis report; every output (tools::check_outputs: the --out
+// folder's files, --disp-file, the wave file, the depth outputs) can be written, no two
+// are the same file and none is one of the run's inputs.
 void check_files(const SimOptions& opt);
 
 // The synthesis report at `path`: its "total" object, with the figures the report prints

@@ -27,13 +27,15 @@ double SimProgress::seconds() const { return std::chrono::duration<double>(Clock
 void SimProgress::row(size_t frame, int row) {
   if (quiet_) return;
   const double s = seconds();
+  const double done = static_cast<double>(frame) * height_ + row + 1;
+  if (first_s_ < 0) first_s_ = s, first_done_ = done;
   if (s < next_) return;
   next_ = s + (tty_ ? kTtyEvery : kLogEvery);
-  const double done = static_cast<double>(frame) * height_ + row + 1;
   const double total = static_cast<double>(frames_) * height_;
-  const double rate = done / s;
-  const std::string line = fmt::format("frame {}/{} row {}/{}: {:.1f} rows/s, {:.0f} s left", frame + 1, frames_,
-                                       row + 1, height_, rate, (total - done) / rate);
+  const double rate = s > first_s_ ? (done - first_done_) / (s - first_s_) : 0;
+  const std::string speed = rate > 0 ? fmt::format("{:.1f} rows/s, {:.0f} s left", rate, (total - done) / rate)
+                                     : std::string("rows/s and time left not known yet");
+  const std::string line = fmt::format("frame {}/{} row {}/{}: {}", frame + 1, frames_, row + 1, height_, speed);
   if (tty_) {
     fmt::print(stderr, "\r{:<72}", line);
     set_progress_line_open(true);

@@ -25,6 +25,9 @@ class SimProgress {
   bool quiet_, tty_;
   Clock::time_point t0_;
   double next_ = 0;  // seconds: the next progress line is due
+  // The rate counts from the first output row: the time before it (the pipeline's fill,
+  // the set-up) made the first estimates of a run many times too long.
+  double first_s_ = -1, first_done_ = 0;
 };
 
 }  // namespace sm::simapp

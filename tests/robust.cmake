@@ -1,3 +1,12 @@
+# sm_calibrate's and sm_float_ref's bad inputs and outputs (label robust, docs/robustness.md
+# "The tools"): exit code, the one error line, no output left. Inputs made by the test (a
+# synthetic chessboard rig, a small scene); no ../shared, no Verilated model.
+if(TARGET sm_calibrate AND TARGET sm_float_ref_tool AND TARGET sm_toolio)
+  sm_unit_test(test_calib_float_robust LIBS sm_float_ref sm_toolio INCLUDES ${CMAKE_CURRENT_LIST_DIR}/common
+               DEFINES SM_TEST_TMP="${CMAKE_CURRENT_BINARY_DIR}/tools_tmp/test_calib_float_robust"
+               SM_CALIBRATE_EXE="$<TARGET_FILE:sm_calibrate>" SM_FLOAT_REF_EXE="$<TARGET_FILE:sm_float_ref_tool>"
+               DEPENDS sm_calibrate sm_float_ref_tool LABELS robust)
+endif()
 if(NOT SM_WITH_TOP)
   return()
 endif()

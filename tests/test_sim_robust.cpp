@@ -131,7 +131,7 @@ TEST_CASE("--vcd where no file can be created: refused before the run with the r
   CHECK(r.err.find("without tracing") == std::string::npos);
   CHECK(s < 30);  // refused, not simulated (a generous bound: the run itself takes well under a second here)
   expect_refused(sim("wave_proc", "--vcd /proc/x.vcd --vcd-frame 3 --frames 4"),
-                 {"--wave /proc/x.vcd", "cannot create"});
+                 {"--wave /proc/x.vcd", "cannot write"});
 }
 
 TEST_CASE("--disp-file naming another output of the run: refused", "[name_clash]") {
@@ -139,8 +139,20 @@ TEST_CASE("--disp-file naming another output of the run: refused", "[name_clash]
     const fs::path out = kTmp / "clash";
     fs::remove_all(out);
     const auto r = sm::test::run_sim(SM_STEREO_SIM_SMALL, kTmp, "clash", "--disp-file " + q(out / name));
-    expect_refused(r, {"--disp-file", name, "the same file as"});
+    expect_refused(r, {"--disp-file", name, "same file as --out"});
   }
+}
+
+TEST_CASE("an output naming an input or another output: refused, the input intact", "[name_clash]") {
+  const fs::path sc = make_scene("clash_scene", true, true);
+  const auto size = fs::file_size(sc / "left.png");
+  expect_refused(sim("clash_input", "--scene " + q(sc) + " --disp-file " + q(sc / "left.png")),
+                 {"--disp-file", "same file as the input --scene", "left.png"});
+  expect_refused(sim("clash_depth_input", "--scene " + q(sc) + " --depth-file " + q(sc / "gt.png")),
+                 {"--depth-file", "same file as the input --scene", "gt.png"});
+  CHECK(fs::file_size(sc / "left.png") == size);
+  const fs::path out = kTmp / "clash_view";
+  expect_refused(sim("clash_view", "--cloud-view " + q(out / "panel.png")), {"--cloud-view", "same file as --out"});
 }
 
 TEST_CASE("inputs that exclude each other, options that do not apply: refused", "[exclusive]") {
@@ -193,6 +205,11 @@ TEST_CASE("--regs, --calib, --regs-at naming a folder or nothing: the path and t
   expect_refused(sim("dir_regs_calib", "--regs " + q(regs)), {regs.string(), "'calib'", "is a directory"});
   expect_refused(sim("missing_left", "--left " + q(kTmp / "nope_l.png") + " --right " + q(kTmp / "nope_r.png")),
                  {"--left", "nope_l.png", "no such file"});
+  // a sequence pair of two sizes, as --left/--right of two sizes
+  const fs::path seq = sm::test::fresh_dir(kTmp / "seq_sizes");
+  cv::imwrite((seq / "left1.png").string(), cv::Mat(48, 64, CV_8UC1, cv::Scalar(90)));
+  cv::imwrite((seq / "right1.png").string(), cv::Mat(20, 20, CV_8UC1, cv::Scalar(90)));
+  expect_refused(sim("seq_sizes_run", "--sequence " + q(seq)), {"left1.png", "64x48 does not match", "right1.png"});
 }
 
 TEST_CASE("calibration files: unknown keys and a rig wider than the IP's RECT_RADIUS", "[calib]") {

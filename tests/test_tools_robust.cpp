@@ -16,6 +16,7 @@
 
 #include "toolio/sm_scenegen.hpp"
 #include "sm_cmd.hpp"
+#include "sm_tool_expect.hpp"
 #include "sm_test_util.hpp"
 
 namespace fs = std::filesystem;
@@ -28,20 +29,8 @@ fs::path root() { return fs::path(SM_TEST_TMP) / "robust"; }
 
 Run run(const std::string& exe, const std::string& args) { return sm::test::run_cmd(exe, args, root()); }
 
-// Exit code `rc`, exactly one line on stderr: "<tool>: error: " followed by text holding `what`.
-void expect_error(const Run& r, int rc, const std::string& tool, const std::string& what) {
-  INFO("stderr: " << r.err);
-  CHECK(r.rc == rc);
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  CHECK(r.err.rfind(tool + ": error: ", 0) == 0);
-  CHECK(r.err.find(what) != std::string::npos);
-}
-
-// The folder holds nothing (no output, no temporary, no folder), or does not exist.
-void expect_empty(const fs::path& dir) {
-  if (!fs::exists(dir)) return;
-  for (const auto& e : fs::directory_iterator(dir)) FAIL("left behind: " << e.path());
-}
+using sm::test::expect_empty;
+using sm::test::expect_error;
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p.string(), std::ios::binary) << text; }
 
@@ -149,6 +138,8 @@ TEST_CASE("outputs that cannot be written are refused before any work", "[robust
   expect_error(run(SM_STEREO_MODEL_EXE, fx.pair() + " -o " + fx.out.string()), 1, "stereo_model",
                "cannot write: is a folder");
   expect_error(run(SM_SCENE_EXE, "--out " + file + "/s"), 1, "sm_scene", "--out " + file + "/s: cannot write");
+  // a folder still to be made is named, not only the ancestor that refuses it
+  expect_error(run(SM_SCENE_EXE, "--out /proc/sm_no/s"), 1, "sm_scene", "cannot create /proc/sm_no/s in /proc");
   // sm_coverage: an unwritable second output, or a bad input, leaves no first output either
   const std::string dat = fx.file("c.dat", "# SystemC::Coverage-3\n");
   expect_error(run(SM_COVERAGE_EXE, dat + " --json " + fx.o("c.json") + " --line-dat " + nodir), 1, "sm_coverage",
@@ -168,6 +159,16 @@ TEST_CASE("two outputs naming the same file", "[robust][tools]") {
   expect_error(run(SM_STEREO_MODEL_EXE, fx.pair() + " --disp-file " + fx.o("d.png") + " --objects-json " +
                                             (fx.out / "." / "d.png").string()),
                1, "stereo_model", "same file as --disp-file");
+  // an output that would replace an input
+  const std::string left = (fx.scene / "left.png").string();
+  const auto size = fs::file_size(left);
+  expect_error(run(SM_STEREO_MODEL_EXE, fx.pair() + " -o " + left), 1, "stereo_model",
+               "-o " + left + ": same file as the input left " + left);
+  CHECK(fs::file_size(left) == size);
+  // a results file and a pictures folder of one name
+  expect_error(run(SM_EVALUATE_EXE,
+                   fx.scene.string() + " --levels 0 --methods bm --json " + fx.o("r") + " --disp-images " + fx.o("r")),
+               1, "sm_evaluate", "--disp-images " + fx.o("r") + ": same path as --json");
   expect_empty(fx.out);
 }
 
@@ -193,6 +194,32 @@ TEST_CASE("numbers on the command line: non-finite, out of range, not a number",
   expect_error(
       run(SM_SYNTH_REPORT_EXE, "report --stat x --top t --family f --config c -o " + fx.o("r.json") + " --seconds inf"),
       2, "sm_synth_report", "--seconds: inf: not a finite number");
+  // range checks made after the parse exit as the parser's do
+  expect_error(run(SM_STEREO_MODEL_EXE, fx.pair() + " --threads 0 -o " + fx.o("d.png")), 2, "stereo_model",
+               "--threads: 0: outside 1..256");
+  expect_error(run(SM_EVALUATE_EXE, fx.scene.string() + " --threads 300"), 2, "sm_evaluate",
+               "--threads: 300: outside 1..256");
+  expect_error(run(SM_EVALUATE_EXE, fx.scene.string() + " --levels 7"), 2, "sm_evaluate", "--levels 7: must be");
+  expect_error(run(SM_EVALUATE_EXE, fx.scene.string() + " --peer-levels 17"), 2, "sm_evaluate",
+               "--peer-levels 17: must be");
+  expect_error(run(SM_EVALUATE_EXE, "--synthetic 1 --synthetic-size 40x30"), 2, "sm_evaluate",
+               "--synthetic-size 40x30: 128 levels need at least 67 columns");
+  expect_empty(fx.out);
+}
+
+TEST_CASE("bench_scale_dataset: all scenes or none", "[robust][tools]") {
+  Fx fx;
+  const fs::path ds = fx.dir / "ds";
+  fs::create_directories(ds);
+  fs::copy(fx.scene, ds / "a");
+  fs::copy(fx.scene, ds / "b");
+  cv::imwrite((ds / "b" / "right.png").string(), cv::Mat(20, 20, CV_8UC1, cv::Scalar(9)));  // the second is bad
+  expect_error(run(SM_SCALE_DATASET_EXE, ds.string() + " --width 32 --height 24 --out " + fx.o("s")), 1,
+               "bench_scale_dataset", "ds/b: left 64x48 and right 20x20 differ in size");
+  expect_error(run(SM_SCALE_DATASET_EXE, ds.string() + " --out /proc/sm_no"), 1, "bench_scale_dataset",
+               "--out /proc/sm_no: cannot write: cannot create /proc/sm_no in /proc");
+  expect_error(run(SM_SCALE_DATASET_EXE, ds.string() + " --out o --width 4096"), 2, "bench_scale_dataset",
+               "--width: 4096: outside 16..4095");
   expect_empty(fx.out);
 }
 
@@ -357,7 +384,7 @@ TEST_CASE("sm_output_study: refused before any work", "[robust][tools]") {
   expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --scenes nosuch"), 1, "sm_output_study",
                "--scenes: nosuch: not a scene of");
   expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --study foo"), 2, "sm_output_study", "--study: foo");
-  expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --levels 7"), 1, "sm_output_study",
+  expect_error(run(SM_OUTPUT_STUDY_EXE, fx.scene.string() + " --levels 7"), 2, "sm_output_study",
                "--levels 7: must be 0 (per scene) or even, 4..254");
   expect_empty(fx.out);
 }

@@ -31,9 +31,9 @@ if(TARGET sm_toolio AND TARGET stereo_model AND TARGET sm_evaluate AND TARGET sm
     SM_SCENE_EXE="$<TARGET_FILE:sm_scene>" SM_STEREO_MODEL_EXE="$<TARGET_FILE:stereo_model>"
     SM_EVALUATE_EXE="$<TARGET_FILE:sm_evaluate>" SM_SYNTH_REPORT_EXE="$<TARGET_FILE:sm_synth_report>"
     SM_COVERAGE_EXE="$<TARGET_FILE:sm_coverage>" SM_REGMAP_GEN_EXE="$<TARGET_FILE:sm_regmap_gen>"
-    SM_OUTPUT_STUDY_EXE="$<TARGET_FILE:sm_output_study>")
+    SM_OUTPUT_STUDY_EXE="$<TARGET_FILE:sm_output_study>" SM_SCALE_DATASET_EXE="$<TARGET_FILE:bench_scale_dataset>")
   add_test(NAME test_tools_robust COMMAND test_tools_robust)
   set_tests_properties(test_tools_robust PROPERTIES LABELS "robust")
   add_dependencies(test_tools_robust sm_scene stereo_model sm_evaluate sm_synth_report sm_coverage sm_regmap_gen
-                   sm_output_study)
+                   sm_output_study bench_scale_dataset)  # bench/ is added after tests/: no TARGET check
 endif()

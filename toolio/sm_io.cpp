@@ -1,5 +1,7 @@
 #include "sm_io.hpp"
 
+#include "sm_cli.hpp"
+
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -53,7 +55,8 @@ StderrMute::~StderrMute() {
 void check_levels(const char* option, int levels, bool per_scene) {
   if (per_scene && levels == 0) return;
   if (levels < 4 || levels > 254 || levels % 2)
-    throw ToolError(fmt::format("{} {}: must be {}even, 4..254", option, levels, per_scene ? "0 (per scene) or " : ""));
+    throw UsageError(
+        fmt::format("{} {}: must be {}even, 4..254", option, levels, per_scene ? "0 (per scene) or " : ""));
 }
 
 namespace {

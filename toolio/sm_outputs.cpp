@@ -22,6 +22,7 @@ namespace {
 // probe file is created and removed again (access() would let root pass a read-only folder).
 std::string probe_folder(const fs::path& dir) {
   const fs::path probe = dir / fmt::format(".sm_probe{}", getpid());
+  const RemoveOnSignal on_signal(probe.string());  // a signal between open and unlink
   const int fd = open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0) return fmt::format("{}: {}", dir.string(), std::strerror(errno));
   close(fd);
@@ -33,11 +34,14 @@ std::string probe_folder(const fs::path& dir) {
 std::string folder_problem(fs::path dir, bool create) {
   std::error_code ec;
   if (dir.empty()) dir = ".";
+  const fs::path wanted = dir;
   if (!create && !fs::exists(dir, ec)) return fmt::format("folder {} does not exist", dir.string());
   while (create && !fs::exists(dir, ec) && dir.has_parent_path() && dir.parent_path() != dir) dir = dir.parent_path();
   if (!fs::exists(dir, ec)) dir = ".";
   if (!fs::is_directory(dir, ec)) return fmt::format("{} is not a folder", dir.string());
-  return probe_folder(dir);
+  const std::string why = probe_folder(dir);
+  // a folder still to be created: name it, not only the ancestor the probe ran in
+  return why.empty() || dir == wanted ? why : fmt::format("cannot create {} in {}", wanted.string(), why);
 }
 
 // Why file `path` cannot be written, or "".
@@ -50,26 +54,40 @@ std::string output_problem(const std::string& path, bool create_parent) {
 
 }  // namespace
 
-void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs, bool create_parent) {
+namespace {
+
+fs::path absolute_path(const std::string& path) {
+  std::error_code ec;
+  return fs::weakly_canonical(fs::absolute(path), ec);
+}
+
+}  // namespace
+
+void check_outputs(const PathList& outputs, bool create_parent, const PathList& inputs) {
   std::vector<std::pair<std::string, fs::path>> seen;  // option, absolute path
   for (const auto& [opt, path] : outputs) {
     if (path.empty()) continue;
     const std::string why = output_problem(path, create_parent);
     if (!why.empty()) throw ToolError(fmt::format("{} {}: cannot write: {}", opt, path, why));
-    std::error_code ec;
-    const fs::path abs = fs::weakly_canonical(fs::absolute(path), ec);
+    const fs::path abs = absolute_path(path);
     for (const auto& [o, a] : seen)
       if (a == abs) throw ToolError(fmt::format("{} {}: same file as {}", opt, path, o));
+    for (const auto& [o, in] : inputs)
+      if (!in.empty() && absolute_path(in) == abs)
+        throw ToolError(fmt::format("{} {}: same file as the input {} {}", opt, path, o, in));
     seen.emplace_back(opt, abs);
   }
 }
 
-void check_output_folder(const std::string& option, const std::string& dir) {
+void check_output_folder(const std::string& option, const std::string& dir, const PathList& files) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw ToolError(fmt::format("{} {}: cannot write: not a folder", option, dir));
   const std::string why = folder_problem(dir, true);
   if (!why.empty()) throw ToolError(fmt::format("{} {}: cannot write: {}", option, dir, why));
+  for (const auto& [o, f] : files)
+    if (!f.empty() && absolute_path(f) == absolute_path(dir))
+      throw ToolError(fmt::format("{} {}: same path as {}", option, dir, o));
 }
 
 OutputSet::~OutputSet() {

@@ -18,11 +18,15 @@ namespace sm::tools {
 // removed), and no two outputs may name the same file. Throws ToolError
 // "<option> <path>: cannot write: <reason>" (reason: "folder nodir does not exist",
 // "ro: Permission denied", "is a folder", "f is not a folder") or
-// "<option> <path>: same file as <other option>".
-void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs, bool create_parent = false);
+// "<option> <path>: same file as <other option>". No output may name one of `inputs`, the
+// files the tool reads as (option, path): "<option> <path>: same file as the input
+// <input option> <input path>".
+using PathList = std::vector<std::pair<std::string, std::string>>;
+void check_outputs(const PathList& outputs, bool create_parent = false, const PathList& inputs = {});
 // The same for an output folder (created by the tool when missing): it, or its nearest
-// existing ancestor, is a folder that accepts a new file.
-void check_output_folder(const std::string& option, const std::string& dir);
+// existing ancestor, is a folder that accepts a new file, and it is not one of the tool's
+// output `files` (option, path): "<option> <dir>: same path as <file option>".
+void check_output_folder(const std::string& option, const std::string& dir, const PathList& files = {});
 
 class OutputSet {
  public:

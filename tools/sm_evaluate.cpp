@@ -330,6 +330,24 @@ std::pair<int, int> synthetic_size(const std::string& text) {
   throw ToolError(fmt::format("--synthetic-size {}: expected WxH, each 16..4095", text));
 }
 
+// The synthetic scenes' size and levels, checked before any work in the options' terms
+// (the model needs levels / 2 + 3 columns; the generator's own limits, as it says them).
+void check_synthetic_fits(const std::string& text, int w, int h, int levels) {
+  if (w < levels / 2 + 3)
+    throw sm::tools::UsageError(fmt::format("--synthetic-size {}: {} levels need at least {} columns (levels / 2 + 3)",
+                                            text, levels, levels / 2 + 3));
+  sm::tools::SceneParams p;
+  p.width = w;
+  p.height = h;
+  p.levels = levels;
+  p.seed = 1;
+  try {
+    sm::tools::render_scene(p);
+  } catch (const std::invalid_argument& e) {
+    throw sm::tools::UsageError(fmt::format("--synthetic-size {} at {} levels: {}", text, levels, e.what()));
+  }
+}
+
 // The files named on the command line, checked before any work: the register file reads
 // and applies (its keys and ranges), the outputs can be written (the --disp-images folder
 // is created when the outputs are committed).
@@ -344,7 +362,7 @@ void check_files(const std::string& regs_file, int levels, const std::string& js
     sm::tools::apply_regs_json(regs_file, hw, r);
   }
   sm::tools::check_outputs({{"--json", json_path}});
-  if (!disp_dir.empty()) sm::tools::check_output_folder("--disp-images", disp_dir);
+  if (!disp_dir.empty()) sm::tools::check_output_folder("--disp-images", disp_dir, {{"--json", json_path}});
 }
 
 int run(int argc, char** argv) {
@@ -409,6 +427,7 @@ int run(int argc, char** argv) {
                  "reset into its speckle mode: SPECKLE_EN 1, LR_EN 0, AGREE_EN 0")
       ->check(sm::tools::int_in(sm::defs::limit("SPECKLE_ROWS").min, sm::defs::limit("SPECKLE_ROWS").max));
   app.add_option("--threads", model_threads, "model: threads, 1..256 (same output for any count; OpenCV stays on one)")
+      ->check(sm::tools::int_in(1, 256))
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress lines");
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
@@ -417,13 +436,10 @@ int run(int argc, char** argv) {
   sm::tools::quiet_opencv();
   cv::setNumThreads(1);
   if (peer_levels != 0 && (peer_levels < 16 || peer_levels > 256 || peer_levels % 16))
-    throw ToolError(fmt::format("--peer-levels {}: must be 0 or a multiple of 16, 16..256", peer_levels));
+    throw sm::tools::UsageError(fmt::format("--peer-levels {}: must be 0 or a multiple of 16, 16..256", peer_levels));
   if (streak_rows.empty()) throw ToolError("--streak-rows: empty");
   if (!results_dir.empty() && !fs::is_directory(results_dir))
     throw ToolError(fmt::format("{}: not a directory", results_dir));
-
-  if (model_threads < 1 || model_threads > 256)
-    throw ToolError(fmt::format("--threads {}: must be 1..256", model_threads));
   std::vector<Method> methods;
   {
     const bool occ_given = app.count("--occ") > 0;
@@ -451,6 +467,7 @@ int run(int argc, char** argv) {
   if (synthetic > 0) {
     const auto [w, h] = synthetic_size(synth_size);
     const int lv = levels ? levels : 128;
+    check_synthetic_fits(synth_size, w, h, lv);
     for (int seed = 1; seed <= synthetic; ++seed) {
       names.push_back(fmt::format("synthetic{}", seed));
       loaders.push_back([=]() {

@@ -128,13 +128,14 @@ Row score(const std::vector<Frame>& fr, const OutputRegs& r, int conf_variant, b
   }
   const double n = static_cast<double>(fr.size());
   for (double* v : {&m.b05, &m.b1, &m.b2, &m.mae, &m.dens, &m.b1v, &m.auc, &m.oauc, &m.ratio}) *v /= n;
-  m.b1_classic /= std::max(1, nc);
+  m.b1_classic = nc ? m.b1_classic / nc : std::nan("");  // no classic scene: printed "-"
   return m;
 }
 
 void print_row(const std::string& name, const Row& m, bool sparsify) {
-  fmt::print("| {:<44} | {:6.2f} | {:6.2f} | {:6.2f} | {:5.3f} | {:6.2f} | {:6.2f} | {:6.2f} |", name, m.b05, m.b1,
-             m.b2, m.mae, m.b1_classic, m.dens, m.b1v);
+  const std::string cl4 = std::isnan(m.b1_classic) ? "-" : fmt::format("{:.2f}", m.b1_classic);
+  fmt::print("| {:<44} | {:6.2f} | {:6.2f} | {:6.2f} | {:5.3f} | {:>6} | {:6.2f} | {:6.2f} |", name, m.b05, m.b1, m.b2,
+             m.mae, cl4, m.dens, m.b1v);
   if (sparsify) fmt::print(" {:6.3f} | {:6.3f} | {:5.2f} | {:5.2f} |", m.auc, m.oauc, m.auc / m.oauc, m.ratio);
   fmt::print("\n");
 }

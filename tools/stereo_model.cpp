@@ -47,9 +47,10 @@ using sm::tools::ToolError;
 using json = nlohmann::json;
 
 // The outputs, checked before any work: at least one, --disp-file .pfm or .png, every one
-// writable, no two the same file. Sets the default --colour (<out>_colour.png with -o).
+// writable, no two the same file, none an input. Sets the default --colour (<out>_colour.png with -o).
 void check_outputs(const std::string& out, std::string& colour, const std::string& disp_file,
-                   const std::string& objects_json, const std::string& conf_png, const sm::tools::DepthOptions& depth) {
+                   const std::string& objects_json, const std::string& conf_png, const sm::tools::DepthOptions& depth,
+                   const sm::tools::PathList& inputs) {
   if (out.empty() && colour.empty() && disp_file.empty() && objects_json.empty() && conf_png.empty() && !depth.any())
     throw ToolError("no output: give -o, --colour, --disp-file, --objects-json, --depth-file and/or --cloud");
   if (!disp_file.empty()) {
@@ -68,7 +69,8 @@ void check_outputs(const std::string& out, std::string& colour, const std::strin
                             {"--confidence", conf_png},
                             {"--depth-file", depth.depth_file},
                             {"--cloud", depth.cloud},
-                            {"--cloud-view", depth.cloud_view}});
+                            {"--cloud-view", depth.cloud_view}},
+                           false, inputs);
 }
 
 // The input images resized to the register file's active size (as stereo_sim resizes
@@ -159,6 +161,7 @@ int run(int argc, char** argv) {
                     ->check(sm::tools::int_in(0, 3))
                     ->default_str(fmt::format("{}", fmt::join(sw_table, ",")));
   app.add_option("--threads", threads, "threads of the model, 1..256 (same output for any count)")
+      ->check(sm::tools::int_in(1, 256))
       ->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "print per-stage timing");
   sm::tools::DepthOptions depth;
@@ -166,9 +169,9 @@ int run(int argc, char** argv) {
   sm::tools::HostSpeckleOptions speckle;
   speckle.add(app);
   if (const auto rc = sm::tools::parse_args(app, argc, argv)) return *rc;
-  if (threads < 1 || threads > 256) throw ToolError(fmt::format("--threads {}: must be 1..256", threads));
 
-  check_outputs(out, colour, disp_file, objects_json, conf_png, depth);
+  check_outputs(out, colour, disp_file, objects_json, conf_png, depth,
+                {{"left", left}, {"right", right}, {"--regs", regs_json}, {"--calib", calib}});
   if (!regs_json.empty()) sm::tools::check_input_file(regs_json);
   if (!calib.empty()) sm::tools::check_input_file(calib);
   if (mode != "integer" && stage == "dp")

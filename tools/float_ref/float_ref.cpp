@@ -32,12 +32,14 @@ bool* field(Simplify& s, size_t i) {
 }  // namespace
 
 Simplify parse_simplify(const std::string& list) {
+  if (("," + list + ",").find(",,") != std::string::npos)
+    throw std::invalid_argument(fmt::format("--simplify: '{}': an empty item in a ','-separated list", list));
   Simplify s;
   std::stringstream ss(list);
   std::string item;
   const auto& names = simplify_names();
   while (std::getline(ss, item, ',')) {
-    if (item.empty() || item == "none") continue;
+    if (item == "none") continue;
     if (item == "all") {
       s = Simplify::all();
       continue;

@@ -46,7 +46,7 @@ struct Simplify {
 // Names of the switches, in the order of Simplify, for the command line and reports.
 const std::vector<std::string>& simplify_names();
 // "a,b,c" of simplify_names() entries, "all" or "none" (combinations add up). Throws
-// std::invalid_argument naming an unknown entry.
+// std::invalid_argument naming an unknown entry or an empty item ("a,,b", "a,", "").
 Simplify parse_simplify(const std::string& list);
 std::string simplify_string(const Simplify& s);  // "none" or the names that are on
 
