@@ -298,30 +298,6 @@ void print_check(const SimOptions& opt, const RegisterPlan& plan, const SimResul
                res.host_errors.empty() ? "" : "; " + res.host_errors.front());
 }
 
-void print_objects(const SimRun& run, const ModelCheck& check, const std::vector<ObjectPacket>& packets) {
-  fmt::print("  objects (from m_axis_obj):\n");
-  for (size_t f = 0; f < run.host.size(); ++f) {
-    std::string changed;
-    for (const auto& c : run.host[f].changed) changed += (changed.empty() ? "" : ",") + c;
-    if (f >= packets.size()) {
-      fmt::print("    frame {}: no packet\n", check.first + f);
-      continue;
-    }
-    const ObjectPacket& p = packets[f];
-    fmt::print("    frame {}: {} object(s){}{}{}{}{}{}\n", check.first + f, p.objects.size(),
-               p.too_many ? ", TOO-MANY" : "", p.table_full ? ", TABLE-FULL" : "",
-               p.lost ? ", LOST (a packet before was dropped)" : "", p.valid ? "" : ", MALFORMED packet",
-               !check.done || check.frame_mismatches[f] == 0 ? "" : ", differs from model",
-               changed.empty() ? "" : "  [changed: " + changed + "]");
-    for (size_t i = 0; i < p.objects.size(); ++i) {
-      const Object& o = p.objects[i];
-      fmt::print("      #{} x {}..{} y {}..{}  {} px  mean d {}  nearest d {}\n", i, o.x0, o.x1, o.y0, o.y1, o.count,
-                 o.mean_disp, o.max_disp);
-    }
-    for (const std::string& n : p.notes) fmt::print("      {}\n", n);
-  }
-}
-
 }  // namespace
 
 void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
@@ -333,7 +309,7 @@ void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in,
   fmt::print("  input: {}\n", in.source->note());
   print_figures(opt, hw, run, rep.fig);
   print_check(opt, plan, run.out.res, check);
-  print_objects(run, check, rep.packets);
+  print_objects(j["frame_results"]);
   fmt::print("  status read back over AXI4-Lite:\n");
   for (const auto& l : rep.status_lines) fmt::print("    {}\n", l);
   fmt::print("  last frame: {}\n", invalid_line(j["invalid"]));
@@ -350,6 +326,32 @@ void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in,
   fmt::print("  simulation: {:.2f} s wall, {:.2f} frames/s, {:.0f} cycles/s\n", wall, nframes / wall,
              run.out.res.cycles / wall);
   fmt::print("  outputs in {}/ (lossless disparity: {})\n", opt.out_dir, opt.disp_file);
+}
+
+void print_objects(const json& frame_results) {
+  fmt::print("  objects (from m_axis_obj):\n");
+  for (const auto& fr : frame_results) {
+    std::string changed;
+    for (const auto& c : fr["changed"]) changed += (changed.empty() ? "" : ",") + c.get<std::string>();
+    const json& p = fr["object_packet"];
+    if (p.is_null()) {
+      fmt::print("    frame {}: no packet\n", fr["frame"].get<size_t>());
+      continue;
+    }
+    fmt::print("    frame {}: {} object(s){}{}{}{}{}{}\n", fr["frame"].get<size_t>(), p["objects"].size(),
+               p["too_many"].get<bool>() ? ", TOO-MANY" : "", p["table_full"].get<bool>() ? ", TABLE-FULL" : "",
+               p["lost"].get<bool>() ? ", LOST (a packet before was dropped)" : "",
+               p["valid"].get<bool>() ? "" : ", MALFORMED packet",
+               fr.value("bit_exact", true) ? "" : ", differs from model",
+               changed.empty() ? "" : "  [changed: " + changed + "]");
+    for (size_t i = 0; i < p["objects"].size(); ++i) {
+      const json& o = p["objects"][i];
+      fmt::print("      #{} x {}..{} y {}..{}  {} px  mean d {}  nearest d {}\n", i, o["x0"].get<int>(),
+                 o["x1"].get<int>(), o["y0"].get<int>(), o["y1"].get<int>(), o["pixels"].get<int64_t>(),
+                 o["mean_disp"].get<int>(), o["nearest_disp"].get<int>());
+    }
+    for (const auto& n : p["notes"]) fmt::print("      {}\n", n.get<std::string>());
+  }
 }
 
 int report_exit_code(const SimOptions& opt, const SimRun& run, const ModelCheck& check, const SimReport& rep) {

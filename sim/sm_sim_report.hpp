@@ -54,6 +54,10 @@ std::string invalid_line(const nlohmann::json& invalid);
 SimReport make_report(const SimOptions& opt, const ModelInfo& info, const SimInput& in, const RegisterPlan& plan,
                       const SimRun& run, const ModelCheck& check, const cv::Mat& disp);
 
+// The objects of report.json's frame_results, each frame's packet and boxes, what the
+// host changed for it (the serial report and the merged one).
+void print_objects(const nlohmann::json& frame_results);
+
 void print_report(const SimOptions& opt, const HwConfig& hw, const SimInput& in, const RegisterPlan& plan,
                   const SimRun& run, const ModelCheck& check, const SimReport& rep);
 

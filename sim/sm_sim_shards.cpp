@@ -104,8 +104,36 @@ void start_shard(const SimOptions& opt, const HwConfig& hw, RegisterPlan& plan, 
   in.source->skip(first);
 }
 
-void add_shard_info(const SimOptions& opt, const SimInput& in, json& rep) {
-  rep["shard"] = {{"first", in.first},
+namespace {
+
+// The options a shard sets for itself: each is followed by its value.
+const std::vector<std::string> kShardOwn = {"--jobs", "--out", "--disp-file", "--frame-range"};
+
+// The run's command line without the program, -q and the options a shard sets for itself:
+// the same for every shard of one run.
+std::vector<std::string> run_args(const std::vector<std::string>& argv) {
+  std::vector<std::string> a;
+  for (size_t i = 1; i < argv.size(); ++i) {
+    const std::string& t = argv[i];
+    if (t == "-q" || t == "--quiet") continue;
+    if (std::find(kShardOwn.begin(), kShardOwn.end(), t) != kShardOwn.end()) {
+      ++i;
+      continue;
+    }
+    if (std::none_of(kShardOwn.begin(), kShardOwn.end(),
+                     [&](const std::string& d) { return t.rfind(d + "=", 0) == 0; }))
+      a.push_back(t);
+  }
+  return a;
+}
+
+}  // namespace
+
+void add_shard_info(const SimOptions& opt, const SimInput& in, const std::vector<std::string>& status_lines,
+                    json& rep) {
+  rep["shard"] = {{"run", run_args(opt.shard.argv)},
+                  {"status_lines", status_lines},
+                  {"first", in.first},
                   {"count", in.nframes},
                   {"total", in.total},
                   {"disparity_name", fs::path(opt.disp_file).filename().string()},
@@ -139,20 +167,7 @@ std::vector<Shard> split(size_t nframes, int jobs, const std::string& tmp) {
 
 // The command line of a shard: this run's, less --jobs, --out, --disp-file and -q.
 std::vector<std::string> shard_args(const SimOptions& opt, const Shard& s) {
-  static const std::vector<std::string> kDrop = {"--jobs", "--out", "--disp-file"};
-  std::vector<std::string> a;
-  const auto& in = opt.shard.argv;
-  for (size_t i = 1; i < in.size(); ++i) {
-    const std::string& t = in[i];
-    if (t == "-q" || t == "--quiet") continue;
-    if (std::find(kDrop.begin(), kDrop.end(), t) != kDrop.end()) {
-      ++i;
-      continue;
-    }
-    if (std::any_of(kDrop.begin(), kDrop.end(), [&](const std::string& d) { return t.rfind(d + "=", 0) == 0; }))
-      continue;
-    a.push_back(t);
-  }
+  std::vector<std::string> a = run_args(opt.shard.argv);
   const std::string ext = fs::path(opt.disp_file).extension().string();
   for (const std::string& t : {std::string("--frame-range"), fmt::format("{}:{}", s.first, s.end), std::string("--out"),
                                s.dir, std::string("--disp-file"), s.dir + "/disparity" + ext, std::string("-q")})
@@ -301,6 +316,15 @@ std::vector<ShardReport> read_shards(const std::vector<std::string>& dirs) {
     }
     v.push_back(std::move(s));
   }
+  for (const auto& s : v) {
+    if (!s.rep["shard"].contains("run"))
+      fail(fmt::format("{}/report.json: no 'shard.run' (a shard of an older stereo_sim: run it again)", s.dir));
+    if (s.rep["shard"]["run"] != v.front().rep["shard"]["run"])
+      fail(
+          fmt::format("{}: a shard of another run (its command line, less the shard's own options, differs from "
+                      "{}'s)",
+                      s.dir, v.front().dir));
+  }
   std::sort(v.begin(), v.end(), [](const ShardReport& a, const ShardReport& b) { return a.first < b.first; });
   size_t next = 0;
   for (const auto& s : v) {
@@ -405,6 +429,10 @@ json merge_reports(const std::vector<ShardReport>& v, const std::string& disp_fi
   merge_schedule(v, m);
   const json& last = v.back().rep;
   m["status"] = last["status"];
+  m["status_note"] = fmt::format(
+      "read back after the last shard, which ran frames {}..{} from its own reset: counters such as "
+      "STATUS.FRAME_COUNT count those {} frames, not the run's {}",
+      v.back().first, v.back().first + v.back().count - 1, v.back().count, v.front().total);
   for (const char* k : {"bad1_percent", "ground_truth", "invalid"}) {
     m.erase(k);
     if (last.contains(k)) m[k] = last[k];
@@ -416,15 +444,18 @@ json merge_reports(const std::vector<ShardReport>& v, const std::string& disp_fi
                                              "the first of {} shards; the status is read back after the last",
                                              n0 - 1, v.size())}};
   merge_speed(v, wall, m);
-  if (v.size() > 1)
-    m["frame_cycles_note"] = fmt::format(
-        "frame_results' cycles of frames {}..{} are counted from their own shard's reset, not from frame 0's",
-        v[1].first, v.front().total - 1);
+  std::string starts;
+  for (const auto& s : v) starts += (starts.empty() ? "" : ", ") + std::to_string(s.first);
+  m["frame_cycles_note"] = fmt::format(
+      "frame_results' cycles are counted from each shard's own reset (shards from frames {}), after the register "
+      "writes of that reset, so they differ from a serial run's by a few cycles or by whole frames; the intervals "
+      "within a frame (latency, sof to last pixel out) do not",
+      starts);
   m["disparity_file"] = disp_file;
   return m;
 }
 
-void print_merged(const json& m, const std::string& out_dir) {
+void print_merged(const json& m, const json& status_lines, const std::string& out_dir) {
   const json& c = m["config"];
   fmt::print("stereo_sim: {} frame(s) of {}x{}, DISP {}, census {}x{}, SW {}x{}, in {} shards\n",
              m["frames"].get<size_t>(), c.value("width", 0), c.value("height", 0), c.value("disp", 0),
@@ -448,13 +479,9 @@ void print_merged(const json& m, const std::string& out_dir) {
     fmt::print("  register schedule: {} file(s), {} AXI4-Lite writes while streaming{}\n", rs["files"].size(),
                rs["axi_writes"].get<uint64_t>(),
                rs.contains("errors") ? "; " + rs["errors"][0].get<std::string>() : "");
-  fmt::print("  objects (from m_axis_obj):\n");
-  for (const auto& fr : m["frame_results"]) {
-    const json& p = fr["object_packet"];
-    fmt::print("    frame {}: {}{}\n", fr["frame"].get<size_t>(),
-               p.is_null() ? "no packet" : fmt::format("{} object(s)", p.value("count", 0)),
-               fr.value("bit_exact", true) ? "" : ", differs from model");
-  }
+  print_objects(m["frame_results"]);
+  fmt::print("  status read back over AXI4-Lite ({}):\n", m["status_note"].get<std::string>());
+  for (const auto& l : status_lines) fmt::print("    {}\n", l.get<std::string>());
   if (m.contains("invalid")) fmt::print("  last frame: {}\n", invalid_line(m["invalid"]));
   if (m.contains("bad1_percent"))
     fmt::print("  bad-1.0 vs ground truth (last frame): {:.2f} %\n", m["bad1_percent"].get<double>());
@@ -468,6 +495,9 @@ void print_merged(const json& m, const std::string& out_dir) {
 int merge_shards(const std::vector<std::string>& dirs, const std::string& out_dir, std::string disp_file, bool quiet,
                  double wall) {
   const std::vector<ShardReport> v = read_shards(dirs);
+  for (const auto& s : v)
+    if (fs::weakly_canonical(fs::absolute(s.dir)) == fs::weakly_canonical(fs::absolute(out_dir)))
+      fail(fmt::format("--out {}: one of the shard folders being merged", out_dir));
   if (disp_file.empty())
     disp_file = out_dir + "/" + v.back().rep["shard"].value("disparity_name", std::string("disparity.pfm"));
   const Copies copies = output_files(v, out_dir, disp_file);
@@ -484,7 +514,7 @@ int merge_shards(const std::vector<std::string>& dirs, const std::string& out_di
   }
   tools::write_json_atomic(out_dir + "/report.json", m);
   (void)quiet;
-  print_merged(m, out_dir);
+  print_merged(m, v.back().rep["shard"].value("status_lines", json::array()), out_dir);
   const bool ok = (m["bit_exact"].is_null() || m["bit_exact"].get<bool>()) && m["framing_ok"].get<bool>() &&
                   m["register_schedule"]["ok"].get<bool>();
   // as a serial run: 3 when --core-mhz was given and the 30 frames/s verdict is NO

@@ -35,8 +35,11 @@ std::optional<int> check_shard_options(SimOptions& opt);
 // the whole run's schedule), the source moved to its first frame.
 void start_shard(const SimOptions& opt, const HwConfig& hw, RegisterPlan& plan, SimInput& in);
 
-// report.json's "shard" entry: the frames it holds, the whole run's, the disparity file.
-void add_shard_info(const SimOptions& opt, const SimInput& in, nlohmann::json& rep);
+// report.json's "shard" entry: the frames it holds, the whole run's, the disparity file,
+// the run's command line (the merge takes shards of one run only) and the status lines
+// read back at its end.
+void add_shard_info(const SimOptions& opt, const SimInput& in, const std::vector<std::string>& status_lines,
+                    nlohmann::json& rep);
 
 // The `shards` contiguous frame ranges of a run of `nframes` frames ("A:B", B exclusive).
 std::vector<std::string> shard_ranges(size_t nframes, int shards);

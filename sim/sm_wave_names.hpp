@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -96,6 +97,8 @@ inline std::vector<std::string> fst_signal_names(const std::string& path) {
 
 // The signal names of a .vcd or .fst file.
 inline std::vector<std::string> wave_signal_names(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(fmt::format("{}: is a directory", path));
   const std::string ext = wave_extension(path);
   if (ext == "vcd") return vcd_signal_names(path);
 #if VM_TRACE_FST

@@ -91,7 +91,7 @@ int run_stages(const ModelInfo& info, const RunFn& run_model, const WaveNamesFn&
   const cv::Mat disp = tools::out_to_float(run.last);
   SimReport rep = make_report(opt, info, in, plan, run, check, disp);
   add_calibration_report(cam, rep.json);
-  if (opt.shard.given) add_shard_info(opt, in, rep.json);
+  if (opt.shard.given) add_shard_info(opt, in, rep.status_lines, rep.json);
   write_outputs(opt, hw, in, plan, check, cam, disp, rep);
   print_report(opt, hw, in, plan, run, check, rep);
   if (!cam.note.empty()) fmt::print("calibration: {}\n", cam.note);

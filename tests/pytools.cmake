@@ -47,4 +47,12 @@ if(SM_WITH_TOP)
                    --stereo-sim $<TARGET_FILE:stereo_sim_small> --sm-scene $<TARGET_FILE:sm_scene>
                    --farm ${CMAKE_SOURCE_DIR}/tools/sm_farm.py --tmp ${CMAKE_CURRENT_BINARY_DIR}/sim_farm_tmp)
   set_tests_properties(system_sim_farm PROPERTIES LABELS "system" TIMEOUT 300)
+  # sm_farm.py's command line: an --out that is or holds an input, a bad --scheduler address
+  # and a register twice in --grid refused before any work; a used --out folder keeps its
+  # other files (a few seconds, one 4-frame run on a LocalCluster)
+  add_test(NAME system_sim_farm_cli
+           COMMAND ${SM_VENV}/bin/python ${CMAKE_SOURCE_DIR}/tests/sim_shards_check.py --mode farm-cli
+                   --stereo-sim $<TARGET_FILE:stereo_sim_small> --sm-scene $<TARGET_FILE:sm_scene>
+                   --farm ${CMAKE_SOURCE_DIR}/tools/sm_farm.py --tmp ${CMAKE_CURRENT_BINARY_DIR}/sim_farm_cli_tmp)
+  set_tests_properties(system_sim_farm_cli PROPERTIES LABELS "system" TIMEOUT 120)
 endif()

@@ -15,7 +15,7 @@ target_compile_definitions(test_sim_robust PRIVATE SM_TEST_TMP="${CMAKE_CURRENT_
                                                    SM_STEREO_SIM_SMALL_FOLD="$<TARGET_FILE:stereo_sim_small_fold>")
 add_dependencies(test_sim_robust stereo_sim_small stereo_sim_small_fold)
 foreach(class synth_json disp_file wave_path name_clash exclusive numbers scene input_files calib video resized_note
-              frame_period budget sigint)
+              frame_period budget sigint merge)
   # each class in its own temporary folder, so that the tests can run in parallel
   add_test(NAME robust_sim_${class} COMMAND test_sim_robust "[${class}]")
   set_tests_properties(robust_sim_${class} PROPERTIES LABELS "robust" TIMEOUT 300 ENVIRONMENT

@@ -13,15 +13,22 @@ sequence whose frame 9 cannot be read fails in the second shard with one error l
 non-zero exit and no merged output. --mode farm also kills the second shard's first
 stereo_sim (then, with --worker-processes, its worker process): the run is retried and
 equals the serial one; with --retries 0 it fails with one error line and no output, and
-no Dask log line follows a closed cluster.
+no Dask log line follows a closed cluster. --mode farm-cli checks sm_farm.py's command
+line on a 4-frame sequence: an --out that is or holds an input, a --scheduler address
+without a port or with one outside 1..65535 and a register given twice in --grid are each
+refused with one error line and exit 2 before any stereo_sim runs, the inputs untouched;
+a run into a folder holding other files keeps them and writes what stereo_sim --jobs 2
+writes there.
 """
 import argparse
 import filecmp
+import hashlib
 import json
 import os
 import shutil
 import subprocess
 import sys
+import time
 
 FAILS = []
 
@@ -135,6 +142,22 @@ def farm_scenes(o, tmp):
     check(p.returncode == 2 and len(lines) == 1 and "'occ' = 999" in lines[0],
           f"sm_farm.py sweep with occ=999: exit 2, one error line ({p.returncode}, {lines})")
     check(not os.path.exists(bad), "sm_farm.py sweep with occ=999: no output folder")
+    # a --regs after --: the base of every point, the grid's values on top
+    base = os.path.join(tmp, "base.json")
+    json.dump({"filter_enable": 5, "occ": 3}, open(base, "w"))
+    sw = os.path.join(tmp, "sweep_base")
+    run([sys.executable, o.farm, "--workers", "2", "-q", "sweep", ds, "--rtl", o.stereo_sim, "--grid", "occ=9",
+         "--out", sw, "--", "--regs", base])
+    point = json.load(open(os.path.join(sw, "summary.json")))["points"][0]
+    merged = os.path.join(tmp, "base_occ9.json")
+    json.dump({"filter_enable": 5, "occ": 9}, open(merged, "w"))
+    want = []
+    for name in ("plain", "many"):
+        d = os.path.join(tmp, f"direct_base_{name}")
+        run([o.stereo_sim, "--scene", os.path.join(ds, name), "--frames", "1", "-q", "--regs", merged, "--out", d])
+        want.append(json.load(open(os.path.join(d, "report.json")))["bad1_percent"])
+    check(point["rtl_bit_exact"] is True and abs(point["mean_bad1_percent"] - sum(want) / 2) < 1e-9,
+          f"sm_farm.py sweep on a --regs base: {point['mean_bad1_percent']} as stereo_sim with the merged file")
 
 
 def killing_sim(o, tmp, target):
@@ -211,16 +234,150 @@ def farm_late_logs(o):
           f"sm_farm.py: no Dask log line after its cluster closed ({p.returncode}, {p.stderr.strip()[:200]!r})")
 
 
+def tree(root):
+    """Every file and folder under `root`: relative path -> sha256 of its bytes (None: a folder)."""
+    t = {}
+    for d, dirs, names in os.walk(root):
+        for n in dirs:
+            t[os.path.relpath(os.path.join(d, n), root)] = None
+        for n in names:
+            with open(os.path.join(d, n), "rb") as f:
+                t[os.path.relpath(os.path.join(d, n), root)] = hashlib.sha256(f.read()).hexdigest()
+    return t
+
+
+def farm_refusals(o, tmp, inputs, seq, scene):
+    """Bad sm_farm.py command lines: exit 2 and one error line, before any work (no
+    stereo_sim run, not even --list-shards: a wrapper logs its runs) and with every
+    file under `inputs` as it was. `inputs` is made again before each case, so that each
+    checks its own refusal even where the tool destroyed them."""
+    log = os.path.join(tmp, "sim_runs.log")
+    sim = os.path.join(tmp, "logging_sim.sh")
+    with open(sim, "w") as f:
+        f.write(f'#!/bin/sh\necho "$@" >> "{log}"\nexec "{o.stereo_sim}" "$@"\n')
+    os.chmod(sim, 0o755)
+    regs = os.path.join(inputs, "notes", "regs.json")
+    ds = os.path.join(inputs, "dataset")
+    farm = [sys.executable, o.farm, "--workers", "2", "-q"]
+    shards = ["shards", "--stereo-sim", sim, "--shards", "2"]
+    cases = [
+        ("--out the --sequence folder (the audit's run: all inputs deleted)",
+         farm + shards + ["--out", seq, "--", "--sequence", seq], f"--out {seq}: is the input --sequence {seq}"),
+        ("--out the folder holding the --sequence folder",
+         farm + shards + ["--out", inputs, "--", f"--sequence={seq}"],
+         f"--out {inputs}: contains the input --sequence"),
+        ("--out holding a --regs-at file", farm + shards + ["--out", os.path.dirname(regs), "--", "--sequence", seq,
+                                                           "--regs-at", f"1={regs}", f"2={regs}"],
+         "contains the input --regs-at"),
+        ("--out the folder of --left/--right", farm + shards + ["--out", scene, "--", "--left",
+                                                               os.path.join(scene, "left.png"), "--right",
+                                                               os.path.join(scene, "right.png")],
+         f"--out {scene}: contains the input --left"),
+        ("accuracy, --out a scene of the dataset", farm + ["accuracy", ds, "--stereo-sim", sim, "--out",
+                                                          os.path.join(ds, "s1")], "is the input scene"),
+        ("--scheduler notanaddress", [sys.executable, o.farm, "--scheduler", "notanaddress", "-q"] + shards +
+         ["--out", os.path.join(tmp, "out_sched"), "--", "--sequence", seq], "--scheduler notanaddress: "),
+        ("--scheduler tcp://127.0.0.1:99999", [sys.executable, o.farm, "--scheduler", "tcp://127.0.0.1:99999", "-q"] +
+         shards + ["--out", os.path.join(tmp, "out_sched"), "--", "--sequence", seq],
+         "--scheduler tcp://127.0.0.1:99999: port 99999 is outside 1..65535"),
+        ("sweep --grid occ=8 --grid occ=11", farm + ["sweep", ds, "--rtl", sim, "--grid", "occ=8", "--grid", "occ=11",
+                                                    "--out", os.path.join(tmp, "out_sweep")],
+         "--grid occ=11: register occ given twice"),
+        ("sweep --grid OCC=8 --grid occ=11", farm + ["sweep", ds, "--rtl", sim, "--grid", "OCC=8", "--grid", "occ=11",
+                                                    "--out", os.path.join(tmp, "out_sweep")], "given twice"),
+    ]
+    pristine = inputs + ".pristine"
+    shutil.copytree(inputs, pristine)
+    for what, args, want in cases:
+        shutil.rmtree(inputs)
+        shutil.copytree(pristine, inputs)
+        before = tree(inputs)
+        t0 = time.monotonic()
+        p = subprocess.run(args, capture_output=True, text=True, timeout=120)
+        el = time.monotonic() - t0
+        lines = [ln for ln in p.stderr.splitlines() if ln.strip()]
+        check(p.returncode == 2 and len(lines) == 1 and lines[0].startswith("sm_farm: error: ") and want in lines[0]
+              and not p.stdout, f"sm_farm.py {what}: exit 2, one error line with '{want}' "
+              f"({p.returncode}, {lines[:3]}, stdout {p.stdout[:80]!r})")
+        check(el < 15, f"sm_farm.py {what}: refused at once ({el:.1f} s)")
+        check(not os.path.exists(log), f"sm_farm.py {what}: no stereo_sim run before the refusal")
+        check(tree(inputs) == before, f"sm_farm.py {what}: every input file and folder as it was")
+        check(not any(os.path.exists(os.path.join(tmp, n)) for n in ("out_sched", "out_sweep")),
+              f"sm_farm.py {what}: no output folder")
+        if os.path.exists(log):
+            os.remove(log)
+    shutil.rmtree(inputs)
+    shutil.copytree(pristine, inputs)
+
+
+def farm_out_kept(o, tmp, seq):
+    """sm_farm.py shards into a folder holding other files (notes, a subfolder, an old
+    run's report and per-frame disparity) against stereo_sim --jobs 2 into a copy of it:
+    the same files with the same bytes (report.json: the same per-frame results), the
+    other files kept."""
+    outs = {}
+    for name in ("jobs_out", "farm_out"):
+        d = os.path.join(tmp, name)
+        os.makedirs(os.path.join(d, "sub"))
+        for rel, text in (("notes.txt", "notes\n"), ("sub/keep.txt", "keep\n"), ("report.json", "{}\n"),
+                          ("disparity_009.pfm", "an old run's\n")):
+            with open(os.path.join(d, rel), "w") as f:
+                f.write(text)
+        outs[name] = d
+    args = ["--sequence", seq, "--disp-each-frame"]
+    run([o.stereo_sim, *args, "--jobs", "2", "--out", outs["jobs_out"], "-q"])
+    run([sys.executable, o.farm, "--workers", "2", "-q", "shards", "--stereo-sim", o.stereo_sim, "--shards", "2",
+         "--out", outs["farm_out"], "--", *args])
+    a, b = tree(outs["jobs_out"]), tree(outs["farm_out"])
+    check(sorted(a) == sorted(b), f"sm_farm.py shards into a used folder: the files of stereo_sim --jobs 2 "
+          f"({sorted(set(a) ^ set(b))} differ)")
+    for rel, text in (("notes.txt", "notes\n"), ("sub/keep.txt", "keep\n"), ("disparity_009.pfm", "an old run's\n")):
+        p = os.path.join(outs["farm_out"], rel)
+        check(os.path.isfile(p) and open(p).read() == text, f"sm_farm.py shards into a used folder: {rel} kept")
+    same = [r for r in a if r != "report.json" and a[r] is not None and a[r] == b.get(r)]
+    check(len(same) == len(a) - 2, f"sm_farm.py shards into a used folder: every output but report.json identical "
+          f"to stereo_sim --jobs 2's ({len(same)} of {len(a) - 2})")
+    ra, rb = (json.load(open(os.path.join(outs[n], "report.json"))) for n in ("jobs_out", "farm_out"))
+    check(rb.get("frames") == 4 and ra.get("frame_results") == rb.get("frame_results"),
+          "sm_farm.py shards into a used folder: the new report.json, per-frame results as stereo_sim --jobs 2's")
+    left = [n for n in os.listdir(tmp) if ".farm" in n]
+    check(not left, f"sm_farm.py shards into a used folder: no temporary folder left ({left})")
+
+
+def farm_cli(o, tmp):
+    inputs = os.path.join(tmp, "in")
+    scene = os.path.join(inputs, "scene")
+    run([o.sm_scene, "--out", scene, "--width", "64", "--height", "48", "--levels", "16"])
+    seq = os.path.join(inputs, "seq")
+    os.makedirs(seq)
+    for i in range(1, 5):
+        for side in ("left", "right"):
+            shutil.copy(os.path.join(scene, f"{side}.png"), os.path.join(seq, f"{side}{i}.png"))
+    os.makedirs(os.path.join(inputs, "notes"))
+    with open(os.path.join(inputs, "notes", "regs.json"), "w") as f:
+        f.write('{"occ": 12}\n')
+    with open(os.path.join(inputs, "notes", "notes.txt"), "w") as f:
+        f.write("notes\n")
+    shutil.copytree(scene, os.path.join(inputs, "dataset", "s1"))
+    farm_refusals(o, tmp, inputs, seq, scene)
+    farm_out_kept(o, tmp, seq)
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--mode", choices=["jobs", "farm"], required=True)
+    ap.add_argument("--mode", choices=["jobs", "farm", "farm-cli"], required=True)
     ap.add_argument("--stereo-sim", required=True)
     ap.add_argument("--sm-scene", required=True)
-    ap.add_argument("--farm", help="tools/sm_farm.py (mode farm)")
+    ap.add_argument("--farm", help="tools/sm_farm.py (modes farm, farm-cli)")
     ap.add_argument("--tmp", required=True)
     o = ap.parse_args()
     shutil.rmtree(o.tmp, ignore_errors=True)
     os.makedirs(o.tmp)
+    if o.mode == "farm-cli":
+        farm_cli(o, o.tmp)
+        if FAILS:
+            sys.exit(f"{len(FAILS)} check(s) failed")
+        return
     seq, args = make_inputs(o.sm_scene, o.tmp)
     serial = os.path.join(o.tmp, "serial")
     run([o.stereo_sim, *args, "--out", serial, "-q"])

@@ -155,6 +155,27 @@ TEST_CASE("an output naming an input or another output: refused, the input intac
   expect_refused(sim("clash_view", "--cloud-view " + q(out / "panel.png")), {"--cloud-view", "same file as --out"});
 }
 
+TEST_CASE("--merge-shards: shards of one run only, never into one of them", "[merge]") {
+  const fs::path sc = make_scene("merge_scene", true, true);
+  const std::string in = "--scene " + q(sc) + " --frames 4";
+  REQUIRE(sim("shard_a", in + " --frame-range 0:2").rc == 0);
+  REQUIRE(sim("shard_b", in + " --frame-range 2:4").rc == 0);
+  REQUIRE(sim("shard_other", in + " --frame-range 2:4 --occ 30").rc == 0);  // another run's frames 2..3
+  const fs::path a = kTmp / "shard_a", b = kTmp / "shard_b", other = kTmp / "shard_other";
+  expect_refused(sim("merge_mixed", "--merge-shards " + q(a) + " " + q(other)),
+                 {other.string(), "a shard of another run"});
+  const auto into =
+      sm::test::run_cmd(SM_STEREO_SIM_SMALL, "--merge-shards " + q(a) + " " + q(b) + " -q --out " + q(a), kTmp);
+  CHECK(into.rc == 2);
+  CHECK(into.err.find("one of the shard folders being merged") != std::string::npos);
+  CHECK(fs::exists(a / "report.json"));
+  const auto ok = sim("merge_ok", "--merge-shards " + q(a) + " " + q(b));
+  INFO(ok.err);
+  REQUIRE(ok.rc == 0);
+  CHECK(ok.report["frames"] == 4);
+  CHECK(ok.report["status_note"].get<std::string>().find("frames 2..3") != std::string::npos);
+}
+
 TEST_CASE("inputs that exclude each other, options that do not apply: refused", "[exclusive]") {
   const fs::path sc = make_scene("excl_scene", true, true);
   expect_refused(sim("excl_pair_scene", "--left a.png --right b.png --scene " + q(sc)), {"--left", "--scene"});

@@ -144,6 +144,9 @@ TEST_CASE("outputs that cannot be written are refused before any work", "[robust
   const std::string dat = fx.file("c.dat", "# SystemC::Coverage-3\n");
   expect_error(run(SM_COVERAGE_EXE, dat + " --json " + fx.o("c.json") + " --line-dat " + nodir), 1, "sm_coverage",
                "--line-dat " + nodir + ": cannot write");
+  expect_error(run(SM_COVERAGE_EXE, dat + " --json " + dat), 1, "sm_coverage", ": same file as the input");
+  CHECK(sm::test::slurp(dat) == "# SystemC::Coverage-3\n");
+  expect_error(run(SM_COVERAGE_EXE, dat + " --json " + fx.out.string()), 1, "sm_coverage", "cannot write: is a folder");
   const std::string bad = fx.file("bad.dat", "# SystemC::Coverage-3\nC 'x' 5x\n");
   expect_error(run(SM_COVERAGE_EXE, bad + " --json " + fx.o("c.json")), 1, "sm_coverage", "bad.dat:2: bad count");
   // no progress line: the evaluation never started

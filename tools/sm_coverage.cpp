@@ -27,6 +27,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <filesystem>
 #include <utility>
 #include <vector>
 
@@ -44,11 +45,13 @@ using json = nlohmann::ordered_json;
 [[noreturn]] void fail(const std::string& msg) { throw std::runtime_error(msg); }
 
 // The output files, all or nothing: each opened under a temporary name next to it before
-// any work (a path that cannot be written fails at once), renamed into place together by
-// commit(); the temporaries are removed when the run fails.
+// any work (a path that cannot be written, a folder or one of the inputs fails at once),
+// renamed into place together by commit(); the temporaries are removed when the run fails.
 class Outputs {
  public:
-  Outputs() = default;
+  explicit Outputs(const std::vector<std::string>& inputs) {
+    for (const auto& in : inputs) inputs_.emplace_back(in, canonical(in));
+  }
   Outputs(const Outputs&) = delete;
   Outputs& operator=(const Outputs&) = delete;
   ~Outputs() {
@@ -57,7 +60,11 @@ class Outputs {
   // The stream to write `path` to; `option` names it in the errors.
   std::ofstream& open(const std::string& option, const std::string& path) {
     for (const auto& f : files_)
-      if (f.path == path) fail(fmt::format("{} {}: same file as {}", option, path, f.option));
+      if (canonical(f.path) == canonical(path)) fail(fmt::format("{} {}: same file as {}", option, path, f.option));
+    for (const auto& [in, abs] : inputs_)
+      if (abs == canonical(path)) fail(fmt::format("{} {}: same file as the input {}", option, path, in));
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) fail(fmt::format("{} {}: cannot write: is a folder", option, path));
     const std::string temp = fmt::format("{}.tmp{}", path, ::getpid());
     files_.push_back({option, path, temp, std::make_unique<std::ofstream>(temp, std::ios::binary)});
     if (!*files_.back().out) fail(fmt::format("{} {}: cannot write: {}", option, path, std::strerror(errno)));
@@ -75,11 +82,16 @@ class Outputs {
   }
 
  private:
+  static std::filesystem::path canonical(const std::string& p) {
+    std::error_code ec;
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(p), ec);
+  }
   struct File {
     std::string option, path, temp;
     std::unique_ptr<std::ofstream> out;
   };
   std::vector<File> files_;
+  std::vector<std::pair<std::string, std::filesystem::path>> inputs_;
 };
 
 enum class Kind { kLine, kToggle, kOther };
@@ -230,7 +242,7 @@ int run(int argc, char** argv) {
   app.add_flag("--markdown", markdown, "print the table as markdown");
   app.add_flag("--list-uncovered", list, "list the uncovered points of the modules below a goal");
   if (const auto rc = sm::tools::parse_cli(app, argc, argv)) return *rc;
-  Outputs outs;
+  Outputs outs(inputs);
   std::ofstream* json_out = json_path.empty() ? nullptr : &outs.open("--json", json_path);
   std::ofstream* line_out = line_dat.empty() ? nullptr : &outs.open("--line-dat", line_dat);
   std::ofstream* toggle_out = toggle_dat.empty() ? nullptr : &outs.open("--toggle-dat", toggle_dat);

@@ -14,8 +14,10 @@ is an external program, so a thread waiting on it is enough; --worker-processes:
 processes under a nanny, as on a cluster); --scheduler ADDRESS uses a running cluster
 (dask scheduler / dask worker, dask-jobqueue), whose workers must see the same file
 system. A task whose program is killed or whose worker dies is retried (--retries);
-results are written all or nothing (a temporary folder renamed when complete); progress
-shows tasks done and the time left. Run it with the project's .venv python.
+results are written all or nothing (staged in a temporary folder, moved into --out when
+complete, replacing only files of the same names, as stereo_sim --jobs; an --out that is
+or holds an input is refused); progress shows tasks done and the time left. Run it with
+the project's .venv python.
 """
 import argparse
 import itertools
@@ -189,21 +191,104 @@ def run_all(opts, tasks, noun, tmp):
         return farm.run(tasks, noun, tmp)
 
 
-def publish(tmp, out):
-    """Renames the complete temporary folder `tmp` to `out` (an old `out` is replaced)."""
-    old = None
-    if os.path.exists(out):
-        old = f"{out}.old{os.getpid()}"
-        os.rename(out, old)
-    os.rename(tmp, out)
-    if old:
-        shutil.rmtree(old, ignore_errors=True)
+def publish(staged, out, last):
+    """Moves every file of the complete folder `staged` to the same name under `out` (made
+    when missing), as `stereo_sim --jobs` writes its outputs: a file of that name is
+    replaced, nothing else in `out` is touched (docs/farm.md). Every target is checked
+    first; `last` (report.json, summary.json: what says the output is complete) is removed
+    from `out` before the first move and moved last, so that `out` never looks complete
+    with only part of the new files."""
+    files = []
+    for root, dirs, names in os.walk(staged):
+        dirs.sort()
+        files += sorted(os.path.relpath(os.path.join(root, n), staged) for n in names)
+    files.sort(key=lambda rel: rel == last)
+    if os.path.lexists(out) and not os.path.isdir(out):
+        raise FarmError(f"--out {out}: cannot write: not a folder")
+    for rel in files:
+        parts = rel.split(os.sep)
+        for k in range(1, len(parts)):
+            d = os.path.join(out, *parts[:k])
+            if os.path.lexists(d) and not os.path.isdir(d):
+                raise FarmError(f"--out {out}: cannot write {os.path.join(out, rel)}: {d} is not a folder")
+        target = os.path.join(out, rel)
+        if os.path.isdir(target):
+            raise FarmError(f"--out {out}: cannot write {target}: is a folder")
+    os.makedirs(out, exist_ok=True)
+    if os.path.lexists(os.path.join(out, last)):
+        os.remove(os.path.join(out, last))
+    for rel in files:
+        target = os.path.join(out, rel)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        os.replace(os.path.join(staged, rel), target)
 
 
 def temp_beside(out):
-    parent = os.path.dirname(os.path.abspath(out))
+    """The run's temporary folder, hidden beside --out (beside the folder it names when
+    --out is a symbolic link): on its file system, so that publish() only renames."""
+    parent = os.path.dirname(os.path.realpath(out))
     os.makedirs(parent, exist_ok=True)
     return tempfile.mkdtemp(prefix=f".{os.path.basename(os.path.abspath(out))}.farm", dir=parent)
+
+
+# stereo_sim's options that name a file or folder it reads (sim/sm_sim_preflight.cpp,
+# run_inputs)
+SIM_INPUTS = ("--sequence", "--scene", "--left", "--right", "--video", "--regs", "--regs-at", "--calib",
+              "--synth-json")
+
+
+def sim_inputs(args):
+    """The files and folders that the stereo_sim options `args` read, as (option, path)."""
+    found, i = [], 0
+    while i < len(args):
+        name, eq, val = args[i].partition("=")
+        i += 1
+        if name not in SIM_INPUTS:
+            continue
+        vals = [val] if eq else []
+        # CLI11: a repeatable option (--regs-at) takes every value up to the next option
+        while not eq and i < len(args) and not args[i].startswith("-") and (not vals or name == "--regs-at"):
+            vals.append(args[i])
+            i += 1
+        for v in vals:
+            path = v.partition("=")[2] if name == "--regs-at" else v
+            if path:
+                found.append((name, path))
+    return found
+
+
+def check_out(out, inputs):
+    """Refuses an --out that is or contains one of the run's inputs, (option, path): the
+    outputs would go among them (docs/farm.md)."""
+    o = os.path.realpath(out)
+    inside = o.rstrip(os.sep) + os.sep
+    for opt, path in inputs:
+        r = os.path.realpath(path)
+        if r == o:
+            raise FarmError(f"--out {out}: is the input {opt} {path}")
+        if r.startswith(inside):
+            raise FarmError(f"--out {out}: contains the input {opt} {path}")
+
+
+def check_scheduler(address):
+    """Refuses a --scheduler address that Dask cannot connect to by its form, before any
+    work: no port, a port outside 1..65535, an unknown scheme."""
+    sys.modules.setdefault("numpy", None)  # as in make_client
+    from distributed.comm import registry
+    from distributed.comm.addressing import parse_address
+
+    scheme, loc = parse_address(address)
+    try:
+        _, port = registry.get_backend(scheme).get_address_host_port(loc)
+    except NotImplementedError:  # a scheme without host and port (ucx, inproc)
+        return
+    except ValueError as e:
+        msg = str(e)
+        if msg.startswith("invalid literal for int()"):
+            msg = f"the port {loc.rpartition(':')[2]!r} is not a number"
+        raise FarmError(f"--scheduler {address}: {msg} (expected tcp://HOST:PORT)")
+    if not 1 <= port <= 65535:
+        raise FarmError(f"--scheduler {address}: port {port} is outside 1..65535")
 
 
 def need_file(path, what):
@@ -246,9 +331,11 @@ def cmd_shards(opts):
     sim_args = opts.sim_args
     if not sim_args:
         raise FarmError("shards: no stereo_sim input after -- (e.g. -- --sequence FOLDER)")
-    # stereo_sim checks the inputs and registers and prints the shards' ranges while this
-    # process imports Dask and starts the cluster
-    with subprocess.Popen([opts.stereo_sim, *sim_args, "--list-shards", str(opts.shards)], stdout=subprocess.PIPE,
+    check_out(opts.out, sim_inputs(sim_args))
+    # stereo_sim checks the inputs, registers and output files in --out and prints the
+    # shards' ranges while this process imports Dask and starts the cluster
+    with subprocess.Popen([opts.stereo_sim, *sim_args, "--out", opts.out, "--list-shards", str(opts.shards)],
+                          stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True) as lister, Farm(opts) as farm:
         ranges = list_shards(lister)
         tmp = temp_beside(opts.out)
@@ -262,8 +349,8 @@ def cmd_shards(opts):
                 print(f"{TOOL}: {len(ranges)} shards ({' '.join(ranges)})", file=sys.stderr)
             farm.run(tasks, "shards", tmp)
             merged, m = merge_shards(opts, tmp, len(ranges))
+            publish(merged, opts.out, "report.json")
             sys.stdout.write(m.stdout.replace(merged, opts.out))
-            publish(merged, opts.out)
             return m.returncode
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
@@ -296,8 +383,8 @@ def write_summary(opts, tmp, summary, lines):
         f.write("\n")
     with open(os.path.join(tmp, "summary.txt"), "w") as f:
         f.write("\n".join(lines) + "\n")
+    publish(tmp, opts.out, "summary.json")
     print("\n".join(lines))
-    publish(tmp, opts.out)
 
 
 def cmd_accuracy(opts):
@@ -309,6 +396,8 @@ def cmd_accuracy(opts):
         if missing:
             raise FarmError(f"{opts.dataset}: no scene {missing[0]}")
         scenes = want
+    check_out(opts.out, [("DATASET", opts.dataset), *[("scene", os.path.join(opts.dataset, s)) for s in scenes],
+                         *sim_inputs(opts.sim_args)])
     tmp = temp_beside(opts.out)
     try:
         tasks = [(s, sim_scene, (opts.stereo_sim, os.path.join(opts.dataset, s), os.path.join(tmp, f"rtl_{s}"),
@@ -324,9 +413,8 @@ def cmd_accuracy(opts):
         write_summary(opts, tmp, {"scenes": [{"name": s, **res[s]} for s in scenes], "mean_bad1_percent": mean},
                       lines)
         return 0 if all(res[s]["bit_exact"] for s in scenes) else 1
-    except BaseException:
+    finally:  # published (its files moved to --out) or not
         shutil.rmtree(tmp, ignore_errors=True)
-        raise
 
 
 # ---- sweep ----
@@ -341,6 +429,8 @@ def parse_grid(items):
             values = None
         if not eq or not key or not values:
             raise FarmError(f"--grid {it}: expected REGISTER=V1,V2,... with integer values")
+        if key.lower() in [k for k, _ in grid]:
+            raise FarmError(f"--grid {it}: register {key} given twice (one --grid {key}=V1,V2,... per register)")
         grid.append((key.lower(), values))
     return grid
 
@@ -355,8 +445,31 @@ def model_point(sm_evaluate, dataset, regs, json_out, extra):
     return sum(vals) / len(vals)
 
 
+def base_registers(tool_args):
+    """A --regs FILE among the options after --: its registers (the grid's values go on top)
+    and the options without it, since each point passes its own --regs."""
+    rest, base = [], {}
+    i = 0
+    while i < len(tool_args):
+        a = tool_args[i]
+        if a == "--regs" or a.startswith("--regs="):
+            path = a.partition("=")[2] if "=" in a else (tool_args[i + 1] if i + 1 < len(tool_args) else "")
+            i += 1 if "=" in a else 2
+            if not os.path.isfile(path):
+                raise FarmError(f"--regs {path}: no such file")
+            with open(path) as f:
+                base = json.load(f)
+            if not isinstance(base, dict):
+                raise FarmError(f"--regs {path}: not a JSON object of registers")
+            continue
+        rest.append(a)
+        i += 1
+    return base, rest
+
+
 def cmd_sweep(opts):
     grid = parse_grid(opts.grid)
+    base, opts.tool_args = base_registers(opts.tool_args)
     if opts.rtl:
         need_file(opts.rtl, "--rtl")
         scenes = list_scenes(opts.dataset)
@@ -364,14 +477,17 @@ def cmd_sweep(opts):
         need_file(opts.sm_evaluate, "--sm-evaluate")
         if not os.path.isdir(opts.dataset):
             raise FarmError(f"{opts.dataset}: not a folder")
+    check_out(opts.out, [("DATASET", opts.dataset), *([("scene", os.path.join(opts.dataset, s)) for s in scenes] +
+                                                      sim_inputs(opts.tool_args) if opts.rtl else [])])
     points = [dict(zip([k for k, _ in grid], vals)) for vals in itertools.product(*[v for _, v in grid])]
+    files = [{**{k: v for k, v in base.items() if k.lower() not in p}, **p} for p in points]
     tmp = temp_beside(opts.out)
     try:
         tasks = []
         for i, p in enumerate(points):
             regs = os.path.join(tmp, f"point_{i:03d}.json")
             with open(regs, "w") as f:
-                json.dump(p, f)
+                json.dump(files[i], f)
             if opts.rtl:
                 for s in scenes:
                     tasks.append((f"p{i}-{s}", sim_scene, (opts.rtl, os.path.join(opts.dataset, s),
@@ -397,9 +513,8 @@ def cmd_sweep(opts):
         write_summary(opts, tmp, {"dataset": opts.dataset, "tool": "rtl" if opts.rtl else "model", "points": rows},
                       lines)
         return 0
-    except BaseException:
+    finally:  # published (its files moved to --out) or not
         shutil.rmtree(tmp, ignore_errors=True)
-        raise
 
 
 def parser():
@@ -443,6 +558,8 @@ def main(argv=None):
             raise FarmError("--workers and --shards must be at least 1, --retries at least 0")
         if opts.cmd == "sweep" and bool(opts.rtl) == bool(opts.sm_evaluate):
             raise FarmError("sweep needs one of --sm-evaluate (the model) and --rtl (stereo_sim)")
+        if opts.scheduler:
+            check_scheduler(opts.scheduler)
         return {"shards": cmd_shards, "accuracy": cmd_accuracy, "sweep": cmd_sweep}[opts.cmd](opts)
     except (FarmError, OSError, json.JSONDecodeError, KeyError) as e:
         print(f"{TOOL}: error: {e}", file=sys.stderr)
