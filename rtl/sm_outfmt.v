@@ -1,8 +1,8 @@
 `default_nettype none
 `include "sm_defs.vh"
 // Output formatter (docs/streams.md): at each ce it takes the last stage's beat, keeps
-// the real ones and queues them as the AXI4-Stream video output (tdata bit 15 = valid,
-// low bits = disparity; tuser on the frame's first pixel, tlast at x == W-1). The FIFO
+// the real ones and queues them as the AXI4-Stream video output (the 32-bit word of
+// docs/algorithm.md 9.4, bit 31 = valid; tuser on the frame's first pixel, tlast at x == W-1). The FIFO
 // absorbs sink back-pressure; `room` tells the top whether one more ce is safe, so the
 // top drives ce = beat_valid && room and no beat is ever lost.
 //

@@ -42,7 +42,8 @@ module sm_top #(
     input  wire        s_axis_tvalid,
     output wire        s_axis_tready,
     // disparity (docs/algorithm.md 9.4): tdata = {1, 7'b0, confidence[7:0], 16 d + fraction},
-    // or {0, 0, failed rules[5:0], 24'b0} for an invalid pixel
+    // or {0, speckle, failed rules[5:0], 24'b0} for an invalid pixel (bit 30: the speckle
+    // stage cleared it, SPECKLE_ROWS > 0)
     output wire [31:0] m_axis_tdata,
     output wire        m_axis_tuser,
     output wire        m_axis_tlast,

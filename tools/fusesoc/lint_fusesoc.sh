@@ -30,6 +30,12 @@ done
 
 echo "$(verilator --version | sed 's/^ *//'), $(fusesoc --version 2>&1 | tail -1)"
 cd "$root"
+# every parameter of sm_top can be set from FuseSoC's command line at every configuration
+help=$(fusesoc --cores-root "$root" run --work-root "$work/help" --setup --target lint sm:stereo:sm_stereo --help 2>&1)
+for p in $(grep -o 'parameter [A-Z_]*' "$root/rtl/sm_top.v" | awk '{print $2}'); do
+  grep -q -- "--$p " <<<"$help" || { echo "sm_stereo.core: sm_top's parameter $p cannot be set (--$p)"; missing=1; }
+done
+[ "$missing" -eq 0 ]
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint" --target lint sm:stereo:sm_stereo
 # the folded datapath too (the zynq configuration, PU 8)
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint_zynq" --target lint --flag zynq sm:stereo:sm_stereo
@@ -40,4 +46,9 @@ XDG_CACHE_HOME="$work/cache_compile" SM_REGMAP_GEN= \
   { echo "lint_fusesoc: the small run did not compile its own sm_regmap_gen"; exit 1; }
 # the zynq configuration at 640x480
 fusesoc --cores-root "$root" run --clean --work-root "$work/lint_vga" --target lint --flag vga sm:stereo:sm_stereo
+# parameters given on the command line reach Verilator (a core with more objects and labels)
+fusesoc --cores-root "$root" run --clean --work-root "$work/lint_params" --target lint --flag small sm:stereo:sm_stereo \
+  --MAX_OBJECTS=16 --LABEL_SLOTS=100
+grep -q -- '-GLABEL_SLOTS=100' "$work"/lint_params/*.vc ||
+  { echo "lint_fusesoc: --LABEL_SLOTS=100 did not reach Verilator"; exit 1; }
 echo "lint_fusesoc: sm_stereo.core lints clean (paper, zynq, small and vga configurations)"
