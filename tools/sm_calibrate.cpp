@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "calib_file.hpp"
+#include "toolio/sm_cli.hpp"
 #include "toolio/sm_io.hpp"
 #include "toolio/sm_outputs.hpp"
 #include "pre.hpp"
@@ -217,21 +218,21 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--yaml", o.out_yaml, "camera parameters (cv::FileStorage YAML)")->capture_default_str();
 }
 
-// The values CLI11 does not check; sets o.board.
+// The values CLI11 does not check (a bad one exits 2, as a parse error); sets o.board.
 void check_options(Options& o) {
   char x = 0, extra = 0;
   if (std::sscanf(o.board_s.c_str(), "%d%c%d%c", &o.board.width, &x, &o.board.height, &extra) != 3 ||
       (x != 'x' && x != 'X') || o.board.width < 2 || o.board.height < 2)
-    throw std::runtime_error(fmt::format("--board '{}': expected <cols>x<rows>, e.g. 9x6", o.board_s));
+    throw sm::tools::UsageError(fmt::format("--board '{}': expected <cols>x<rows>, e.g. 9x6", o.board_s));
   if (o.width < 16 || o.width > 4095 || o.height < 16 || o.height > 4095)
-    throw std::runtime_error(fmt::format("--width/--height {}x{} outside 16..4095", o.width, o.height));
+    throw sm::tools::UsageError(fmt::format("--width/--height {}x{} outside 16..4095", o.width, o.height));
   if (o.rect_radius < 1 || o.rect_radius > 31)
-    throw std::runtime_error(fmt::format("--rect-radius {} outside 1..31", o.rect_radius));
+    throw sm::tools::UsageError(fmt::format("--rect-radius {} outside 1..31", o.rect_radius));
   if (!std::isfinite(o.square) || !(o.square > 0))
-    throw std::runtime_error(fmt::format("--square {}: must be finite and > 0 (metres)", o.square));
-  if (!(o.alpha >= 0 && o.alpha <= 1)) throw std::runtime_error(fmt::format("--alpha {}: outside 0..1", o.alpha));
+    throw sm::tools::UsageError(fmt::format("--square {}: must be finite and > 0 (metres)", o.square));
+  if (!(o.alpha >= 0 && o.alpha <= 1)) throw sm::tools::UsageError(fmt::format("--alpha {}: outside 0..1", o.alpha));
   if (!std::isfinite(o.check_vdisp) || o.check_vdisp < 0)
-    throw std::runtime_error(fmt::format("--check-vdisp {}: must be finite and >= 0", o.check_vdisp));
+    throw sm::tools::UsageError(fmt::format("--check-vdisp {}: must be finite and >= 0", o.check_vdisp));
 }
 
 // Every output before any work: the JSON and the YAML writable, not the same file and not
