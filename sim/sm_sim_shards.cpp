@@ -495,8 +495,9 @@ void print_merged(const json& m, const json& status_lines, const std::string& ou
 int merge_shards(const std::vector<std::string>& dirs, const std::string& out_dir, std::string disp_file, bool quiet,
                  double wall) {
   const std::vector<ShardReport> v = read_shards(dirs);
+  const fs::path out_abs = fs::weakly_canonical(fs::absolute(out_dir));
   for (const auto& s : v)
-    if (fs::weakly_canonical(fs::absolute(s.dir)) == fs::weakly_canonical(fs::absolute(out_dir)))
+    if (fs::weakly_canonical(fs::absolute(s.dir)) == out_abs)
       fail(fmt::format("--out {}: one of the shard folders being merged", out_dir));
   if (disp_file.empty())
     disp_file = out_dir + "/" + v.back().rep["shard"].value("disparity_name", std::string("disparity.pfm"));

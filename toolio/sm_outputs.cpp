@@ -52,10 +52,6 @@ std::string output_problem(const std::string& path, bool create_parent) {
   return folder_problem(p.parent_path(), create_parent);
 }
 
-}  // namespace
-
-namespace {
-
 fs::path absolute_path(const std::string& path) {
   std::error_code ec;
   return fs::weakly_canonical(fs::absolute(path), ec);
@@ -64,6 +60,8 @@ fs::path absolute_path(const std::string& path) {
 }  // namespace
 
 void check_outputs(const PathList& outputs, bool create_parent, const PathList& inputs) {
+  std::vector<fs::path> read;  // the inputs' absolute paths, once ("" for an empty one)
+  for (const auto& in : inputs) read.push_back(in.second.empty() ? fs::path() : absolute_path(in.second));
   std::vector<std::pair<std::string, fs::path>> seen;  // option, absolute path
   for (const auto& [opt, path] : outputs) {
     if (path.empty()) continue;
@@ -72,9 +70,10 @@ void check_outputs(const PathList& outputs, bool create_parent, const PathList& 
     const fs::path abs = absolute_path(path);
     for (const auto& [o, a] : seen)
       if (a == abs) throw ToolError(fmt::format("{} {}: same file as {}", opt, path, o));
-    for (const auto& [o, in] : inputs)
-      if (!in.empty() && absolute_path(in) == abs)
-        throw ToolError(fmt::format("{} {}: same file as the input {} {}", opt, path, o, in));
+    for (size_t i = 0; i < inputs.size(); ++i)
+      if (read[i] == abs)
+        throw ToolError(
+            fmt::format("{} {}: same file as the input {} {}", opt, path, inputs[i].first, inputs[i].second));
     seen.emplace_back(opt, abs);
   }
 }
