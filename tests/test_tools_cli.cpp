@@ -106,7 +106,7 @@ TEST_CASE("stereo_model rejects bad inputs cleanly", "[unit][tools][cli]") {
     expect_error(model(o + " --regs " + fx.I("range.json")), "range.json: 'occ' = 300 is outside 0..255");
   }
   SECTION("illegal parameter") {
-    expect_error(model(o + " --disp 15"), "disp 15");
+    expect_error(model(o + " --disp 15"), "--disp: 15: must be even, 4..254");
     // the option, the value and the range: the same wording as a register file's key
     expect_error(model(o + " --disp 16 --occ 300"), "--occ = 300 is outside 0..255");
   }

@@ -202,6 +202,11 @@ TEST_CASE("numbers on the command line: non-finite, out of range, not a number",
                "--threads: 0: outside 1..256");
   expect_error(run(SM_EVALUATE_EXE, fx.scene.string() + " --threads 300"), 2, "sm_evaluate",
                "--threads: 300: outside 1..256");
+  // an sm_top parameter's own range (rtl/defs.json) is the option's; combinations stay exit 1
+  expect_error(run(SM_STEREO_MODEL_EXE, fx.pair() + " --disp 0 -o " + fx.o("d.png")), 2, "stereo_model",
+               "--disp: 0: must be even, 4..254");
+  expect_error(run(SM_STEREO_MODEL_EXE, fx.pair() + " --census 4 -o " + fx.o("d.png")), 2, "stereo_model",
+               "--census: 4: must be odd, 3..15");
   expect_error(run(SM_EVALUATE_EXE, fx.scene.string() + " --levels 7"), 2, "sm_evaluate", "--levels 7: must be");
   expect_error(run(SM_EVALUATE_EXE, fx.scene.string() + " --peer-levels 17"), 2, "sm_evaluate",
                "--peer-levels 17: must be");

@@ -32,6 +32,7 @@
 #include "toolio/sm_object_flags.hpp"
 #include "toolio/sm_objects_json.hpp"
 #include "toolio/sm_outputs.hpp"
+#include "toolio/sm_param_in.hpp"
 #include "toolio/sm_pictures.hpp"
 #include "toolio/sm_reg_options.hpp"
 #include "toolio/sm_regs_json.hpp"
@@ -152,6 +153,8 @@ int run(int argc, char** argv) {
       {"SPECKLE_LABELS",
        app.add_option("--speckle-labels", hw.speckle_labels, "SPECKLE_LABELS: its label-table entries")
            ->capture_default_str()}};
+  // each parameter's own range is a parse error (exit 2); combinations are checked below
+  for (const auto& [name, opt] : hw_opts) opt->check(sm::tools::param_in(name));
   // the value registers (the active size comes from the images, RECT_ENABLE is --no-rect)
   // ranges in --help at the default configuration (--disp, ... may change them)
   const sm::tools::RegOptions reg_opts(app, r, hw, {"WIDTH", "HEIGHT", "RECT_ENABLE"});
