@@ -73,3 +73,7 @@ endif()
 if(TARGET sm_dp_margin)
   sm_unit_test(test_dp_margin LIBS sm_dp_margin sm_model DISCOVER)
 endif()
+# The window supports of sm_output_study --study window-conf: known answers, brute force.
+if(TARGET sm_window_support)
+  sm_unit_test(test_window_support LIBS sm_window_support DISCOVER)
+endif()

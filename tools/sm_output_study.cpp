@@ -3,7 +3,8 @@
 // disparity, then scores the sub-pixel estimators, validity rules and confidence formulas
 // of model/outword.hpp on all scenes at once (14-scene means), so each default is chosen
 // on every scene.
-//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf,bound,speckle,speckle-conf,dp-margin]
+//   sm_output_study DATASET [--scenes a,b] [--study subpix,valid,conf,bound,speckle,speckle-conf,dp-margin,
+//   window-conf]
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -30,6 +31,7 @@
 #include "sm_output_bound.hpp"
 #include "sm_speckle.hpp"
 #include "sm_speckle_table.hpp"
+#include "sm_window_support.hpp"
 #include "speckle.hpp"
 
 using namespace sm;
@@ -410,6 +412,89 @@ void study_speckle_conf(const std::vector<Frame>& fr) {
   }
 }
 
+// Weights of a confidence from the evidence byte's three flags and ratio (9.3), the
+// smoothing window's support counts K and K8 (9.7) and wider supports (sm_window_support.hpp):
+// the row's samples R and the ring of samples 10 rows and columns away S (or its rows at and
+// above the pixel's), saturated to 8 bits.
+struct SupportWeights {
+  const char* name;
+  int flag, ratio, k, k8, row, ring;
+  bool above_only;
+};
+
+// One frame's supports, each per pixel of its dense words before the smoothing.
+struct Supports {
+  std::vector<uint16_t> k, k8, row, ring, ring_above;
+};
+
+Supports frame_supports(const OutImage& raw, int smooth_t) {
+  std::vector<Offset> win;
+  for (int dy = -kSmoothR; dy <= kSmoothR; ++dy)
+    for (int dx = -kSmoothR; dx <= kSmoothR; ++dx) win.push_back({dy, dx});
+  return {offset_support(raw, win, smooth_t), offset_support(raw, win, kSupportNear),
+          offset_support(raw, row_offsets(15, 3), 16), offset_support(raw, ring_offsets(10, false), 16),
+          offset_support(raw, ring_offsets(10, true), 16)};
+}
+
+// The streamed words with their confidence replaced by the weights' score.
+OutImage support_scored(const OutImage& streamed, const OutImage& raw, const Supports& s, const SupportWeights& w) {
+  OutImage o = streamed;
+  for (size_t i = 0; i < o.px.size(); ++i) {
+    if (!out_valid(o.px[i])) continue;
+    const unsigned e = out_conf(raw.px[i]);
+    const int flags = static_cast<int>((e >> 7 & 1) + (e >> 6 & 1) + (e >> 5 & 1));
+    const int sum = w.flag * flags + w.ratio * static_cast<int>(e & 31) + w.k * s.k[i] + w.k8 * s.k8[i] +
+                    w.row * s.row[i] + w.ring * (w.above_only ? s.ring_above[i] : s.ring[i]);
+    o.px[i] = make_out_word(true, static_cast<unsigned>(std::min(sum, 255)), out_q4(o.px[i]));
+  }
+  return o;
+}
+
+// The dense confidence with wider supports than the smoothing window's: AUC over the
+// oracle's, 14-scene means, as streamed and halved where zynq's speckle stage would clear
+// the pixel. The first row's weights are the stream's own (checked word for word).
+void study_window_conf(const std::vector<Frame>& fr) {
+  const SupportWeights cases[] = {{"the stream's confidence (9.7)", 16, 1, 3, 2, 0, 0, false},
+                                  {"+ row", 12, 1, 2, 1, 4, 0, false},
+                                  {"+ row + ring above", 16, 1, 2, 1, 4, 4, true},
+                                  {"+ row + ring", 16, 1, 2, 1, 3, 4, false},
+                                  {"+ ring", 16, 1, 2, 1, 0, 6, false}};
+  const OutputRegs dense = dense_mode(OutputRegs{});
+  SpeckleRegs sr;
+  sr.en = 1;
+  std::vector<OutImage> raw, streamed;
+  std::vector<Supports> sup;
+  for (const Frame& f : fr) {
+    raw.push_back(make_output(f.ev, f.post, f.levels, dense, 0));
+    streamed.push_back(smooth_output(raw.back(), dense.smooth_en, dense.smooth_t));
+    sup.push_back(frame_supports(raw.back(), dense.smooth_t));
+    if (support_scored(streamed.back(), raw.back(), sup.back(), cases[0]).px != streamed.back().px)
+      throw ToolError("window-conf: the stream's weights do not give the stream's confidence");
+  }
+  fmt::print(
+      "\nDense confidence with wider supports (R: row samples at +-3 .. +-15 step 3; S: the ring at 10),\n"
+      "score min(255, flags + ratio + K + K8 + R + S weighted), AUC / oracle:\n\n");
+  fmt::print("| {:<30} | flag | ratio | K | K8 | R | S | S rows | as streamed | halved on speckles |\n", "score");
+  fmt::print("|{:-<32}|------|-------|---|----|---|---|--------|------------:|-------------------:|\n", "");
+  for (const SupportWeights& w : cases) {
+    double auc = 0, oracle = 0, auc_sp = 0, oracle_sp = 0;
+    for (size_t k = 0; k < fr.size(); ++k) {
+      const OutImage o = support_scored(streamed[k], raw[k], sup[k], w);
+      const cv::Mat est = out_to_float(o);
+      const Sparsification sp = sparsification(est, out_to_conf(o), fr[k].gt, fr[k].mask);
+      const Sparsification sh = sparsification(
+          est, out_to_conf(halve_speckles(o, raw[k], sr, named_config("zynq").speckle_rows)), fr[k].gt, fr[k].mask);
+      auc += sp.auc, oracle += sp.oracle_auc, auc_sp += sh.auc, oracle_sp += sh.oracle_auc;
+    }
+    fmt::print("| {:<30} | {:>4} | {:>5} | {} | {:>2} | {} | {} | {:<6} | {:11.2f} | {:18.2f} |\n", w.name, w.flag,
+               w.ratio, w.k, w.k8, w.row, w.ring,
+               !w.ring        ? ""
+               : w.above_only ? "above"
+                              : "both",
+               auc / oracle, auc_sp / oracle_sp);
+  }
+}
+
 // The streamed dense confidence c with the trellis margin m added: a c + clamp(m, lo, hi),
 // saturated to 8 bits (a 0: the margin alone; hi 0: c alone); also with c halved where
 // zynq's speckle stage, enabled at its registers' resets, would clear the pixel; m from both
@@ -546,12 +631,14 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--dump-features", dump_dir, "write <scene>.bin (int16 columns, see dump_features) here");
   app.add_option("--study", studies,
-                 "comma-separated subset of subpix,valid,conf,bound,speckle,speckle-conf,dp-margin (bound: a random "
-                 "forest on the evidence, leave one scene out, ~3 min; speckle: the rules then a speckle check; "
-                 "speckle-conf: the speckle stage's verdict in the confidence; dp-margin: the trellis's "
-                 "min-marginals in the confidence; none of these four is in the default set)")
+                 "comma-separated subset of subpix,valid,conf,bound,speckle,speckle-conf,dp-margin,window-conf "
+                 "(bound: a random forest on the evidence, leave one scene out, ~3 min; speckle: the rules then a "
+                 "speckle check; speckle-conf: the speckle stage's verdict in the confidence; dp-margin: the "
+                 "trellis's min-marginals in the confidence; window-conf: wider supports in the confidence; none "
+                 "of these five is in the default set)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle", "speckle-conf", "dp-margin"}));
+      ->check(
+          CLI::IsMember({"subpix", "valid", "conf", "bound", "speckle", "speckle-conf", "dp-margin", "window-conf"}));
   if (const auto rc = parse_args(app, argc, argv)) return *rc;
   check_levels("--levels", levels, true);
   if (!dump_dir.empty()) check_output_folder("--dump-features", dump_dir);
@@ -580,6 +667,8 @@ int run(int argc, char** argv) {
       study_speckle_conf(fr);
     else if (s == "dp-margin")
       study_dp_margin(fr);
+    else if (s == "window-conf")
+      study_window_conf(fr);
     else
       study_bound(fr);
   }
