@@ -73,6 +73,13 @@ void HwConfig::validate() const {
   if (max_width < min_width())
     bad(fmt::format("max_width {} below DISP/2 + 3 = {} (disp {})", max_width, min_width(), disp));
   if (label_slots < max_objects) bad(fmt::format("label_slots {} below max_objects {}", label_slots, max_objects));
+  // sm_objects' g_bad_scan: its end-of-frame scan must fit the 256 clocks of a 16x16 frame
+  const int scan = label_slots + max_objects * (clog2(disp) + 1) + 2;
+  if (scan > 256)
+    bad(
+        fmt::format("label_slots {}: the object labeller's end-of-frame scan, label_slots + max_objects "
+                    "(log2 disp + 1) + 2 = {} clocks, must fit a 16x16 frame's 256: at most {} labels here",
+                    label_slots, scan, label_slots - (scan - 256)));
   if (pu != 0 && pu != disp && (pu < 2 || pu % 2 || disp % pu))
     bad(fmt::format("pu {} must be 0 (= disp), disp, or an even divisor of disp {}", pu, disp));
   // sm_top's pipeline depth in rows of 16 beats must stay below the 4-frame parameter

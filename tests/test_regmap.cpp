@@ -299,3 +299,23 @@ TEST_CASE("FLUSH_ROWS stays below the 4-frame parameter history", "[regmap]") {
   zynq.max_height = 22;
   CHECK_THROWS_AS(zynq.validate(), std::invalid_argument);
 }
+
+TEST_CASE("the object labeller's end-of-frame scan fits a 16x16 frame", "[regmap]") {
+  // sm_objects' g_bad_scan: LABEL_SLOTS + MAX_OBJECTS (clog2(DISP) + 1) + 2 <= 256 clocks;
+  // validate() rejects what sm_objects rejects, so the model never runs a labeller the RTL
+  // cannot build.
+  const std::string text = sm::test::slurp(SM_RTL_DIR "/sm_objects.v");
+  REQUIRE(!text.empty());
+  CHECK(text.find("localparam SCAN_CLKS = LABEL_SLOTS + MAX_OBJECTS * (DW + 1) + 2;") != std::string::npos);
+  CHECK(text.find("`SM_BAD_PARAM(g_bad_scan, SCAN_CLKS > 256") != std::string::npos);
+  sm::HwConfig hw;  // paper: DISP 128, MAX_OBJECTS 8: 8 * 8 + 2 = 66 clocks besides the labels
+  hw.label_slots = 190;
+  CHECK_NOTHROW(hw.validate());
+  hw.label_slots = 191;
+  CHECK_THROWS_AS(hw.validate(), std::invalid_argument);
+  hw.disp = 16;  // 8 * 5 + 2 = 42: 214 labels
+  hw.label_slots = 214;
+  CHECK_NOTHROW(hw.validate());
+  hw.label_slots = 215;
+  CHECK_THROWS_AS(hw.validate(), std::invalid_argument);
+}
