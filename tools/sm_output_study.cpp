@@ -415,25 +415,30 @@ void study_speckle_conf(const std::vector<Frame>& fr) {
 // Weights of a confidence from the evidence byte's three flags and ratio (9.3), the
 // smoothing window's support counts K and K8 (9.7) and wider supports (sm_window_support.hpp):
 // the row's samples R and the ring of samples 10 rows and columns away S (or its rows at and
-// above the pixel's), saturated to 8 bits.
+// above the pixel's), saturated to 8 bits. after_smoothing: the stream's confidence as it is
+// plus `row` times R counted on the smoothed words (a stage after the smoothing's, which
+// sees only the stream; the other weights unused).
 struct SupportWeights {
   const char* name;
   int flag, ratio, k, k8, row, ring;
-  bool above_only;
+  bool above_only, after_smoothing;
 };
 
 // One frame's supports, each per pixel of its dense words before the smoothing.
 struct Supports {
-  std::vector<uint16_t> k, k8, row, ring, ring_above;
+  std::vector<uint16_t> k, k8, row, ring, ring_above, row_streamed;
 };
 
-Supports frame_supports(const OutImage& raw, int smooth_t) {
+Supports frame_supports(const OutImage& raw, const OutImage& streamed, int smooth_t) {
   std::vector<Offset> win;
   for (int dy = -kSmoothR; dy <= kSmoothR; ++dy)
     for (int dx = -kSmoothR; dx <= kSmoothR; ++dx) win.push_back({dy, dx});
-  return {offset_support(raw, win, smooth_t), offset_support(raw, win, kSupportNear),
-          offset_support(raw, row_offsets(15, 3), 16), offset_support(raw, ring_offsets(10, false), 16),
-          offset_support(raw, ring_offsets(10, true), 16)};
+  return {offset_support(raw, win, smooth_t),
+          offset_support(raw, win, kSupportNear),
+          offset_support(raw, row_offsets(15, 3), 16),
+          offset_support(raw, ring_offsets(10, false), 16),
+          offset_support(raw, ring_offsets(10, true), 16),
+          offset_support(streamed, row_offsets(15, 3), 16)};
 }
 
 // The streamed words with their confidence replaced by the weights' score.
@@ -441,6 +446,11 @@ OutImage support_scored(const OutImage& streamed, const OutImage& raw, const Sup
   OutImage o = streamed;
   for (size_t i = 0; i < o.px.size(); ++i) {
     if (!out_valid(o.px[i])) continue;
+    if (w.after_smoothing) {
+      const int sum = static_cast<int>(out_conf(o.px[i])) + w.row * s.row_streamed[i];
+      o.px[i] = make_out_word(true, static_cast<unsigned>(std::min(sum, 255)), out_q4(o.px[i]));
+      continue;
+    }
     const unsigned e = out_conf(raw.px[i]);
     const int flags = static_cast<int>((e >> 7 & 1) + (e >> 6 & 1) + (e >> 5 & 1));
     const int sum = w.flag * flags + w.ratio * static_cast<int>(e & 31) + w.k * s.k[i] + w.k8 * s.k8[i] +
@@ -454,11 +464,13 @@ OutImage support_scored(const OutImage& streamed, const OutImage& raw, const Sup
 // oracle's, 14-scene means, as streamed and halved where zynq's speckle stage would clear
 // the pixel. The first row's weights are the stream's own (checked word for word).
 void study_window_conf(const std::vector<Frame>& fr) {
-  const SupportWeights cases[] = {{"the stream's confidence (9.7)", 16, 1, 3, 2, 0, 0, false},
-                                  {"+ row", 12, 1, 2, 1, 4, 0, false},
-                                  {"+ row + ring above", 16, 1, 2, 1, 4, 4, true},
-                                  {"+ row + ring", 16, 1, 2, 1, 3, 4, false},
-                                  {"+ ring", 16, 1, 2, 1, 0, 6, false}};
+  const SupportWeights cases[] = {{"the stream's confidence (9.7)", 16, 1, 3, 2, 0, 0, false, false},
+                                  {"+ row", 12, 1, 2, 1, 4, 0, false, false},
+                                  {"+ row + ring above", 16, 1, 2, 1, 4, 4, true, false},
+                                  {"+ row + ring", 16, 1, 2, 1, 3, 4, false, false},
+                                  {"+ ring", 16, 1, 2, 1, 0, 6, false, false},
+                                  {"c + 4 row, after the smoothing", 0, 0, 0, 0, 4, 0, false, true},
+                                  {"c + 5 row, after the smoothing", 0, 0, 0, 0, 5, 0, false, true}};
   const OutputRegs dense = dense_mode(OutputRegs{});
   SpeckleRegs sr;
   sr.en = 1;
@@ -467,7 +479,7 @@ void study_window_conf(const std::vector<Frame>& fr) {
   for (const Frame& f : fr) {
     raw.push_back(make_output(f.ev, f.post, f.levels, dense, 0));
     streamed.push_back(smooth_output(raw.back(), dense.smooth_en, dense.smooth_t));
-    sup.push_back(frame_supports(raw.back(), dense.smooth_t));
+    sup.push_back(frame_supports(raw.back(), streamed.back(), dense.smooth_t));
     if (support_scored(streamed.back(), raw.back(), sup.back(), cases[0]).px != streamed.back().px)
       throw ToolError("window-conf: the stream's weights do not give the stream's confidence");
   }
