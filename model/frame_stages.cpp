@@ -24,7 +24,7 @@ PipelineResult run_frame_stages(const Image8& left, const Image8& right, const H
   r.evidence = evidence_frame(r.agg, r.rl, regs.occ, regs.occ_edge, regs.edge_t, hw);
   r.out = speckle_words(make_output(r.evidence, r.post, hw.disp, output_regs(regs), 0, threads), regs, hw);
   r.objects = separate_objects(object_levels(r.out), regs, hw);
-  r.out = smooth_output(r.out, regs.smooth_en, regs.smooth_t, threads);
+  r.out = smooth_stream(r.out, regs.smooth_en, regs.smooth_t, threads);
   return r;
 }
 

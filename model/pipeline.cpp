@@ -249,7 +249,7 @@ PipelineResult run_pipeline(const Image8& left, const Image8& right, const HwCon
   }
   // The labeller reads the words as formed (sm_outstage's m_word, or the speckle stage's
   // words where it is built, through sm_obj_level); the stream carries them smoothed.
-  r.out = smooth_output(r.out, regs.smooth_en, regs.smooth_t, threads);
+  r.out = smooth_stream(r.out, regs.smooth_en, regs.smooth_t, threads);
   lap("smooth");
   return r;
 }

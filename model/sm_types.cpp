@@ -52,8 +52,8 @@ int HwConfig::flush_rows() const {  // as sm_top.v's FLUSH_ROWS
 }
 
 int HwConfig::base_flush_rows() const {
-  return (rect_radius + 1) + (census - 1) / 2 + (sw - 1) / 2 + 2 + band_k + 5 + 2 + (disp / 2 + 64 + 1 + 7 + 15) / 16 +
-         1;
+  return (rect_radius + 1) + (census - 1) / 2 + (sw - 1) / 2 + 2 + band_k + 5 + 2 +
+         (disp / 2 + 64 + 1 + 7 + 17 + 15) / 16 + 1;
 }
 
 void HwConfig::validate() const {

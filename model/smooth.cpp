@@ -5,6 +5,7 @@
 
 #include "kernels.hpp"
 #include "parallel.hpp"
+#include "row_support.hpp"
 
 namespace sm {
 
@@ -83,8 +84,12 @@ OutImage smooth_output(const OutImage& in, int smooth_en, int smooth_t, int thre
   return out;
 }
 
+OutImage smooth_stream(const OutImage& in, int smooth_en, int smooth_t, int threads) {
+  return row_support_output(smooth_output(in, smooth_en, smooth_t, threads), threads);
+}
+
 OutImage stream_words(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int threads) {
-  return smooth_output(make_output(ev, post, nd, r, 0, threads), r.smooth_en, r.smooth_t, threads);
+  return smooth_stream(make_output(ev, post, nd, r, 0, threads), r.smooth_en, r.smooth_t, threads);
 }
 
 }  // namespace sm

@@ -34,7 +34,11 @@ inline uint8_t support_confidence(unsigned e, int k, int k_near) {
 // thread count).
 OutImage smooth_output(const OutImage& in, int smooth_en, int smooth_t, int threads = 1);
 
-// The words the IP streams out: make_output's words, smoothed as r says.
+// The output stage's window stages as the IP runs them on the words (9.7): the smoothing
+// (smooth_output), then the row support of the confidence (row_support.hpp).
+OutImage smooth_stream(const OutImage& in, int smooth_en, int smooth_t, int threads = 1);
+
+// The words the IP streams out: make_output's words through smooth_stream as r says.
 OutImage stream_words(const Evidence& ev, const DispImage& post, int nd, const OutputRegs& r, int threads = 1);
 
 }  // namespace sm

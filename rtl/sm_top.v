@@ -93,11 +93,10 @@ module sm_top #(
   // Virtual rows that push a frame's tail out: the row delays of every stage
   // (rectify R+1, census, aggregation, DP 2, band filter BAND_K, medians 2+1+2, smoothing
   // 2) plus their column delays (DP skew DISP/2 and the stage pipelines, < DISP/2 + 64
-  // beats, the band filter's 1 beat and the smoothing's 7) counted in rows of the
-  // narrowest line (16). Extra virtual rows
-  // only cost idle time.
+  // beats, the band filter's 1 beat, the smoothing's 7 and the row support's 17) counted
+  // in rows of the narrowest line (16). Extra virtual rows only cost idle time.
   localparam BASE_FLUSH_ROWS = (RECT_RADIUS + 1) + (CENSUS - 1) / 2 + (SW - 1) / 2 + 2 + BAND_K + 5 + 2 +
-                               (DISP / 2 + 64 + 1 + 7 + 15) / 16 + 1;
+                               (DISP / 2 + 64 + 1 + 7 + 17 + 15) / 16 + 1;
   // the speckle stage: its rows and its queues' SPECKLE_SLACK + 1 beats
   localparam FLUSH_ROWS = BASE_FLUSH_ROWS + ((SPECKLE_ROWS > 0) ? SPECKLE_ROWS + (`SM_SPECKLE_SLACK + 1 + 15) / 16 : 0);
   // Shortest active frame (the HEIGHT register's minimum, HwConfig::min_height): four
@@ -489,9 +488,17 @@ module sm_top #(
       .s_side(sk_side), .s_word(sk_word), .m_side(sm_side), .m_word(sm_word)
   );
 
+  // the row support of the confidence (docs/algorithm.md 9.7)
+  wire [`SM_SIDE_W-1:0] su_side;
+  wire [31:0] su_word;
+  sm_out_support #(.DISP(DISP)) u_support (
+      .clk(aclk), .rst_n(rst_n), .ce(ce),
+      .s_side(sm_side), .s_word(sm_word), .m_side(su_side), .m_word(su_word)
+  );
+
   sm_outfmt #(.MAX_WIDTH(MAX_WIDTH), .MAX_HEIGHT(MAX_HEIGHT)) u_out (
       .clk(aclk), .rst_n(host_rst_n), .restart(!rst_n), .ce(ce), .width(width), .height(frame_height),
-      .in_side(sm_side), .in_word(sm_word), .room(out_room), .err_overflow(out_overflow),
+      .in_side(su_side), .in_word(su_word), .room(out_room), .err_overflow(out_overflow),
       .m_axis_tdata(m_axis_tdata), .m_axis_tuser(m_axis_tuser), .m_axis_tlast(m_axis_tlast),
       .m_axis_tvalid(m_axis_tvalid), .m_axis_tready(m_axis_tready)
   );

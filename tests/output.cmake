@@ -43,6 +43,15 @@ sm_rtl_test(NAME tb_out_smooth_odd TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_LIS
 sm_rtl_test(NAME tb_out_smooth_paper TOP sm_out_smooth SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_smooth.cpp
             PARAMS MAX_WIDTH=320 DISP=128 ARGS --widths 320,67 --height 6)
 sm_unit_test(test_smooth_model LIBS sm_model DISCOVER)
+# The row support of the confidence (sm_out_support) against the model's
+# row_support_output: DISP 16 at odd widths, rows shorter than the samples' reach too,
+# DISP 10, the paper's DISP 128 at its width.
+sm_rtl_test(NAME tb_out_support TOP sm_out_support SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_support.cpp
+            PARAMS DISP=16 ARGS --widths 37,16,64,5 --height 9)
+sm_rtl_test(NAME tb_out_support_odd TOP sm_out_support SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_support.cpp
+            PARAMS DISP=10 ARGS --widths 23,17,3 --height 7)
+sm_rtl_test(NAME tb_out_support_paper TOP sm_out_support SOURCES ${CMAKE_CURRENT_LIST_DIR}/tb_out_support.cpp
+            PARAMS DISP=128 ARGS --widths 320,67 --height 6)
 
 # The speckle stage (sm_speckle) against the model's SpeckleStage, beat by beat: tables
 # small enough to fill (KEEP), a table of a size not a power of two, one held row, queues

@@ -13,35 +13,12 @@
 
 #include SM_VTOP_H
 #include "disp_stream.hpp"
+#include "out_word_bench.hpp"
 #include "sm_block_test.hpp"
 #include "smooth.hpp"
-#include "speckle.hpp"
 
 using namespace sm;
 using namespace sm::test;
-
-namespace {
-
-// Slanted planes a few levels apart with +-thr noise in the Q.4 value, a tenth invalid,
-// now and then a word anywhere in 0 .. 16 (DISP - 1) (frame 1: anywhere everywhere).
-OutImage random_words(std::mt19937& rng, int w, int h, int nd, bool anywhere) {
-  OutImage m(w, h);
-  const int top = 16 * (nd - 1);
-  const int step = 16 * (1 + static_cast<int>(rng() % 4));
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const int base = (x * 3 / std::max(1, w / 4)) * step + y * 2 + static_cast<int>(rng() % 70) - 35;
-      const int q = anywhere || rng() % 12 == 0 ? static_cast<int>(rng() % (top + 1)) : std::clamp(base, 0, top);
-      const bool valid = rng() % 10 != 0;
-      const unsigned byte = rng() & 0xff;  // the confidence, or an invalid word's failed rules
-      // an invalid word: its failed rules, now and then the speckle stage's bit (9.8)
-      m.at(x, y) =
-          make_out_word(valid, byte, static_cast<unsigned>(q), byte) | (!valid && (byte & 64) ? kOutSpeckle : 0);
-    }
-  return m;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   BlockTest<SM_VTOP> t{"output smoothing block test"};
@@ -66,7 +43,7 @@ int main(int argc, char** argv) {
     const std::vector<int> heights = {h, h + 2, 1, h + 1, 3};
     std::vector<OutImage> in, want;
     for (size_t f = 0; f < heights.size(); ++f) {
-      in.push_back(random_words(rng, w, heights[f], hw.disp, f == 1));
+      in.push_back(random_out_words(rng, w, heights[f], hw.disp, f == 1, 35));
       want.push_back(smooth_output(in.back(), en[f], thr[f]));
     }
     const auto sched = make_schedule(w, heights, 6);
@@ -97,16 +74,7 @@ int main(int argc, char** argv) {
       if (!c || !(tb->m_side & kReal)) continue;
       const auto o = t.next_out(tb->m_side);
       if (!o) break;
-      const uint32_t e = want[o->frame].at(o->x, o->y);
-      const long lat = static_cast<long>(k - 1) - beat_of[o->frame][static_cast<size_t>(o->y) * w + o->x];
-      if (lat != latency)
-        t.fail(fmt::format("latency at w {} frame {} x {} y {}: {} beats, documented {}", w, o->frame, o->x, o->y, lat,
-                           latency));
-      else
-        t.check(tb->m_word == e, [&] {
-          return fmt::format("w {} frame {} x {} y {} expected {:#010x} got {:#010x}", w, o->frame, o->x, o->y, e,
-                             tb->m_word);
-        });
+      check_out_word(t, *o, k, beat_of, w, latency, want, tb->m_word);
     }
     t.all_out();
     frames += static_cast<int>(heights.size());

@@ -2,12 +2,13 @@
 // independent truth: the rounding against double arithmetic for every sum and count a
 // window can give, known answers on small word images (planes, depth steps, invalid pixels,
 // frame borders) for the mean and the confidence, and a noisy plane whose error the mean
-// must lower.
+// must lower; the row support of the confidence on hand-made rows.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 #include <vector>
 
+#include "row_support.hpp"
 #include "smooth.hpp"
 #include "validity.hpp"
 
@@ -104,4 +105,29 @@ TEST_CASE("smoothing lowers the error of a noisy slanted plane, for any thread c
     }
   CHECK(after < 0.5 * before);
   CHECK(smooth_output(m, 1, 24, 3).px == o.px);
+}
+
+TEST_CASE("row support: known answers (samples, tolerance, row ends, invalid words, saturation)", "[unit][smooth]") {
+  // rows of 40: a surface at 160 (level 10) with an island at 400 from x 14 to 20
+  OutImage m(40, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 40; ++x) m.at(x, y) = make_out_word(true, 100, x >= 14 && x <= 20 ? 400u : 160u);
+  CHECK(row_support(m, 0, 0) == 4);             // +3, +6, +9, +12 on the surface; +15 on the island
+  CHECK(row_support(m, 17, 0) == 2);            // the island's centre: +-3 only
+  CHECK(row_support(m, 30, 0) == 6);            // -15 and -12 on the island; -9 .. +9; +12, +15 outside
+  CHECK(row_support(m, 39, 0) == 5);            // -3 .. -15 on the surface, the rest outside the row
+  m.at(33, 0) = make_out_word(true, 100, 176);  // 16 away: still within one pixel
+  m.at(36, 0) = make_out_word(true, 100, 177);  // 17 away: not
+  CHECK(row_support(m, 39, 0) == 4);
+  m.at(27, 1) = make_out_word(false, 0, 0, 1);  // an invalid sample counts nothing
+  CHECK(row_support(m, 30, 1) == 5);
+  m.at(5, 1) = make_out_word(true, 250, 160);  // 250 + 5 R (R 3) saturates
+  const OutImage o = row_support_output(m);
+  CHECK(out_conf(o.at(30, 1)) == 100u + 5 * 5);
+  CHECK(o.at(27, 1) == m.at(27, 1));  // invalid words pass as they are
+  CHECK(out_conf(o.at(5, 1)) == 255u);
+  CHECK(out_q4(o.at(5, 1)) == 160u);  // the value passes
+  // the stream: the smoothing, then the row support
+  CHECK(smooth_stream(m, 1, 24).px == row_support_output(smooth_output(m, 1, 24)).px);
+  CHECK(row_support_output(m, 3).px == o.px);  // any thread count
 }

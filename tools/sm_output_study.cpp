@@ -26,6 +26,7 @@
 #include "output_frame.hpp"
 #include "outword.hpp"
 #include "pipeline.hpp"
+#include "row_support.hpp"
 #include "smooth.hpp"
 #include "sm_dp_margin.hpp"
 #include "sm_output_bound.hpp"
@@ -462,15 +463,16 @@ OutImage support_scored(const OutImage& streamed, const OutImage& raw, const Sup
 
 // The dense confidence with wider supports than the smoothing window's: AUC over the
 // oracle's, 14-scene means, as streamed and halved where zynq's speckle stage would clear
-// the pixel. The first row's weights are the stream's own (checked word for word).
+// the pixel. The first row's weights are the smoothing's own and the last row's the stream's,
+// smoothing and row support (both checked word for word).
 void study_window_conf(const std::vector<Frame>& fr) {
-  const SupportWeights cases[] = {{"the stream's confidence (9.7)", 16, 1, 3, 2, 0, 0, false, false},
+  const SupportWeights cases[] = {{"the smoothing's confidence", 16, 1, 3, 2, 0, 0, false, false},
                                   {"+ row", 12, 1, 2, 1, 4, 0, false, false},
                                   {"+ row + ring above", 16, 1, 2, 1, 4, 4, true, false},
                                   {"+ row + ring", 16, 1, 2, 1, 3, 4, false, false},
                                   {"+ ring", 16, 1, 2, 1, 0, 6, false, false},
                                   {"c + 4 row, after the smoothing", 0, 0, 0, 0, 4, 0, false, true},
-                                  {"c + 5 row, after the smoothing", 0, 0, 0, 0, 5, 0, false, true}};
+                                  {"c + 5 row: the stream (9.7)", 0, 0, 0, 0, 5, 0, false, true}};
   const OutputRegs dense = dense_mode(OutputRegs{});
   SpeckleRegs sr;
   sr.en = 1;
@@ -481,7 +483,9 @@ void study_window_conf(const std::vector<Frame>& fr) {
     streamed.push_back(smooth_output(raw.back(), dense.smooth_en, dense.smooth_t));
     sup.push_back(frame_supports(raw.back(), streamed.back(), dense.smooth_t));
     if (support_scored(streamed.back(), raw.back(), sup.back(), cases[0]).px != streamed.back().px)
-      throw ToolError("window-conf: the stream's weights do not give the stream's confidence");
+      throw ToolError("window-conf: the smoothing's weights do not give the smoothing's confidence");
+    if (support_scored(streamed.back(), raw.back(), sup.back(), cases[6]).px != row_support_output(streamed.back()).px)
+      throw ToolError("window-conf: the row support's weights do not give the stream's confidence");
   }
   fmt::print(
       "\nDense confidence with wider supports (R: row samples at +-3 .. +-15 step 3; S: the ring at 10),\n"
